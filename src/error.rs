@@ -1,0 +1,27 @@
+//! The crate error: one enum per stage boundary, wrapped here with `#[from]`.
+
+use thiserror::Error;
+
+/// Any error skelfit's library returns. Each variant wraps the error enum of one stage; its
+/// message names the problem and what to do about it.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// Reading, parsing or validating an input mesh failed.
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
+    /// Voxelizing a mesh failed.
+    #[error(transparent)]
+    Voxel(#[from] crate::voxel::VoxelError),
+    /// Building the discrete medial surface failed.
+    #[error(transparent)]
+    Medial(#[from] crate::medial::MedialError),
+    /// Loading or comparing skeletons failed.
+    #[error(transparent)]
+    Eval(#[from] crate::eval::EvalError),
+    /// Writing a report or picture failed.
+    #[error(transparent)]
+    Report(#[from] crate::report::ReportError),
+}
+
+/// `Result` with the crate [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;

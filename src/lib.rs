@@ -1,0 +1,46 @@
+//! # skelfit
+//!
+//! skelfit fits anatomical control skeletons into polygon meshes of humanoids, quadrupeds and
+//! other vertebrate-like figures, skins the mesh to them, builds bone meshes, and validates every
+//! joint against reference rigs.
+//!
+//! The pipeline flows one way; every stage is a public function over plain data:
+//!
+//! ```text
+//! mesh file ──mesh::load──▶ Mesh ──voxel::voxelize──▶ Solid (inside mask on a Grid)
+//!                                   └─distance::edt──▶ DistanceMap (exact squared EDT)
+//!                                   └─medial::dms────▶ MedialSurface
+//! ```
+//!
+//! See `ARCHITECTURE.md` in the repository for the whole map, the conventions (units, axes,
+//! determinism, errors) and the seed sections each module implements.
+//!
+//! ## Example
+//!
+//! ```
+//! use skelfit::mesh::Mesh;
+//! use skelfit::voxel::{voxelize, VoxelOptions, VoxelSize};
+//! use skelfit::distance::edt;
+//!
+//! // A closed unit cube (12 triangles).
+//! let mesh = Mesh::cuboid(glam::DVec3::ZERO, glam::DVec3::ONE);
+//! let options = VoxelOptions { size: VoxelSize::Fraction(1.0 / 32.0), ..Default::default() };
+//! let solid = voxelize(&mesh, &options).unwrap();
+//! let volume = solid.interior_volume();
+//! assert!((volume - 1.0).abs() < 0.03, "volume {volume}");
+//! let dist = edt(&solid);
+//! // The deepest voxel of a 32-voxel cube lies ~16 voxels from the outside.
+//! assert!(dist.max_distance() > 15.0 && dist.max_distance() < 17.5);
+//! ```
+#![warn(missing_docs)]
+
+pub mod distance;
+pub mod error;
+pub mod eval;
+pub mod medial;
+pub mod mesh;
+pub mod report;
+pub mod skeleton;
+pub mod voxel;
+
+pub use error::{Error, Result};
