@@ -1,0 +1,8 @@
+//! Integration tests: one binary, one module per stage.
+
+mod common;
+mod distance;
+mod eval;
+mod medial;
+mod mesh;
+mod voxel;
