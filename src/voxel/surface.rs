@@ -28,12 +28,10 @@ pub(crate) fn triangle_box_overlap(tri: [DVec3; 3], centre: DVec3, half: f64) ->
         }
     }
     // Box face normals: bounding-box overlap.
-    for k in 0..3 {
-        let lo = v[0][k].min(v[1][k]).min(v[2][k]);
-        let hi = v[0][k].max(v[1][k]).max(v[2][k]);
-        if lo > half || hi < -half {
-            return false;
-        }
+    let lo = v[0].min(v[1]).min(v[2]);
+    let hi = v[0].max(v[1]).max(v[2]);
+    if lo.max_element() > half || hi.min_element() < -half {
+        return false;
     }
     // Triangle plane.
     let n = e[0].cross(e[1]);

@@ -66,7 +66,7 @@ pub fn grid_for(mesh: &Mesh, options: &VoxelOptions) -> Result<Grid, VoxelError>
     let (min, max) = mesh.bounding_box().ok_or(VoxelError::NoTriangles)?;
     let extent = max - min;
     let longest = extent.max_element();
-    if !(longest > 0.0) || extent.min_element() <= 0.0 || !extent.is_finite() {
+    if !extent.is_finite() || extent.min_element() <= 0.0 {
         return Err(VoxelError::Flat {
             extent: extent.to_array(),
         });
