@@ -66,7 +66,7 @@ impl SkinBind {
         let root = joints
             .iter()
             .position(|&node| {
-                tree.parent[node].map_or(true, |parent| !joint_of_node.contains_key(&parent))
+                tree.parent[node].is_none_or(|parent| !joint_of_node.contains_key(&parent))
             })
             .unwrap_or(0);
         let bind = tree.world[joints[root]] * inverse_bind[root];
@@ -197,7 +197,7 @@ impl SkinBind {
         while order.len() < count {
             let before = order.len();
             for k in 0..count {
-                if !placed[k] && parents[k].map_or(true, |p| placed[p] || p == k) {
+                if !placed[k] && parents[k].is_none_or(|p| placed[p] || p == k) {
                     placed[k] = true;
                     order.push(k);
                 }

@@ -98,7 +98,7 @@ impl Mesh {
                         };
                         for &k in kept {
                             if self.positions[k as usize].distance(p) <= radius
-                                && found.map_or(true, |f: u32| k < f)
+                                && found.is_none_or(|f: u32| k < f)
                             {
                                 found = Some(k);
                             }
