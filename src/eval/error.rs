@@ -21,6 +21,15 @@ pub enum EvalError {
         /// Extra context, e.g. ` (format "foo-v9")`; may be empty.
         detail: String,
     },
+    /// Reading a glTF/GLB file (or a mesh) failed.
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
+    /// A glTF/GLB file has no skinned mesh, so there is no skeleton to read.
+    #[error("{path} has no skinned mesh, so it holds no skeleton: export the armature with its mesh (skinned)")]
+    NoSkin {
+        /// The file.
+        path: PathBuf,
+    },
     /// The file is not valid in its format.
     #[error("{path} is not a valid {format} skeleton: {message}")]
     Parse {

@@ -63,7 +63,7 @@ pub use metrics::{
     evaluate, figure_size, resolve_measure, ErrorSummary, EvalOptions, Evaluation, FigureMeasure,
     FigureSize, JointError, SizeSource,
 };
-pub use reference::{load_skeleton, parse_json_rig, REFDATA_FORMAT};
+pub use reference::{load_gltf_rig, load_skeleton, parse_json_rig, REFDATA_FORMAT};
 pub use rig::{ReferenceRig, RigFormat};
 pub use table::{
     aggregate, joint_rows, joint_table, key_table, model_row, model_table, to_json, write_csv,

@@ -30,16 +30,33 @@ pub fn load_skeleton(path: &Path) -> Result<ReferenceRig, EvalError> {
     match extension.as_str() {
         "json" => parse_json_rig(&read_text(path)?, path),
         "bvh" => bvh::parse_bvh(&read_text(path)?, path),
-        "glb" | "gltf" => Err(EvalError::UnknownFormat {
-            path: path.to_owned(),
-            detail: " (glTF skeletons are not readable yet: export the rig as .bvh or .json)"
-                .into(),
-        }),
+        "glb" | "gltf" => load_gltf_rig(path),
         _ => Err(EvalError::UnknownFormat {
             path: path.to_owned(),
             detail: String::new(),
         }),
     }
+}
+
+/// Reads the skeleton of the first skin of a glTF/GLB file in its bind pose (joint `j` at
+/// `B · inv(IBM_j) · 0`, the frame of [`crate::mesh::load_gltf`]), keeping the skin's `deform`
+/// flags. Positions are in glTF units as authored: no provenance scale is applied.
+///
+/// # Errors
+/// [`EvalError::Mesh`] when the file cannot be read, [`EvalError::NoSkin`] without a skin.
+pub fn load_gltf_rig(path: &Path) -> Result<ReferenceRig, EvalError> {
+    let scene = crate::mesh::load_gltf_scene(path)?;
+    let skeleton = scene.skeleton.ok_or_else(|| EvalError::NoSkin {
+        path: path.to_owned(),
+    })?;
+    Ok(ReferenceRig {
+        skeleton,
+        canonical: BTreeMap::new(),
+        model: model_name(path),
+        rig: Some("gltf".into()),
+        units: None,
+        format: RigFormat::Gltf,
+    })
 }
 
 fn read_text(path: &Path) -> Result<String, EvalError> {
