@@ -6,12 +6,12 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum EvalError {
     /// The file could not be opened or read.
-    #[error("cannot read {path}: {source}")]
+    #[error("cannot read {path}: {cause}; check the path and permissions")]
     Io {
         /// The file.
         path: PathBuf,
-        /// The underlying I/O error.
-        source: std::io::Error,
+        /// The underlying I/O error (part of the message, hence not a `source()`).
+        cause: std::io::Error,
     },
     /// The file extension (or JSON `format` field) is not one skelfit reads skeletons from.
     #[error("unknown skeleton format for {path}{detail}: expected .json (refdata-skeleton-v1 or skelfit), .bvh, .glb or .gltf")]

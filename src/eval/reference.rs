@@ -60,9 +60,9 @@ pub fn load_gltf_rig(path: &Path) -> Result<ReferenceRig, EvalError> {
 }
 
 fn read_text(path: &Path) -> Result<String, EvalError> {
-    std::fs::read_to_string(path).map_err(|source| EvalError::Io {
+    std::fs::read_to_string(path).map_err(|cause| EvalError::Io {
         path: path.to_owned(),
-        source,
+        cause,
     })
 }
 

@@ -87,9 +87,9 @@ pub fn write_html_report(
     input: &ReportInput,
     options: &ReportOptions,
 ) -> Result<(), ReportError> {
-    std::fs::write(path, html_report(input, options)).map_err(|source| ReportError::Io {
+    std::fs::write(path, html_report(input, options)).map_err(|cause| ReportError::Io {
         path: path.to_owned(),
-        source,
+        cause,
     })
 }
 
