@@ -1,13 +1,14 @@
-//! Reports: orthographic SVG projections of a mesh with predicted and reference joints, an SVG
-//! bar chart of the error per joint, and a self-contained HTML page combining them with the
-//! per-joint table. Tables for CSV/JSON/Markdown live in [`crate::eval`] (`joint_rows`,
-//! `write_csv`, ...).
+//! Reports: pictures of the voxel stages (distance slices as PNG), orthographic SVG projections
+//! of a mesh with predicted and reference joints, an SVG bar chart of the error per joint, and a
+//! self-contained HTML page combining them with the per-joint table. Tables for
+//! CSV/JSON/Markdown live in [`crate::eval`] (`joint_rows`, `write_csv`, ...).
 //!
-//! Everything is plain string building: no network resources, no extra crates.
+//! The SVG and HTML output is plain string building: no network resources, no extra crates.
 
 mod chart;
 mod error;
 mod html;
+mod slices;
 mod svg;
 #[cfg(test)]
 mod tests;
@@ -15,6 +16,7 @@ mod tests;
 pub use chart::{error_bar_chart, ChartOptions};
 pub use error::ReportError;
 pub use html::{html_report, write_html_report, ReportInput, ReportOptions};
+pub use slices::{distance_slice, png_bytes, RgbImage};
 pub use svg::{projection_svg, SvgOptions, View};
 
 /// `text` with the five XML/HTML special characters escaped.
