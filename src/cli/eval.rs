@@ -1,13 +1,14 @@
 //! `skelfit eval PRED REF [--mesh MESH] [--csv OUT] [--json OUT] [--html OUT]`: compare a
 //! predicted skeleton with a reference rig joint by joint.
 
+use super::common::{load_mesh, write_file};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use skelfit::eval::{
     evaluate, joint_rows, joint_table, load_skeleton, to_json, write_csv, EvalOptions, Evaluation,
     FigureMeasure, ReferenceRig,
 };
-use skelfit::report::{write_html_report, ReportInput, ReportOptions};
+use skelfit::report::{html_report, ReportInput, ReportOptions};
 use std::path::{Path, PathBuf};
 
 /// How errors are normalised (`--measure`).
@@ -67,10 +68,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     let predicted = load_rig(&args.predicted, "predicted")?;
     let reference = load_rig(&args.reference, "reference")?;
     let mesh = match &args.mesh {
-        Some(path) => Some(
-            skelfit::mesh::load(path)
-                .with_context(|| format!("loading mesh {}", path.display()))?,
-        ),
+        Some(path) => Some(load_mesh(path)?),
         None => None,
     };
     let options = EvalOptions {
@@ -110,17 +108,13 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             reference: &reference,
             mesh: mesh.as_ref(),
         };
-        write_html_report(path, &input, &ReportOptions::default())?;
+        write_file(path, html_report(&input, &ReportOptions::default()).as_bytes())?;
     }
     Ok(())
 }
 
 fn load_rig(path: &Path, role: &str) -> anyhow::Result<ReferenceRig> {
     load_skeleton(path).with_context(|| format!("loading the {role} skeleton {}", path.display()))
-}
-
-fn write_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    std::fs::write(path, bytes).with_context(|| format!("writing {}", path.display()))
 }
 
 /// The per-joint table followed by the summary lines.

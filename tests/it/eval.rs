@@ -161,3 +161,31 @@ fn bvh_file_loads() {
     assert_eq!(rig.skeleton.joints.len(), 2);
     assert_eq!(rig.skeleton.joints[1].name, "Hips_end");
 }
+
+#[test]
+fn bundled_data_evaluates_and_reports() {
+    let dir = common::data_dir().join("humanoid/mh_neutral_default");
+    let reference = load_skeleton(&dir.join("rig_game_engine.json")).unwrap();
+    let mesh = skelfit::mesh::load(&dir.join("mesh.obj")).unwrap();
+    // A prediction 1 cm off along +Z everywhere.
+    let mut predicted = reference.clone();
+    for joint in &mut predicted.skeleton.joints {
+        joint.position.z += 0.01;
+    }
+    let e = evaluate(&predicted, &reference, Some(&mesh), &EvalOptions::default()).unwrap();
+    assert_eq!(e.joints.len(), 21);
+    assert!((e.summary.max - 0.01).abs() < 1e-12 && (e.summary.median - 0.01).abs() < 1e-12);
+    assert_eq!(e.figure.source, SizeSource::Mesh);
+    let (min, max) = mesh.bounding_box().unwrap();
+    assert!((e.figure.size - (max.y - min.y)).abs() < 1e-12);
+    let html = skelfit::report::html_report(
+        &skelfit::report::ReportInput {
+            evaluation: &e,
+            predicted: &predicted.deforming(),
+            reference: &reference.deforming(),
+            mesh: Some(&mesh),
+        },
+        &Default::default(),
+    );
+    assert_eq!(html.matches("<svg").count(), 4);
+}
