@@ -108,7 +108,10 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             reference: &reference,
             mesh: mesh.as_ref(),
         };
-        write_file(path, html_report(&input, &ReportOptions::default()).as_bytes())?;
+        write_file(
+            path,
+            html_report(&input, &ReportOptions::default()).as_bytes(),
+        )?;
     }
     Ok(())
 }
