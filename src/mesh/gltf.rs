@@ -270,3 +270,24 @@ fn assemble(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
         _ => Vec::new(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_and_fans_keep_a_consistent_winding() {
+        let indices = [0, 1, 2, 3, 4];
+        assert_eq!(
+            assemble(Mode::TriangleStrip, &indices),
+            vec![[0, 1, 2], [1, 3, 2], [2, 3, 4]]
+        );
+        assert_eq!(
+            assemble(Mode::TriangleFan, &indices),
+            vec![[1, 2, 0], [2, 3, 0], [3, 4, 0]]
+        );
+        assert_eq!(assemble(Mode::Triangles, &indices), vec![[0, 1, 2]]);
+        assert!(assemble(Mode::TriangleStrip, &[0, 1]).is_empty());
+        assert!(assemble(Mode::Lines, &indices).is_empty());
+    }
+}

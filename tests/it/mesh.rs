@@ -65,8 +65,7 @@ fn stl_binary(mesh: &Mesh, header: &[u8]) -> Vec<u8> {
     bytes
 }
 
-/// PLY with quads where two triangles share a diagonal pair? No: plain triangles, plus one
-/// polygon face when `polygon` (a square split into a fan by the reader).
+/// ASCII PLY with float coordinates and faces listed under `list_name`.
 fn ply_ascii(positions: &[DVec3], faces: &[Vec<u32>], list_name: &str) -> String {
     let mut s = format!(
         "ply\nformat ascii 1.0\ncomment test\nelement vertex {}\nproperty float x\n\
@@ -413,8 +412,7 @@ fn out_of_range_indices_are_reported() {
         expect_error(&ply),
         MeshError::IndexOutOfRange { index: 7, .. }
     ));
-    let mut mesh = cube();
-    let (json, mut bin) = gltf_parts(&mesh, [0.0; 3], None);
+    let (json, mut bin) = gltf_parts(&cube(), [0.0; 3], None);
     let last = bin.len() - 4;
     bin[last..].copy_from_slice(&100u32.to_le_bytes());
     let path = write(dir.path(), "index.glb", glb(&json, &bin));
@@ -426,7 +424,6 @@ fn out_of_range_indices_are_reported() {
             vertex_count: 8
         }
     ));
-    mesh.triangles.clear();
 }
 
 #[test]
@@ -713,4 +710,98 @@ fn stl_loader_reads_the_fox_reference_as_stl() {
     let back = load_stl(&path).unwrap();
     assert_eq!(back.stats().triangles, mesh.stats().triangles);
     assert_eq!(back.stats().boundary_edges, 0);
+}
+
+#[test]
+fn skinned_gltf_is_read_in_its_bind_pose() {
+    // Armature (translated by +1 y) > root joint (+1 z) > child joint (+2 y); the skinned
+    // mesh node's own +100 x translation must be ignored. IBM_root = I, so
+    // B = W_root(rest) = translate(0, 1, 1); IBM_child = translate(0, -3, 0) puts the child
+    // joint at B · (0, 3, 0) = (0, 4, 1) in the bind pose (its rest position is (0, 3, 1)).
+    let cube = cube();
+    let mut bin = Vec::new();
+    let mut views = Vec::new();
+    let mut view = |bin: &mut Vec<u8>, bytes: Vec<u8>| {
+        views.push(format!(
+            r#"{{"buffer": 0, "byteOffset": {}, "byteLength": {}}}"#,
+            bin.len(),
+            bytes.len()
+        ));
+        bin.extend(bytes);
+    };
+    let floats = |values: &[f64]| -> Vec<u8> {
+        values
+            .iter()
+            .flat_map(|&v| (v as f32).to_le_bytes())
+            .collect()
+    };
+    let positions: Vec<f64> = cube.positions.iter().flat_map(|p| p.to_array()).collect();
+    view(&mut bin, floats(&positions));
+    let indices: Vec<u8> = cube
+        .triangles
+        .iter()
+        .flatten()
+        .flat_map(|i| i.to_le_bytes())
+        .collect();
+    view(&mut bin, indices);
+    view(&mut bin, vec![0u8; 4 * 8]); // JOINTS_0: all joint 0
+    view(&mut bin, floats(&[1.0, 0.0, 0.0, 0.0].repeat(8))); // WEIGHTS_0
+    let mut ibm = glam::DMat4::IDENTITY.to_cols_array().to_vec();
+    ibm.extend(glam::DMat4::from_translation(DVec3::new(0.0, -3.0, 0.0)).to_cols_array());
+    view(&mut bin, floats(&ibm));
+    let (min, max) = cube.bounding_box().unwrap();
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0, 3]}}],
+  "nodes": [{{"name": "Armature", "translation": [0, 1, 0], "children": [1]}},
+            {{"name": "root", "translation": [0, 0, 1], "children": [2]}},
+            {{"translation": [0, 2, 0]}},
+            {{"name": "body", "mesh": 0, "skin": 0, "translation": [100, 0, 0]}}],
+  "skins": [{{"joints": [1, 2], "inverseBindMatrices": 4}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "JOINTS_0": 2,
+                "WEIGHTS_0": 3}}, "indices": 1}}]}}],
+  "buffers": [{{"byteLength": {}}}],
+  "bufferViews": [{}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+      "min": [{}, {}, {}], "max": [{}, {}, {}]}},
+    {{"bufferView": 1, "componentType": 5125, "count": 36, "type": "SCALAR"}},
+    {{"bufferView": 2, "componentType": 5121, "count": 8, "type": "VEC4"}},
+    {{"bufferView": 3, "componentType": 5126, "count": 8, "type": "VEC4"}},
+    {{"bufferView": 4, "componentType": 5126, "count": 2, "type": "MAT4"}}]}}"#,
+        bin.len(),
+        views.join(", "),
+        min.x,
+        min.y,
+        min.z,
+        max.x,
+        max.y,
+        max.z,
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "skinned.glb", glb(&json, &bin));
+    let scene = load_gltf_scene(&path).unwrap();
+    let (min, max) = scene.mesh.bounding_box().unwrap();
+    assert_eq!(min, DVec3::new(-1.0, 1.0, 1.5));
+    assert_eq!(max, DVec3::new(1.0, 4.0, 3.0));
+    assert_cube_stats(
+        &scene
+            .mesh
+            .transformed(|p| p - DVec3::new(0.0, 1.0, 1.0))
+            .stats(),
+        "skinned",
+    );
+    let skeleton = scene.skeleton.unwrap();
+    assert_eq!(skeleton.joints.len(), 2);
+    let root = &skeleton.joints[0];
+    assert_eq!(
+        (root.name.as_str(), root.parent, root.deform),
+        ("root", None, true)
+    );
+    assert!(root.position.distance(DVec3::new(0.0, 1.0, 1.0)) < 1e-12);
+    let child = &skeleton.joints[1];
+    assert_eq!(
+        (child.name.as_str(), child.parent, child.deform),
+        ("joint_2", Some(skelfit::skeleton::JointId(0)), false)
+    );
+    assert!(child.position.distance(DVec3::new(0.0, 4.0, 1.0)) < 1e-12);
 }
