@@ -202,6 +202,25 @@ mod tests {
         assert_eq!(report.inverted_patches, 1);
     }
 
+    proptest::proptest! {
+        #[test]
+        fn any_pattern_of_flipped_triangles_is_repaired(
+            flips in proptest::collection::vec(proptest::bool::ANY, 48),
+        ) {
+            let sphere = Mesh::uv_sphere(DVec3::new(0.0, 2.0, -1.0), 1.5, 4, 8);
+            proptest::prop_assert_eq!(sphere.triangles.len(), flips.len());
+            let mut broken = sphere.clone();
+            for (tri, &flip) in broken.triangles.iter_mut().zip(&flips) {
+                if flip {
+                    tri.swap(1, 2);
+                }
+            }
+            let (fixed, report) = broken.oriented_outward();
+            proptest::prop_assert_eq!(&fixed, &sphere);
+            proptest::prop_assert_eq!(report.flipped_triangles, flips.iter().filter(|&&f| f).count());
+        }
+    }
+
     #[test]
     fn consistent_mesh_is_unchanged() {
         let capsule = Mesh::capsule(DVec3::ZERO, 1.0, 2.0, 4, 8);
