@@ -28,12 +28,18 @@ pub fn edt(solid: &Solid) -> DistanceMap {
         .for_each_init(
             || Scratch::new(ny),
             |scratch, (slice, inside)| {
+                if !inside.contains(&true) {
+                    return;
+                }
                 for (row, inside_row) in slice.chunks_mut(nx).zip(inside.chunks(nx)) {
                     row_distances(inside_row, row);
                 }
                 for x in 0..nx {
                     scratch.line.clear();
                     scratch.line.extend((0..ny).map(|y| slice[x + nx * y]));
+                    if scratch.line.iter().all(|&d| d == 0) {
+                        continue;
+                    }
                     envelope(
                         &scratch.line,
                         &mut scratch.out,
@@ -46,19 +52,25 @@ pub fn edt(solid: &Solid) -> DistanceMap {
                 }
             },
         );
-    // Phase 3 along z: one xz-plane per y, gathered, transformed, then scattered back.
+    // Phase 3 along z: one xz-plane per y, gathered row by row, transformed column by column,
+    // then scattered back.
     if nz > 1 {
         let planes: Vec<Vec<u32>> = (0..ny)
             .into_par_iter()
             .map_init(
                 || Scratch::new(nz),
                 |scratch, y| {
-                    let mut plane = vec![0u32; nx * nz];
+                    let mut plane = Vec::with_capacity(nx * nz);
+                    for z in 0..nz {
+                        let row = nx * (y + ny * z);
+                        plane.extend_from_slice(&squared[row..row + nx]);
+                    }
                     for x in 0..nx {
                         scratch.line.clear();
-                        scratch
-                            .line
-                            .extend((0..nz).map(|z| squared[x + nx * (y + ny * z)]));
+                        scratch.line.extend((0..nz).map(|z| plane[x + nx * z]));
+                        if scratch.line.iter().all(|&d| d == 0) {
+                            continue;
+                        }
                         envelope(
                             &scratch.line,
                             &mut scratch.out,

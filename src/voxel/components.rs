@@ -1,67 +1,142 @@
-//! 26-connected components of the interior.
+//! 26-connected components of the interior, by union-find over row runs.
+//!
+//! Each row (fixed y and z) of inside voxels splits into runs. Two runs are 26-connected when
+//! their rows are neighbours (|dy| <= 1, |dz| <= 1) and their x-ranges overlap after widening one
+//! of them by a voxel on each side. Scanning rows in order and joining each run with the runs of
+//! the four already-scanned neighbour rows ((y-1, z), (y-1, z-1), (y, z-1), (y+1, z-1)) finds
+//! every connection; the work is linear in the number of runs rather than of voxels.
 
-use super::{Connectivity, Grid};
+use super::Grid;
+
+/// A maximal run `[start, end)` of inside voxels along x in row `row = y + ny * z`.
+#[derive(Debug, Clone, Copy)]
+struct Run {
+    row: usize,
+    start: usize,
+    end: usize,
+}
+
+fn find(parent: &mut [u32], mut a: u32) -> u32 {
+    while parent[a as usize] != a {
+        let up = parent[parent[a as usize] as usize];
+        parent[a as usize] = up;
+        a = up;
+    }
+    a
+}
+
+fn union(parent: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    // Deterministic: the smaller run index becomes the representative.
+    if ra < rb {
+        parent[rb as usize] = ra;
+    } else if rb < ra {
+        parent[ra as usize] = rb;
+    }
+}
 
 /// Keeps only the largest 26-connected component of `inside` (ties: the one containing the
 /// lowest voxel index, so the result is deterministic). Returns the number of components found
 /// and the number of voxels dropped.
-///
-/// The outermost layer of the grid must be outside (as `voxelize` guarantees), so that every
-/// neighbour of an inside voxel is in the grid and linear offsets can be used.
 pub(crate) fn keep_largest_component(grid: &Grid, inside: &mut [bool]) -> (usize, usize) {
-    const UNSEEN: u32 = u32::MAX;
-    let mut label = vec![UNSEEN; inside.len()];
-    let mut sizes: Vec<usize> = Vec::new();
-    let mut stack = Vec::new();
-    let [nx, ny, _] = grid.dims;
-    let offsets: Vec<isize> = Connectivity::TwentySix
-        .neighbours()
-        .iter()
-        .map(|n| {
-            n.offset[0] as isize
-                + nx as isize * (n.offset[1] as isize + ny as isize * n.offset[2] as isize)
-        })
-        .collect();
-    for start in 0..inside.len() {
-        if !inside[start] || label[start] != UNSEEN {
-            continue;
+    let [nx, ny, nz] = grid.dims;
+    let rows = ny * nz;
+    let mut runs: Vec<Run> = Vec::new();
+    let mut row_start = vec![0u32; rows + 1];
+    for row in 0..rows {
+        let line = &inside[row * nx..(row + 1) * nx];
+        let mut x = 0;
+        while x < nx {
+            if line[x] {
+                let start = x;
+                while x < nx && line[x] {
+                    x += 1;
+                }
+                runs.push(Run { row, start, end: x });
+            } else {
+                x += 1;
+            }
         }
-        let id = sizes.len() as u32;
-        let mut size = 0;
-        label[start] = id;
-        stack.push(start);
-        while let Some(i) = stack.pop() {
-            size += 1;
-            debug_assert!(on_interior(grid, i), "inside voxel on the grid border");
-            for &o in &offsets {
-                let j = (i as isize + o) as usize;
-                if inside[j] && label[j] == UNSEEN {
-                    label[j] = id;
-                    stack.push(j);
+        row_start[row + 1] = runs.len() as u32;
+    }
+    if runs.is_empty() {
+        return (0, 0);
+    }
+    let mut parent: Vec<u32> = (0..runs.len() as u32).collect();
+    for (k, run) in runs.iter().enumerate() {
+        let (y, z) = (run.row % ny, run.row / ny);
+        let neighbours = [
+            (y.checked_sub(1), Some(z)),
+            (y.checked_sub(1), z.checked_sub(1)),
+            (Some(y), z.checked_sub(1)),
+            ((y + 1 < ny).then_some(y + 1), z.checked_sub(1)),
+        ];
+        for (ny_, nz_) in neighbours {
+            let (Some(oy), Some(oz)) = (ny_, nz_) else {
+                continue;
+            };
+            let other = oy + ny * oz;
+            for j in row_start[other]..row_start[other + 1] {
+                let r = runs[j as usize];
+                // Overlap of [start-1, end+1) with [r.start, r.end).
+                if r.start <= run.end && run.start <= r.end {
+                    union(&mut parent, k as u32, j);
                 }
             }
         }
-        sizes.push(size);
     }
-    let Some((best, _)) = sizes
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(&a.0)))
-    else {
-        return (0, 0);
-    };
+    let mut size = vec![0usize; runs.len()];
+    for k in 0..runs.len() {
+        let root = find(&mut parent, k as u32) as usize;
+        size[root] += runs[k].end - runs[k].start;
+    }
+    let components = (0..runs.len()).filter(|&k| parent[k] == k as u32).count();
+    // Largest size; ties go to the smallest root, whose first run has the lowest voxel index.
+    let best = (0..runs.len())
+        .filter(|&k| parent[k] == k as u32)
+        .max_by(|&a, &b| size[a].cmp(&size[b]).then(b.cmp(&a)))
+        .unwrap_or(0);
     let mut dropped = 0;
-    for (i, flag) in inside.iter_mut().enumerate() {
-        if *flag && label[i] != best as u32 {
-            *flag = false;
-            dropped += 1;
+    for (k, run) in runs.iter().enumerate() {
+        if find(&mut parent, k as u32) as usize != best {
+            inside[run.row * nx + run.start..run.row * nx + run.end].fill(false);
+            dropped += run.end - run.start;
         }
     }
-    (sizes.len(), dropped)
+    (components, dropped)
 }
 
-/// True when voxel `i` is not on the outermost layer of the grid.
-fn on_interior(grid: &Grid, i: usize) -> bool {
-    let c = grid.coords(i);
-    (0..3).all(|k| c[k] > 0 && c[k] + 1 < grid.dims[k])
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn grid(dims: [usize; 3]) -> Grid {
+        Grid {
+            dims,
+            origin: DVec3::ZERO,
+            voxel_size: 1.0,
+        }
+    }
+
+    #[test]
+    fn diagonal_corner_contact_connects_and_gaps_separate() {
+        let g = grid([6, 6, 6]);
+        let mut inside = vec![false; g.len()];
+        // Two voxels touching only at a corner: one component.
+        inside[g.index([1, 1, 1])] = true;
+        inside[g.index([2, 2, 2])] = true;
+        // A separate pair, two voxels away.
+        inside[g.index([4, 4, 4])] = true;
+        inside[g.index([4, 4, 3])] = true;
+        inside[g.index([4, 3, 4])] = true;
+        let mut a = inside.clone();
+        assert_eq!(keep_largest_component(&g, &mut a), (2, 2));
+        assert!(a[g.index([4, 4, 4])] && !a[g.index([1, 1, 1])]);
+        // Corner contact across (y+1, z-1).
+        let mut b = vec![false; g.len()];
+        b[g.index([1, 1, 2])] = true;
+        b[g.index([2, 2, 1])] = true;
+        assert_eq!(keep_largest_component(&g, &mut b), (1, 0));
+    }
 }

@@ -11,33 +11,36 @@ use rayon::prelude::*;
 /// True when triangle `tri` (voxel coordinates) overlaps the box of half-size `half` at `centre`.
 pub(crate) fn triangle_box_overlap(tri: [DVec3; 3], centre: DVec3, half: f64) -> bool {
     let v = tri.map(|p| p - centre);
-    let e = [v[1] - v[0], v[2] - v[1], v[0] - v[2]];
-    // Nine edge-axis cross products.
-    for edge in e {
-        for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
-            let a = axis.cross(edge);
-            if a == DVec3::ZERO {
-                continue;
-            }
-            let p = v.map(|x| x.dot(a));
-            let r = half * (a.x.abs() + a.y.abs() + a.z.abs());
-            let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
-            if lo > r || hi < -r {
-                return false;
-            }
-        }
-    }
     // Box face normals: bounding-box overlap.
     let lo = v[0].min(v[1]).min(v[2]);
     let hi = v[0].max(v[1]).max(v[2]);
     if lo.max_element() > half || hi.min_element() < -half {
         return false;
     }
-    // Triangle plane.
+    // Triangle plane (cheap and the most selective of the remaining tests).
+    let e = [v[1] - v[0], v[2] - v[1], v[0] - v[2]];
     let n = e[0].cross(e[1]);
-    let d = n.dot(v[0]);
-    let r = half * (n.x.abs() + n.y.abs() + n.z.abs());
-    d.abs() <= r
+    if n.dot(v[0]).abs() > half * (n.x.abs() + n.y.abs() + n.z.abs()) {
+        return false;
+    }
+    // Nine edge-axis cross products.
+    for edge in e {
+        for a in [
+            DVec3::new(0.0, -edge.z, edge.y),
+            DVec3::new(edge.z, 0.0, -edge.x),
+            DVec3::new(-edge.y, edge.x, 0.0),
+        ] {
+            if a == DVec3::ZERO {
+                continue;
+            }
+            let p = v.map(|x| x.dot(a));
+            let r = half * (a.x.abs() + a.y.abs() + a.z.abs());
+            if p[0].min(p[1]).min(p[2]) > r || p[0].max(p[1]).max(p[2]) < -r {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// Marks every voxel of `grid` that a triangle touches. `corners` are in voxel coordinates.

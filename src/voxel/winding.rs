@@ -31,11 +31,15 @@ struct Crossing {
     entering: i8,
 }
 
-/// The six signed crossing counts of every voxel centre, one array per axis laid out column by
-/// column (`column * n + s` with `n` voxels along the axis): `[towards -axis, towards +axis]`.
+/// The six signed crossing counts of every voxel centre: `[towards -axis, towards +axis]` for
+/// each axis. The x and y arrays use the grid's layout (`x + nx (y + ny z)`); the z array is
+/// stored y-major (`x + nx (z + nz y)`) so that each y owns a contiguous block while it is filled.
+/// Reading all three for consecutive x is contiguous in every array.
 pub(crate) struct WindingVotes {
     dims: [usize; 3],
-    per_axis: [Vec<[i8; 2]>; 3],
+    x: Vec<[i8; 2]>,
+    y: Vec<[i8; 2]>,
+    z: Vec<[i8; 2]>,
 }
 
 impl WindingVotes {
@@ -43,11 +47,10 @@ impl WindingVotes {
     #[inline]
     pub fn counts(&self, [x, y, z]: [usize; 3]) -> [i8; 6] {
         let [nx, ny, nz] = self.dims;
-        let a = self.per_axis[0][x + nx * (y + ny * z)];
-        // Axis 1 (y): columns indexed by (u, v) = (z, x) as z + nz * x.
-        let b = self.per_axis[1][(z + nz * x) * ny + y];
-        // Axis 2 (z): columns indexed by (u, v) = (x, y) as x + nx * y.
-        let c = self.per_axis[2][(x + nx * y) * nz + z];
+        let i = x + nx * (y + ny * z);
+        let a = self.x[i];
+        let b = self.y[i];
+        let c = self.z[x + nx * (z + nz * y)];
         [a[0], a[1], b[0], b[1], c[0], c[1]]
     }
 }
@@ -122,44 +125,82 @@ fn triangle_crossings(corners: [DVec3; 3], axis: usize, dims: [usize; 3], out: &
 ///
 /// `corners` are the triangles' corners in continuous voxel coordinates.
 pub(crate) fn winding_votes(grid: &Grid, corners: &[[DVec3; 3]]) -> WindingVotes {
-    let dims = grid.dims;
-    let per_axis = [0, 1, 2].map(|axis| axis_votes(dims, axis, corners));
-    WindingVotes { dims, per_axis }
+    let [nx, ny, nz] = grid.dims;
+    let columns = [0, 1, 2].map(|axis| ColumnCrossings::new(grid.dims, axis, corners));
+    // Axis x: column (y, z) is row y + ny z.
+    let mut x = vec![[0i8; 2]; grid.len()];
+    x.par_chunks_mut(nx)
+        .enumerate()
+        .for_each(|(row, out)| columns[0].fill(row, out.iter_mut()));
+    // Axis y: column (z, x) lives in z-slice z at stride nx.
+    let mut y = vec![[0i8; 2]; grid.len()];
+    y.par_chunks_mut(nx * ny)
+        .enumerate()
+        .for_each(|(z, slice)| {
+            for x in 0..nx {
+                columns[1].fill(z + nz * x, slice.iter_mut().skip(x).step_by(nx));
+            }
+        });
+    // Axis z: column (x, y), stored in y's block at stride nx.
+    let mut zs = vec![[0i8; 2]; grid.len()];
+    zs.par_chunks_mut(nx * nz)
+        .enumerate()
+        .for_each(|(y, block)| {
+            for x in 0..nx {
+                columns[2].fill(x + nx * y, block.iter_mut().skip(x).step_by(nx));
+            }
+        });
+    WindingVotes {
+        dims: grid.dims,
+        x,
+        y,
+        z: zs,
+    }
 }
 
-/// The two counts of every voxel along every column parallel to `axis`.
-fn axis_votes(dims: [usize; 3], axis: usize, corners: &[[DVec3; 3]]) -> Vec<[i8; 2]> {
-    let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-    let columns = dims[u] * dims[v];
-    let n = dims[axis];
-    let found: Vec<Vec<Crossing>> = corners
-        .par_chunks(2048)
-        .map(|chunk| {
-            let mut out = Vec::new();
-            for &tri in chunk {
-                triangle_crossings(tri, axis, dims, &mut out);
-            }
-            out
-        })
-        .collect();
-    // Bucket the crossings by column (counting sort), then order each column by depth.
-    let mut starts = vec![0usize; columns + 1];
-    for c in found.iter().flatten() {
-        starts[c.column as usize + 1] += 1;
+/// The crossings of all columns parallel to one axis, bucketed by column.
+struct ColumnCrossings {
+    /// `starts[c]..starts[c + 1]` indexes column `c`'s crossings in `crossings`.
+    starts: Vec<usize>,
+    /// `(depth, entering)` pairs, grouped by column (unsorted within a column).
+    crossings: Vec<(f64, i8)>,
+}
+
+impl ColumnCrossings {
+    fn new(dims: [usize; 3], axis: usize, corners: &[[DVec3; 3]]) -> Self {
+        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+        let columns = dims[u] * dims[v];
+        let found: Vec<Vec<Crossing>> = corners
+            .par_chunks(2048)
+            .map(|chunk| {
+                let mut out = Vec::new();
+                for &tri in chunk {
+                    triangle_crossings(tri, axis, dims, &mut out);
+                }
+                out
+            })
+            .collect();
+        // Counting sort by column; chunks are visited in order, so the result is deterministic.
+        let mut starts = vec![0usize; columns + 1];
+        for c in found.iter().flatten() {
+            starts[c.column as usize + 1] += 1;
+        }
+        for c in 0..columns {
+            starts[c + 1] += starts[c];
+        }
+        let mut fill = starts.clone();
+        let mut crossings = vec![(0.0f64, 0i8); starts[columns]];
+        for c in found.iter().flatten() {
+            let k = &mut fill[c.column as usize];
+            crossings[*k] = (c.depth, c.entering);
+            *k += 1;
+        }
+        Self { starts, crossings }
     }
-    for c in 0..columns {
-        starts[c + 1] += starts[c];
-    }
-    let mut fill = starts.clone();
-    let mut sorted = vec![(0.0f64, 0i8); starts[columns]];
-    for c in found.iter().flatten() {
-        let k = &mut fill[c.column as usize];
-        sorted[*k] = (c.depth, c.entering);
-        *k += 1;
-    }
-    let mut votes = vec![[0i8; 2]; columns * n];
-    votes.par_chunks_mut(n).enumerate().for_each(|(col, out)| {
-        let list = &sorted[starts[col]..starts[col + 1]];
+
+    /// Writes the two counts of every voxel centre along `column` into `out` (in axis order).
+    fn fill<'a>(&self, column: usize, out: impl Iterator<Item = &'a mut [i8; 2]>) {
+        let list = &self.crossings[self.starts[column]..self.starts[column + 1]];
         if list.is_empty() {
             return;
         }
@@ -168,7 +209,7 @@ fn axis_votes(dims: [usize; 3], axis: usize, corners: &[[DVec3; 3]]) -> Vec<[i8;
         let total: i32 = list.iter().map(|c| c.1 as i32).sum();
         let mut k = 0;
         let mut before = 0i32;
-        for (s, slot) in out.iter_mut().enumerate() {
+        for (s, slot) in out.enumerate() {
             let centre = s as f64 + 0.5;
             while k < list.len() && list[k].0 < centre {
                 before += list[k].1 as i32;
@@ -176,8 +217,7 @@ fn axis_votes(dims: [usize; 3], axis: usize, corners: &[[DVec3; 3]]) -> Vec<[i8;
             }
             *slot = [clamp_i8(before), clamp_i8(before - total)];
         }
-    });
-    votes
+    }
 }
 
 fn clamp_i8(v: i32) -> i8 {
