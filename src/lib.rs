@@ -39,6 +39,7 @@ pub mod error;
 pub mod eval;
 pub mod medial;
 pub mod mesh;
+pub mod output;
 pub mod report;
 pub mod skeleton;
 pub mod voxel;

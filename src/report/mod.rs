@@ -1,4 +1,8 @@
-//! report (being implemented).
+//! Reports: pictures of the voxel stages, evaluation tables and HTML pages.
+
+mod slices;
+
+pub use slices::{distance_slice, png_bytes, RgbImage};
 
 use thiserror::Error;
 

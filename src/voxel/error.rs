@@ -3,6 +3,9 @@ use thiserror::Error;
 /// Errors from voxelizing a mesh.
 #[derive(Debug, Error, PartialEq)]
 pub enum VoxelError {
+    /// The mesh has no triangles.
+    #[error("the mesh has no triangles: nothing to voxelize")]
+    NoTriangles,
     /// The voxel size is not a positive finite number (or a fraction not in (0, 1]).
     #[error("invalid voxel size {value}: give a positive size in mesh units, or a fraction in (0, 1] of the longest side")]
     InvalidSize {

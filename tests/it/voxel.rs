@@ -1,1 +1,230 @@
-//! Integration tests of the voxel stage.
+//! Integration tests of the voxel stage: volumes, robustness to holes, bad input.
+
+use glam::DVec3;
+use skelfit::mesh::Mesh;
+use skelfit::voxel::{voxelize, Solid, VoxelError, VoxelOptions, VoxelSize};
+
+fn options(fraction: f64) -> VoxelOptions {
+    VoxelOptions {
+        size: VoxelSize::Fraction(fraction),
+        ..Default::default()
+    }
+}
+
+fn relative_error(measured: f64, expected: f64) -> f64 {
+    (measured - expected).abs() / expected
+}
+
+/// Fraction of voxels on which two solids on the same grid disagree, relative to `a`'s interior.
+fn disagreement(a: &Solid, b: &Solid) -> f64 {
+    assert_eq!(a.grid, b.grid);
+    let differ = a
+        .inside
+        .iter()
+        .zip(&b.inside)
+        .filter(|(x, y)| x != y)
+        .count();
+    differ as f64 / a.interior_count() as f64
+}
+
+#[test]
+fn sphere_and_box_volumes_within_three_percent_at_128() {
+    let sphere = Mesh::uv_sphere(DVec3::new(0.3, -1.0, 2.0), 1.5, 64, 128);
+    let solid = voxelize(&sphere, &options(1.0 / 128.0)).unwrap();
+    let exact = sphere.signed_volume();
+    assert!(relative_error(solid.interior_volume(), exact) < 0.03);
+    assert_eq!(solid.report.components, 1);
+    assert_eq!(solid.report.ambiguous_voxels, 0);
+
+    let cuboid = Mesh::cuboid(DVec3::new(-1.0, 0.0, 0.0), DVec3::new(2.0, 0.5, 1.25));
+    let solid = voxelize(&cuboid, &options(1.0 / 128.0)).unwrap();
+    assert!(relative_error(solid.interior_volume(), 3.0 * 0.5 * 1.25) < 0.03);
+}
+
+#[test]
+fn inward_wound_mesh_gives_the_same_solid() {
+    let sphere = Mesh::uv_sphere(DVec3::ZERO, 1.0, 32, 64);
+    let mut inverted = sphere.clone();
+    for t in &mut inverted.triangles {
+        t.swap(1, 2);
+    }
+    let a = voxelize(&sphere, &options(1.0 / 48.0)).unwrap();
+    let b = voxelize(&inverted, &options(1.0 / 48.0)).unwrap();
+    assert_eq!(a.inside, b.inside);
+}
+
+#[test]
+fn sphere_with_a_punched_hole_gives_nearly_the_closed_solid() {
+    let sphere = Mesh::uv_sphere(DVec3::ZERO, 1.0, 48, 96);
+    let mut holed = sphere.clone();
+    // Remove every triangle near the north pole: a hole of ~30 degrees half-angle.
+    holed
+        .triangles
+        .retain(|t| t.iter().all(|&i| holed.positions[i as usize].y < 0.85));
+    assert!(holed.triangles.len() < sphere.triangles.len());
+    let closed = voxelize(&sphere, &options(1.0 / 64.0)).unwrap();
+    let open = voxelize(&holed, &options(1.0 / 64.0)).unwrap();
+    // Same bounding box up to the cap, so compare by volume and by overlap of the kept part.
+    assert!(relative_error(open.interior_volume(), closed.interior_volume()) < 0.03);
+    let parity_free = open.report.ambiguous_voxels;
+    assert!(parity_free > 0, "the hole should make some votes disagree");
+}
+
+#[test]
+fn overlapping_parts_are_one_solid() {
+    // Two overlapping boxes as separate, intersecting closed parts (winding 2 in the overlap).
+    let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::new(2.0, 1.0, 1.0));
+    let other = Mesh::cuboid(DVec3::new(1.0, 0.0, 0.0), DVec3::new(3.0, 1.0, 1.0));
+    let offset = mesh.positions.len() as u32;
+    mesh.positions.extend(other.positions);
+    mesh.triangles
+        .extend(other.triangles.iter().map(|t| t.map(|i| i + offset)));
+    let solid = voxelize(&mesh, &options(1.0 / 96.0)).unwrap();
+    assert!(relative_error(solid.interior_volume(), 3.0) < 0.03);
+    assert_eq!(solid.report.components, 1);
+}
+
+#[test]
+fn largest_component_is_kept_and_the_rest_reported() {
+    let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+    let small = Mesh::cuboid(DVec3::splat(3.0), DVec3::splat(3.3));
+    let offset = mesh.positions.len() as u32;
+    mesh.positions.extend(small.positions);
+    mesh.triangles
+        .extend(small.triangles.iter().map(|t| t.map(|i| i + offset)));
+    let solid = voxelize(&mesh, &options(1.0 / 128.0)).unwrap();
+    assert_eq!(solid.report.components, 2);
+    assert!(solid.report.dropped_voxels > 0);
+    assert!(relative_error(solid.interior_volume(), 1.0) < 0.05);
+}
+
+#[test]
+fn voxelization_is_deterministic_across_thread_counts() {
+    let mesh = Mesh::capsule(DVec3::ZERO, 0.5, 1.0, 16, 32);
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| voxelize(&mesh, &options(1.0 / 50.0)).unwrap())
+    };
+    let (a, b) = (run(1), run(3));
+    assert_eq!(a.inside, b.inside);
+    assert_eq!(a.surface, b.surface);
+    let _ = disagreement(&a, &b);
+}
+
+#[test]
+fn surface_voxels_enclose_the_interior() {
+    let mesh = Mesh::uv_sphere(DVec3::ZERO, 1.0, 24, 48);
+    let solid = voxelize(&mesh, &options(1.0 / 40.0)).unwrap();
+    // Every interior voxel next to an exterior voxel is on the surface shell.
+    let grid = solid.grid;
+    for i in 0..grid.len() {
+        if !solid.inside[i] {
+            continue;
+        }
+        let c = grid.coords(i);
+        let boundary = skelfit::voxel::Connectivity::Six
+            .neighbours()
+            .iter()
+            .any(|n| grid.offset(c, n.offset).is_some_and(|j| !solid.inside[j]));
+        if boundary {
+            // the surface passes between the two centres, so one of them is touched
+            let touched = solid.surface[i]
+                || skelfit::voxel::Connectivity::Six
+                    .neighbours()
+                    .iter()
+                    .any(|n| grid.offset(c, n.offset).is_some_and(|j| solid.surface[j]));
+            assert!(touched, "voxel {c:?}");
+        }
+    }
+}
+
+#[test]
+fn bad_input_gives_clear_errors() {
+    // No triangles.
+    let empty = Mesh::default();
+    assert_eq!(
+        voxelize(&empty, &VoxelOptions::default()).unwrap_err(),
+        VoxelError::NoTriangles
+    );
+    // A single triangle: flat along z.
+    let tri = Mesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
+    assert!(matches!(
+        voxelize(&tri, &VoxelOptions::default()),
+        Err(VoxelError::Flat { .. })
+    ));
+    // A single tilted triangle has a 3-D bounding box but encloses nothing.
+    let tilted = Mesh::new(
+        vec![
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.2, 0.1),
+            DVec3::new(0.1, 1.0, 0.3),
+        ],
+        vec![[0, 1, 2]],
+    )
+    .unwrap();
+    let err = voxelize(&tilted, &options(0.05)).unwrap_err();
+    assert!(matches!(err, VoxelError::EmptyInterior { .. }), "{err}");
+    // Zero-area triangles only (collinear corners, spread in 3-D).
+    let degenerate = Mesh::new(
+        vec![
+            DVec3::ZERO,
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(2.0, 2.0, 2.0),
+        ],
+        vec![[0, 1, 2], [2, 1, 0]],
+    )
+    .unwrap();
+    assert!(matches!(
+        voxelize(&degenerate, &options(0.05)),
+        Err(VoxelError::EmptyInterior { .. })
+    ));
+    // Invalid sizes.
+    let cube = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+    for size in [
+        VoxelSize::Fraction(0.0),
+        VoxelSize::Fraction(1.5),
+        VoxelSize::Absolute(-1.0),
+        VoxelSize::Absolute(f64::NAN),
+    ] {
+        let err = voxelize(
+            &cube,
+            &VoxelOptions {
+                size,
+                ..Default::default()
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(err, VoxelError::InvalidSize { .. }));
+    }
+    // Budget exceeded: the error names a size that fits, and that size does fit.
+    let err = voxelize(
+        &cube,
+        &VoxelOptions {
+            size: VoxelSize::Fraction(1.0 / 500.0),
+            max_voxels: 1_000_000,
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
+    let VoxelError::TooLarge { fitting_size, .. } = err else {
+        panic!("expected TooLarge, got {err}");
+    };
+    assert!(err.to_string().contains("exceeds the budget"));
+    let fitted = voxelize(
+        &cube,
+        &VoxelOptions {
+            size: VoxelSize::Absolute(fitting_size),
+            max_voxels: 1_000_000,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(fitted.grid.len() <= 1_000_000);
+    assert!(
+        fitted.grid.len() > 900_000,
+        "the suggested size should be close to the budget"
+    );
+}

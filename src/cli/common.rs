@@ -1,0 +1,57 @@
+//! Pieces shared by several subcommands.
+
+use anyhow::Context;
+use clap::Args;
+use skelfit::mesh::Mesh;
+use skelfit::voxel::{VoxelOptions, VoxelSize};
+use std::path::Path;
+use std::time::Instant;
+
+/// Voxel grid options shared by every command that voxelizes.
+#[derive(Debug, Clone, Args)]
+pub struct VoxelArgs {
+    /// Voxel edge as a fraction of the longest bounding-box side (dissertation Table 5.2).
+    #[arg(long, value_name = "F", default_value_t = 0.01, conflicts_with_all = ["voxel_length", "resolution"])]
+    pub voxel_size: f64,
+    /// Voxel edge in mesh units (instead of --voxel-size).
+    #[arg(long, value_name = "L")]
+    pub voxel_length: Option<f64>,
+    /// Voxels along the longest bounding-box side (instead of --voxel-size).
+    #[arg(long, value_name = "N")]
+    pub resolution: Option<u32>,
+    /// Refuse grids with more voxels than this.
+    #[arg(long, value_name = "N", default_value_t = VoxelOptions::default().max_voxels)]
+    pub max_voxels: usize,
+}
+
+impl VoxelArgs {
+    /// Validated voxel options.
+    pub fn options(&self) -> anyhow::Result<VoxelOptions> {
+        let size = match (self.voxel_length, self.resolution) {
+            (Some(length), _) => VoxelSize::Absolute(length),
+            (None, Some(0)) => anyhow::bail!("--resolution must be at least 1"),
+            (None, Some(n)) => VoxelSize::Fraction(1.0 / n as f64),
+            (None, None) => VoxelSize::Fraction(self.voxel_size),
+        };
+        Ok(VoxelOptions {
+            size,
+            max_voxels: self.max_voxels,
+            ..Default::default()
+        })
+    }
+}
+
+/// Loads a mesh with the file name in the error context.
+pub fn load_mesh(path: &Path) -> anyhow::Result<Mesh> {
+    skelfit::mesh::load(path).with_context(|| format!("loading mesh {}", path.display()))
+}
+
+/// Milliseconds since `start`.
+pub fn millis(start: Instant) -> f64 {
+    start.elapsed().as_secs_f64() * 1e3
+}
+
+/// Writes a file atomically with its name in the error context.
+pub fn write_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    skelfit::output::write_atomic(path, bytes).with_context(|| format!("writing {}", path.display()))
+}

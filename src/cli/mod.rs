@@ -1,0 +1,50 @@
+//! Command-line front end. Each subcommand has a module with its clap `Args` and a `run`.
+//!
+//! Exit codes: 0 success, 1 an error while working (printed as `skelfit: error: ...` with its
+//! chain of causes), 2 invalid command-line usage (printed by clap).
+
+mod common;
+mod demo;
+mod info;
+mod voxelize;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Fits anatomical control skeletons into polygon meshes and validates them against reference
+/// rigs.
+#[derive(Debug, Parser)]
+#[command(name = "skelfit", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run the main job on the bundled data: statistics, voxelization and distance maps of every
+    /// model below data/, results in reports/demo/.
+    Demo(demo::DemoArgs),
+    /// Print statistics of a mesh: vertices, triangles, components, boundary and non-manifold
+    /// edges, bounding box, volume.
+    Info(info::InfoArgs),
+    /// Voxelize a mesh and compute its exact distance map; print grid, interior and timings.
+    Voxelize(voxelize::VoxelizeArgs),
+}
+
+/// Runs the tool and maps the outcome to an exit code.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Demo(args) => demo::run(args),
+        Command::Info(args) => info::run(args),
+        Command::Voxelize(args) => voxelize::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("skelfit: error: {error:#}");
+            ExitCode::from(1)
+        }
+    }
+}
