@@ -9,7 +9,8 @@ use skelfit::voxel::{voxelize, VoxelOptions, VoxelSize};
 use std::path::PathBuf;
 
 fn humanoid() -> skelfit::mesh::Mesh {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default/mesh.obj");
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default/mesh.obj");
     skelfit::mesh::load(&path).expect("bundled humanoid mesh")
 }
 
@@ -41,7 +42,9 @@ fn bench_voxel(c: &mut Criterion) {
         };
         let solid = voxelize(&mesh, &options).unwrap();
         group.throughput(Throughput::Elements(solid.grid.len() as u64));
-        group.bench_with_input(BenchmarkId::from_parameter(n), &solid, |b, s| b.iter(|| edt(s)));
+        group.bench_with_input(BenchmarkId::from_parameter(n), &solid, |b, s| {
+            b.iter(|| edt(s))
+        });
     }
     group.finish();
 }

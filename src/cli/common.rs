@@ -53,5 +53,6 @@ pub fn millis(start: Instant) -> f64 {
 
 /// Writes a file atomically with its name in the error context.
 pub fn write_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    skelfit::output::write_atomic(path, bytes).with_context(|| format!("writing {}", path.display()))
+    skelfit::output::write_atomic(path, bytes)
+        .with_context(|| format!("writing {}", path.display()))
 }

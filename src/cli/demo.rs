@@ -64,7 +64,10 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
         std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
         println!("== {name}");
         let stats = super::common::load_mesh(mesh_path)?.stats();
-        write_file(&out.join("info.json"), serde_json::to_string_pretty(&stats)?.as_bytes())?;
+        write_file(
+            &out.join("info.json"),
+            serde_json::to_string_pretty(&stats)?.as_bytes(),
+        )?;
         let summary = summarize(mesh_path, &options, Some(&out.join("slices")))?;
         write_file(
             &out.join("voxelize.json"),
@@ -87,7 +90,11 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
             "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9.1}",
             name,
             stats.triangles,
-            if stats.signed_volume.is_some() { "yes" } else { "no" },
+            if stats.signed_volume.is_some() {
+                "yes"
+            } else {
+                "no"
+            },
             format!("{}x{}x{}", s.dims[0], s.dims[1], s.dims[2]),
             s.interior_voxels,
             vol,

@@ -171,9 +171,7 @@ fn write_slices(dir: &Path, solid: &Solid, map: &DistanceMap) -> anyhow::Result<
         .fold((usize::MAX, 0), |(lo, hi), y| (lo.min(y), hi.max(y)));
     let deepest = grid.coords(map.deepest());
     let scale = (768 / grid.dims.iter().copied().max().unwrap_or(1).max(1)).clamp(1, 16) as u32;
-    let mut picks: Vec<(usize, usize)> = (1..=5)
-        .map(|k| (1, lo + (hi - lo) * k / 6))
-        .collect();
+    let mut picks: Vec<(usize, usize)> = (1..=5).map(|k| (1, lo + (hi - lo) * k / 6)).collect();
     picks.push((0, deepest[0]));
     picks.push((2, deepest[2]));
     let mut written = Vec::new();

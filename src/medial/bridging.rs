@@ -128,13 +128,14 @@ impl AdjacentGroups {
 
     /// The steepest-ascent neighbour over all adjacent groups, or `None` without any.
     pub fn steepest(&self) -> Option<usize> {
-        let mut best: Option<&Candidate> = None;
-        for c in &self.candidates[..self.len] {
-            if best.map_or(true, |b| b.beaten_by(c.ascent, c.medial)) {
-                best = Some(c);
+        let (first, rest) = self.candidates[..self.len].split_first()?;
+        let mut best = first;
+        for c in rest {
+            if best.beaten_by(c.ascent, c.medial) {
+                best = c;
             }
         }
-        best.map(|c| c.voxel as usize)
+        Some(best.voxel as usize)
     }
 }
 
