@@ -1,30 +1,11 @@
 //! Steepest-ascent bridging between DMS voxels of a group (dissertation ch.4.3).
 
 use super::neighbourhood::NEIGHBOUR_COUNT;
+use super::record::{Label, VoxelRecord};
+use super::union_find::UnionFind;
 
 /// Marks "no voxel" in the `u32` voxel-index arrays of the stage.
 pub(crate) const NO_VOXEL: u32 = u32::MAX;
-
-/// The DMS classification field of ch.4.3: processing state and membership.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Label {
-    /// Not processed yet (also every exterior voxel).
-    Unprocessed,
-    /// Processed, not part of the DMS.
-    NonMedial,
-    /// Processed, exposure at or above the threshold: a true DMS voxel.
-    True,
-    /// Processed, exposure below the threshold, part of the DMS to keep it connected.
-    Bridging,
-}
-
-impl Label {
-    /// True for true and bridging DMS voxels.
-    #[inline]
-    pub fn is_medial(self) -> bool {
-        matches!(self, Label::True | Label::Bridging)
-    }
-}
 
 /// Slope from a voxel of squared distance `from` to a neighbour of squared distance `to` at
 /// centre distance `length`: `(sqrt(d_n) - sqrt(d_i)) / |i - n|` (ch.4.3).
@@ -144,24 +125,26 @@ impl AdjacentGroups {
 ///
 /// Pointers always lead to voxels processed earlier in the same group, and every group holds
 /// a DMS voxel (its first voxel is one), so the walk ends at a DMS voxel of `start`'s group.
-pub(crate) fn bridge(start: usize, labels: &mut [Label], pointer: &[u32]) -> usize {
+pub(crate) fn bridge(start: usize, voxels: &mut UnionFind<VoxelRecord>) -> usize {
     let mut voxel = start;
     let mut relabelled = 0;
-    while labels[voxel] == Label::NonMedial {
-        labels[voxel] = Label::Bridging;
-        relabelled += 1;
-        let next = pointer[voxel];
-        debug_assert_ne!(
-            next, NO_VOXEL,
-            "non-DMS voxel {voxel} without ascent pointer"
-        );
-        if next == NO_VOXEL {
-            break;
+    loop {
+        let record = voxels.item_mut(voxel);
+        if record.label != Label::NonMedial {
+            debug_assert!(record.label.is_medial());
+            return relabelled;
         }
-        voxel = next as usize;
+        record.label = Label::Bridging;
+        relabelled += 1;
+        debug_assert_ne!(
+            record.pointer, NO_VOXEL,
+            "non-DMS voxel {voxel} without pointer"
+        );
+        if record.pointer == NO_VOXEL {
+            return relabelled;
+        }
+        voxel = record.pointer as usize;
     }
-    debug_assert!(labels[voxel].is_medial());
-    relabelled
 }
 
 #[cfg(test)]
@@ -184,16 +167,25 @@ mod tests {
 
     #[test]
     fn bridge_relabels_until_a_medial_voxel() {
-        let mut labels = vec![
+        let mut voxels = UnionFind::new((0..4).map(|_| VoxelRecord::new(1)));
+        let labels = [
             Label::True,
             Label::NonMedial,
             Label::NonMedial,
             Label::Unprocessed,
         ];
-        let pointer = vec![NO_VOXEL, 0, 1, NO_VOXEL];
-        assert_eq!(bridge(2, &mut labels, &pointer), 2);
-        assert_eq!(labels[..3], [Label::True, Label::Bridging, Label::Bridging]);
-        assert_eq!(bridge(2, &mut labels, &pointer), 0);
+        for (i, label) in labels.into_iter().enumerate() {
+            voxels.item_mut(i).label = label;
+            voxels.item_mut(i).pointer = if i == 1 || i == 2 {
+                i as u32 - 1
+            } else {
+                NO_VOXEL
+            };
+        }
+        assert_eq!(bridge(2, &mut voxels), 2);
+        let after: Vec<Label> = voxels.items().map(|r| r.label).take(3).collect();
+        assert_eq!(after, [Label::True, Label::Bridging, Label::Bridging]);
+        assert_eq!(bridge(2, &mut voxels), 0);
     }
 
     #[test]

@@ -70,13 +70,13 @@ impl ContourArrays {
         }
     }
 
-    /// Queues the voxels of one contour list; `processed[i]` is voxel `i`'s number of
+    /// Queues the voxels of one contour list; `processed(i)` is voxel `i`'s number of
     /// processed neighbours.
-    pub fn fill(&mut self, contour: &[u32], processed: &[u8]) {
+    pub fn fill(&mut self, contour: &[u32], processed: impl Fn(usize) -> u8) {
         debug_assert!(self.arrays.iter().all(Vec::is_empty));
         self.level = 0;
         for &voxel in contour {
-            let c = processed[voxel as usize] as usize;
+            let c = processed(voxel as usize) as usize;
             self.slot[voxel as usize] = self.arrays[c].len() as u32;
             self.arrays[c].push(voxel);
             self.level = self.level.max(c);
@@ -135,7 +135,7 @@ mod tests {
     fn arrays_give_most_processed_first_and_promote() {
         let mut arrays = ContourArrays::new(8);
         let processed = [0, 2, 0, 1, 0, 0, 0, 0];
-        arrays.fill(&[0, 1, 2, 3], &processed);
+        arrays.fill(&[0, 1, 2, 3], |i| processed[i]);
         assert_eq!(arrays.pop(), Some(1));
         arrays.promote(0, 0);
         arrays.promote(0, 1);

@@ -1,14 +1,16 @@
 //! Extraction of the discrete medial surface from the distance map (dissertation ch.4.3).
 
-use super::bridging::{ascent, bridge, AdjacentGroups, Label, NO_VOXEL};
+use super::bridging::{ascent, bridge, AdjacentGroups, NO_VOXEL};
 use super::contour::{contour_order, ContourArrays};
-use super::exposure::local_exposure;
-use super::neighbourhood::{checked_interior_count, LinearNeighbours, NEIGHBOUR_COUNT};
+use super::exposure::{exposure_from_largest, voxel_exposure};
+use super::neighbourhood::{
+    checked_interior_count, LinearNeighbours, ADJACENCY_CLASSES, CLASS_LENGTHS,
+};
+use super::record::{Label, VoxelRecord};
 use super::surface::{DmsKind, MedialSurface, NOT_MEDIAL};
 use super::union_find::UnionFind;
 use super::{MedialError, MedialOptions};
 use crate::distance::DistanceMap;
-use crate::voxel::Grid;
 
 /// Typical range of useful exposure thresholds (ch.4.4: "threshold values above 1.0 or below
 /// roughly 0.25 typically do not result in useful DMA/DMSs"); outside it [`dms`] warns.
@@ -22,17 +24,16 @@ const USEFUL_THRESHOLDS: std::ops::RangeInclusive<f64> = 0.25..=1.0;
 /// [`voxelize`](crate::voxel::voxelize)d solid gives).
 ///
 /// The phases:
-/// 1. local exposure of every interior voxel ([`exposure`](super::exposure), ch.4.2, in
-///    parallel);
-/// 2. contour lists: interior voxels in decreasing distance order (counting sort, ch.4.5);
-/// 3. each contour list is processed through its contour arrays, most processed neighbours
-///    first. A processed voxel joins the union-find groups of its processed 26-neighbours and
-///    records its steepest-ascent neighbour. With no adjacent group it starts a group and is a
-///    DMS voxel; with one, it is a true DMS voxel if its exposure meets the threshold, and a
-///    bridging path along steepest ascent connects it to its group's DMS; with several, it is a
-///    saddle point, a DMS voxel whatever its exposure, bridged into every group before the
-///    groups merge (ch.4.3).
-/// 4. the labelled voxels are collected into a [`MedialSurface`].
+/// 1. contour lists: interior voxels in decreasing distance order (counting sort, ch.4.5);
+/// 2. each contour list is processed through its contour arrays, most processed neighbours
+///    first. A processed voxel's local exposure ([`exposure`](super::exposure), ch.4.2) is
+///    computed from the neighbour values read anyway. The voxel joins the union-find groups of
+///    its processed 26-neighbours and records its steepest-ascent neighbour. With no adjacent
+///    group it starts a group and is a DMS voxel; with one, it is a true DMS voxel if its
+///    exposure meets the threshold, and a bridging path along steepest ascent connects it to
+///    its group's DMS; with several, it is a saddle point, a DMS voxel whatever its exposure,
+///    bridged into every group before the groups merge (ch.4.3).
+/// 3. the labelled voxels are collected into a [`MedialSurface`].
 ///
 /// Each group's DMS voxels stay 26-connected throughout, so the DMS of a 26-connected figure
 /// is 26-connected. The time is `O(n lg* n)` in the `n` interior voxels (plus a linear scan of
@@ -61,57 +62,36 @@ const USEFUL_THRESHOLDS: std::ops::RangeInclusive<f64> = 0.25..=1.0;
 pub fn dms(distance: &DistanceMap, options: &MedialOptions) -> Result<MedialSurface, MedialError> {
     options.validate()?;
     let interior = checked_interior_count(distance)?;
-    let neighbours = LinearNeighbours::new(&distance.grid);
-    let exposure = local_exposure(distance, &neighbours);
     let order = contour_order(&distance.squared, interior);
-    let mut extraction = Extraction::new(distance, &exposure, options, neighbours);
+    let mut extraction = Extraction::new(distance, options);
     for contour in
         order.chunk_by(|&a, &b| distance.squared[a as usize] == distance.squared[b as usize])
     {
         extraction.process_contour(contour);
     }
-    Ok(extraction.finish(interior))
+    Ok(extraction.finish(distance, interior))
 }
 
-/// The per-voxel bookkeeping of ch.4.3 while the contours are processed.
-struct Extraction<'a> {
-    grid: Grid,
-    squared: &'a [u32],
-    exposure: &'a [f64],
+/// The state of the extraction while the contours are processed.
+struct Extraction {
     options: MedialOptions,
     neighbours: LinearNeighbours,
-    /// DMS classification (and processed flag) per voxel.
-    labels: Vec<Label>,
-    /// Number of processed 26-neighbours per unprocessed voxel.
-    processed: Vec<u8>,
-    /// Steepest-ascent neighbour per processed voxel ([`NO_VOXEL`] for group founders).
-    pointer: Vec<u32>,
-    /// Groups of 26-connected processed voxels.
-    groups: UnionFind,
+    /// Per grid voxel: the bookkeeping of ch.4.3, inside the union-find of the groups of
+    /// 26-connected processed voxels.
+    voxels: UnionFind<VoxelRecord>,
     contour: ContourArrays,
     saddles: Vec<usize>,
     /// Group founders whose exposure did not meet the threshold.
     forced_founders: usize,
 }
 
-impl<'a> Extraction<'a> {
-    fn new(
-        distance: &'a DistanceMap,
-        exposure: &'a [f64],
-        options: &MedialOptions,
-        neighbours: LinearNeighbours,
-    ) -> Self {
+impl Extraction {
+    fn new(distance: &DistanceMap, options: &MedialOptions) -> Self {
         let len = distance.squared.len();
         Self {
-            grid: distance.grid,
-            squared: &distance.squared,
-            exposure,
             options: *options,
-            neighbours,
-            labels: vec![Label::Unprocessed; len],
-            processed: vec![0; len],
-            pointer: vec![NO_VOXEL; len],
-            groups: UnionFind::new(len),
+            neighbours: LinearNeighbours::new(&distance.grid),
+            voxels: UnionFind::new(distance.squared.iter().map(|&s| VoxelRecord::new(s))),
             contour: ContourArrays::new(len),
             saddles: Vec::new(),
             forced_founders: 0,
@@ -120,87 +100,97 @@ impl<'a> Extraction<'a> {
 
     /// Processes one contour list through its contour arrays.
     fn process_contour(&mut self, contour: &[u32]) {
-        self.contour.fill(contour, &self.processed);
+        let voxels = &self.voxels;
+        self.contour.fill(contour, |i| voxels.item(i).processed);
         while let Some(voxel) = self.contour.pop() {
             self.process_voxel(voxel as usize);
         }
     }
 
-    /// Whether `voxel`'s exposure makes it a true DMS voxel.
-    fn sufficient(&self, voxel: usize) -> bool {
-        let ignored = self.options.ignore_distance_one && self.squared[voxel] == 1;
-        !ignored && self.exposure[voxel] >= self.options.exposure_threshold
-    }
-
+    /// Processes one voxel: one pass over its neighbours gathers the adjacent groups with
+    /// their steepest-ascent neighbours and the largest neighbour distances per adjacency
+    /// class (for the exposure) and notifies the unprocessed neighbours; then the three cases
+    /// of ch.4.3 (no, one, several adjacent groups).
     fn process_voxel(&mut self, voxel: usize) {
-        let squared = self.squared[voxel];
+        let squared = self.voxels.item(voxel).squared;
         let mut adjacent = AdjacentGroups::new();
-        for k in 0..NEIGHBOUR_COUNT {
-            let n = self.neighbours.at(voxel, k);
-            let n_squared = self.squared[n];
-            if n_squared == 0 {
-                continue;
-            }
-            match self.labels[n] {
-                Label::Unprocessed => {
-                    let before = self.processed[n];
-                    self.processed[n] = before + 1;
-                    if n_squared == squared {
-                        self.contour.promote(n as u32, before);
-                    }
+        let mut largest = [0u32; 3];
+        for (class, range) in ADJACENCY_CLASSES.iter().enumerate() {
+            for k in range.clone() {
+                let n = self.neighbours.at(voxel, k);
+                let record = *self.voxels.item(n);
+                largest[class] = largest[class].max(record.squared);
+                if record.squared == 0 {
+                    continue;
                 }
-                label => {
-                    let root = self.groups.find(n);
-                    let slope = ascent(squared, n_squared, self.neighbours.lengths[k]);
-                    adjacent.offer(root, n, slope, label.is_medial());
+                match record.label {
+                    Label::Unprocessed => {
+                        self.voxels.item_mut(n).processed = record.processed + 1;
+                        if record.squared == squared {
+                            self.contour.promote(n as u32, record.processed);
+                        }
+                    }
+                    label => {
+                        let root = self.voxels.find(n);
+                        let slope = ascent(squared, record.squared, CLASS_LENGTHS[class]);
+                        adjacent.offer(root, n, slope, label.is_medial());
+                    }
                 }
             }
         }
-        let sufficient = self.sufficient(voxel);
+        let ignored = self.options.ignore_distance_one && squared == 1;
+        let sufficient =
+            !ignored && exposure_from_largest(squared, largest) >= self.options.exposure_threshold;
         match adjacent.len() {
             0 => {
-                self.labels[voxel] = if sufficient {
+                if !sufficient {
+                    self.forced_founders += 1;
+                }
+                self.voxels.item_mut(voxel).label = if sufficient {
                     Label::True
                 } else {
-                    self.forced_founders += 1;
                     Label::Bridging
                 };
             }
             1 => {
                 let (root, step) = adjacent.groups().next().expect("one group");
-                self.pointer[voxel] = step as u32;
-                self.groups.union(voxel, root);
-                if sufficient {
-                    self.labels[voxel] = Label::True;
-                    bridge(step, &mut self.labels, &self.pointer);
+                let record = self.voxels.item_mut(voxel);
+                record.pointer = step as u32;
+                record.label = if sufficient {
+                    Label::True
                 } else {
-                    self.labels[voxel] = Label::NonMedial;
+                    Label::NonMedial
+                };
+                self.voxels.union(voxel, root);
+                if sufficient {
+                    bridge(step, &mut self.voxels);
                 }
             }
             _ => {
-                self.labels[voxel] = if sufficient {
+                let record = self.voxels.item_mut(voxel);
+                record.pointer = adjacent.steepest().map_or(NO_VOXEL, |v| v as u32);
+                record.label = if sufficient {
                     Label::True
                 } else {
                     Label::Bridging
                 };
                 self.saddles.push(voxel);
                 for (root, step) in adjacent.groups() {
-                    bridge(step, &mut self.labels, &self.pointer);
-                    self.groups.union(voxel, root);
+                    bridge(step, &mut self.voxels);
+                    self.voxels.union(voxel, root);
                 }
-                self.pointer[voxel] = adjacent.steepest().map_or(NO_VOXEL, |v| v as u32);
             }
         }
     }
 
     /// Collects the labelled voxels into the output.
-    fn finish(mut self, interior_voxels: usize) -> MedialSurface {
-        let len = self.labels.len();
+    fn finish(mut self, distance: &DistanceMap, interior_voxels: usize) -> MedialSurface {
+        let len = distance.squared.len();
         let mut voxels = Vec::new();
         let mut kinds = Vec::new();
         let mut slots = vec![NOT_MEDIAL; len];
-        for (index, label) in self.labels.iter().enumerate() {
-            let kind = match label {
+        for (index, record) in self.voxels.items().enumerate() {
+            let kind = match record.label {
                 Label::True => DmsKind::True,
                 Label::Bridging => DmsKind::Bridging,
                 _ => continue,
@@ -209,15 +199,18 @@ impl<'a> Extraction<'a> {
             voxels.push(index);
             kinds.push(kind);
         }
-        let exposure = voxels.iter().map(|&i| self.exposure[i]).collect();
-        let squared = voxels.iter().map(|&i| self.squared[i]).collect();
+        let exposure = voxels
+            .iter()
+            .map(|&i| voxel_exposure(&distance.squared, i, &self.neighbours))
+            .collect();
+        let squared = voxels.iter().map(|&i| distance.squared[i]).collect();
         // Components numbered by their smallest voxel; `root_id` is indexed by group root.
         let mut root_id = vec![NOT_MEDIAL; len];
         let mut components = 0usize;
         let component = voxels
             .iter()
             .map(|&i| {
-                let root = self.groups.find(i);
+                let root = self.voxels.find(i);
                 if root_id[root] == NOT_MEDIAL {
                     root_id[root] = components as u32;
                     components += 1;
@@ -226,7 +219,25 @@ impl<'a> Extraction<'a> {
             })
             .collect();
         self.saddles.sort_unstable();
+        let warnings = self.warnings(voxels.len(), components, interior_voxels);
+        MedialSurface {
+            grid: distance.grid,
+            voxels,
+            kinds,
+            exposure,
+            squared,
+            component,
+            components,
+            saddles: self.saddles,
+            slots,
+            exposure_threshold: self.options.exposure_threshold,
+            interior_voxels,
+            warnings,
+        }
+    }
 
+    /// Warnings about the result: an unusual threshold, a degenerate DMS, several parts.
+    fn warnings(&self, dms_voxels: usize, components: usize, interior: usize) -> Vec<String> {
         let mut warnings = Vec::new();
         let threshold = self.options.exposure_threshold;
         if !USEFUL_THRESHOLDS.contains(&threshold) {
@@ -235,9 +246,9 @@ impl<'a> Extraction<'a> {
                 USEFUL_THRESHOLDS
             ));
         }
-        if voxels.len() == 1 {
+        if dms_voxels == 1 {
             warnings.push(format!(
-                "the medial surface is a single voxel (the figure has {interior_voxels} interior voxels and is nowhere more than about two voxels thick): use a smaller voxel size"
+                "the medial surface is a single voxel (the figure has {interior} interior voxels and is nowhere more than about two voxels thick): use a smaller voxel size"
             ));
         } else if self.forced_founders > 0 {
             warnings.push(format!(
@@ -250,20 +261,7 @@ impl<'a> Extraction<'a> {
                 "the figure has {components} separate 26-connected parts, so the medial surface has {components} components: keep only the largest part when voxelizing"
             ));
         }
-        MedialSurface {
-            grid: self.grid,
-            voxels,
-            kinds,
-            exposure,
-            squared,
-            component,
-            components,
-            saddles: self.saddles,
-            slots,
-            exposure_threshold: threshold,
-            interior_voxels,
-            warnings,
-        }
+        warnings
     }
 }
 

@@ -1,6 +1,8 @@
 //! Local exposure of every voxel's inscribed sphere (dissertation ch.4.2).
 
-use super::neighbourhood::{checked_interior_count, LinearNeighbours, ADJACENCY_CLASSES};
+use super::neighbourhood::{
+    checked_interior_count, LinearNeighbours, ADJACENCY_CLASSES, CLASS_LENGTHS,
+};
 use super::MedialError;
 use crate::distance::DistanceMap;
 use rayon::prelude::*;
@@ -51,18 +53,24 @@ pub(crate) fn local_exposure(distance: &DistanceMap, neighbours: &LinearNeighbou
 
 /// Local exposure of the interior, non-border voxel `index`.
 #[inline]
-fn voxel_exposure(squared: &[u32], index: usize, neighbours: &LinearNeighbours) -> f64 {
-    let radius = (squared[index] as f64).sqrt();
-    ADJACENCY_CLASSES
-        .iter()
-        .map(|class| {
-            let largest = class
-                .clone()
-                .map(|k| squared[neighbours.at(index, k)])
-                .max()
-                .unwrap_or(0);
-            radius + neighbours.lengths[class.start] - (largest as f64).sqrt()
-        })
+pub(crate) fn voxel_exposure(squared: &[u32], index: usize, neighbours: &LinearNeighbours) -> f64 {
+    let largest = ADJACENCY_CLASSES.map(|class| {
+        class
+            .map(|k| squared[neighbours.at(index, k)])
+            .max()
+            .unwrap_or(0)
+    });
+    exposure_from_largest(squared[index], largest)
+}
+
+/// Local exposure of a voxel of squared distance `squared` whose largest neighbour squared
+/// distances per adjacency class (faces, edges, corners) are `largest` (ch.4.2: the largest
+/// neighbour of a class gives the class's minimum relative exposure).
+#[inline]
+pub(crate) fn exposure_from_largest(squared: u32, largest: [u32; 3]) -> f64 {
+    let radius = (squared as f64).sqrt();
+    (0..3)
+        .map(|c| radius + CLASS_LENGTHS[c] - (largest[c] as f64).sqrt())
         .fold(f64::INFINITY, f64::min)
 }
 

@@ -44,6 +44,7 @@ mod error;
 mod exposure;
 mod neighbourhood;
 mod options;
+mod record;
 mod surface;
 mod union_find;
 

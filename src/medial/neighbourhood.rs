@@ -12,8 +12,11 @@ pub(crate) const NEIGHBOUR_COUNT: usize = 26;
 /// (distance sqrt 3), as partitioned for the exposure and ascent calculations (ch.4.2, ch.4.3).
 pub(crate) const ADJACENCY_CLASSES: [std::ops::Range<usize>; 3] = [0..6, 6..18, 18..26];
 
+/// Centre-to-centre distance of the neighbours of each adjacency class, voxel units.
+pub(crate) const CLASS_LENGTHS: [f64; 3] = [1.0, std::f64::consts::SQRT_2, 1.732_050_807_568_877_2];
+
 /// The 26 neighbour offsets of a grid as linear index differences, in the order of
-/// [`NEIGHBOURS_26`] (faces, edges, corners), with their centre-to-centre lengths.
+/// [`NEIGHBOURS_26`] (faces, edges, corners; see [`ADJACENCY_CLASSES`]).
 ///
 /// Adding a delta to the index of a voxel that is not on the grid border gives the neighbour's
 /// index; [`checked_interior_count`] guarantees that no interior voxel lies on the border.
@@ -21,8 +24,6 @@ pub(crate) const ADJACENCY_CLASSES: [std::ops::Range<usize>; 3] = [0..6, 6..18, 
 pub(crate) struct LinearNeighbours {
     /// Linear index difference of each neighbour.
     pub deltas: [isize; NEIGHBOUR_COUNT],
-    /// Centre-to-centre distance of each neighbour, voxel units (1, sqrt 2 or sqrt 3).
-    pub lengths: [f64; NEIGHBOUR_COUNT],
 }
 
 impl LinearNeighbours {
@@ -30,13 +31,11 @@ impl LinearNeighbours {
     pub fn new(grid: &Grid) -> Self {
         let [nx, ny, _] = grid.dims;
         let mut deltas = [0isize; NEIGHBOUR_COUNT];
-        let mut lengths = [0f64; NEIGHBOUR_COUNT];
         for (k, n) in NEIGHBOURS_26.iter().enumerate() {
             let [dx, dy, dz] = n.offset.map(|o| o as isize);
             deltas[k] = dx + nx as isize * (dy + ny as isize * dz);
-            lengths[k] = n.distance;
         }
-        Self { deltas, lengths }
+        Self { deltas }
     }
 
     /// Index of neighbour `k` of the non-border voxel `index`.
