@@ -337,6 +337,23 @@ mod tests {
         }
     }
 
+    /// Regression: exposures of plateau voxels rounded to just below 1.0, so a threshold of 1.0
+    /// dropped them and forced group founders.
+    #[test]
+    fn threshold_one_keeps_plateau_voxels_true() {
+        let distance = box_map([9, 7, 11]);
+        let options = MedialOptions {
+            exposure_threshold: 1.0,
+            ..Default::default()
+        };
+        let surface = dms(&distance, &options).unwrap();
+        assert_invariants(&distance, &surface, &options);
+        assert!(surface.warnings.is_empty(), "{:?}", surface.warnings);
+        let centre = surface.position(distance.grid.index([5, 4, 6])).unwrap();
+        assert_eq!(surface.exposure[centre], 1.0);
+        assert_eq!(surface.kinds[centre], DmsKind::True);
+    }
+
     #[test]
     fn single_interior_voxel_gives_a_single_voxel_dms_with_a_warning() {
         let distance = box_map([1, 1, 1]);

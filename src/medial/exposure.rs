@@ -66,11 +66,15 @@ pub(crate) fn voxel_exposure(squared: &[u32], index: usize, neighbours: &LinearN
 /// Local exposure of a voxel of squared distance `squared` whose largest neighbour squared
 /// distances per adjacency class (faces, edges, corners) are `largest` (ch.4.2: the largest
 /// neighbour of a class gives the class's minimum relative exposure).
+///
+/// The radii are subtracted before the neighbour length is added, so that equal distances
+/// give exactly the length (1 for a plateau voxel): a threshold of 1.0, common in ch.4.4 and
+/// ch.5, then does not depend on rounding.
 #[inline]
 pub(crate) fn exposure_from_largest(squared: u32, largest: [u32; 3]) -> f64 {
     let radius = (squared as f64).sqrt();
     (0..3)
-        .map(|c| radius + CLASS_LENGTHS[c] - (largest[c] as f64).sqrt())
+        .map(|c| (radius - (largest[c] as f64).sqrt()) + CLASS_LENGTHS[c])
         .fold(f64::INFINITY, f64::min)
 }
 
@@ -115,6 +119,18 @@ mod tests {
         let expected = (3.0 + 1.0 - 3.0f64).min(3.0 + 2f64.sqrt() - 13f64.sqrt());
         assert!((e[dm.grid.index(c)] - expected).abs() < 1e-12);
         assert!((e[dm.grid.index(c)] - 0.809).abs() < 1e-3);
+    }
+
+    #[test]
+    fn plateau_voxels_have_exposure_exactly_one() {
+        for value in [2, 3, 5, 7, 10, 13, 97, 1234] {
+            let largest = [value, value, value];
+            assert_eq!(
+                exposure_from_largest(value, largest),
+                1.0,
+                "squared {value}"
+            );
+        }
     }
 
     #[test]

@@ -233,24 +233,55 @@ fn read_obj(path: &Path) -> Mesh {
     Mesh::new(positions, triangles).expect("valid mesh")
 }
 
-/// Checks that the DMS of a refdata model at 1/128 of its longest side is 26-connected.
+/// Checks that the DMS of a refdata model at 1/128 of its longest side is 26-connected at the
+/// default threshold and at 1.0 (ch.4.4, ch.5), and that it reaches along the figure.
 fn assert_model_dms_connected(relative: &str) {
     let Some(dir) = crate::common::model(relative) else {
         return;
     };
     let mesh = read_obj(&dir.join("mesh.obj"));
     let distance = distance_of(&mesh, 1.0 / 128.0);
-    let start = std::time::Instant::now();
-    let surface = surface_of(&distance);
-    eprintln!(
-        "{relative}: {} interior voxels, {} DMS voxels ({} true, {} saddles) in {:.0} ms",
-        surface.interior_voxels,
-        surface.len(),
-        surface.true_count(),
-        surface.saddles.len(),
-        start.elapsed().as_secs_f64() * 1e3
+    let figure = extent(
+        &distance,
+        (0..distance.grid.len()).filter(|&i| distance.squared[i] > 0),
     );
-    assert_connected(&surface);
+    let longest = (0..3).max_by_key(|&a| figure[a]).unwrap();
+    for threshold in [0.5, 1.0] {
+        let options = MedialOptions {
+            exposure_threshold: threshold,
+            ..Default::default()
+        };
+        let start = std::time::Instant::now();
+        let surface = dms(&distance, &options).expect("dms");
+        eprintln!(
+            "{relative} T={threshold}: {} interior voxels, {} DMS voxels ({} true, {} saddles) in {:.0} ms",
+            surface.interior_voxels,
+            surface.len(),
+            surface.true_count(),
+            surface.saddles.len(),
+            start.elapsed().as_secs_f64() * 1e3
+        );
+        assert_connected(&surface);
+        assert!(surface.warnings.is_empty(), "{:?}", surface.warnings);
+        let reach = extent(&distance, surface.voxels.iter().copied());
+        assert!(
+            reach[longest] as f64 >= 0.85 * figure[longest] as f64,
+            "DMS spans {reach:?} voxels of the figure's {figure:?}"
+        );
+    }
+}
+
+/// Number of voxel layers spanned along x, y and z by the voxels `indices`.
+fn extent(distance: &DistanceMap, indices: impl Iterator<Item = usize>) -> [usize; 3] {
+    let (mut low, mut high) = ([usize::MAX; 3], [0; 3]);
+    for i in indices {
+        let c = distance.grid.coords(i);
+        for a in 0..3 {
+            low[a] = low[a].min(c[a]);
+            high[a] = high[a].max(c[a]);
+        }
+    }
+    [0, 1, 2].map(|a| high[a] + 1 - low[a])
 }
 
 #[test]
