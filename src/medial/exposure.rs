@@ -21,8 +21,8 @@ use rayon::prelude::*;
 /// Computed in parallel; the result does not depend on the number of threads.
 ///
 /// # Errors
-/// See [`checked_interior_count`]'s variants of [`MedialError`]: mismatched sizes, an empty
-/// figure, interior voxels on the grid border.
+/// [`MedialError::SizeMismatch`], [`MedialError::GridTooLarge`], [`MedialError::EmptyFigure`]
+/// or [`MedialError::InteriorOnBorder`] for an unusable distance map.
 pub fn exposure(distance: &DistanceMap) -> Result<Vec<f64>, MedialError> {
     checked_interior_count(distance)?;
     Ok(local_exposure(

@@ -1,6 +1,7 @@
 //! The discrete medial surface: plain data for the path stages.
 
 use crate::voxel::{Grid, NEIGHBOURS_26};
+use glam::DVec3;
 use serde::Serialize;
 
 /// Why a voxel belongs to the discrete medial surface (ch.4.3).
@@ -91,6 +92,11 @@ impl MedialSurface {
     /// Grid coordinates of the DMS voxel at `position`.
     pub fn coords(&self, position: usize) -> [usize; 3] {
         self.grid.coords(self.voxels[position])
+    }
+
+    /// World position (mesh units and frame) of the centre of the DMS voxel at `position`.
+    pub fn centre(&self, position: usize) -> DVec3 {
+        self.grid.centre(self.coords(position))
     }
 
     /// The 26-neighbours of the DMS voxel at `position` that belong to the DMS, as
