@@ -386,6 +386,36 @@ mod tests {
     }
 
     #[test]
+    fn dumbbell_groups_meet_at_a_saddle_in_the_neck() {
+        // Two balls of radius 6 joined along x by a neck that is narrowest (radius 2.5) in the
+        // middle, so the distance map has a saddle there.
+        let (left, right) = (DVec3::new(8.0, 9.0, 9.0), DVec3::new(26.0, 9.0, 9.0));
+        let middle = 0.5 * (left.x + right.x);
+        let distance = distance_map([34, 18, 18], |p| {
+            let radius = 2.5 + 0.3 * (p.x - middle).abs();
+            let bar = (p.x > left.x && p.x < right.x)
+                && DVec3::new(0.0, p.y - 9.0, p.z - 9.0).length() < radius;
+            (p - left).length() < 6.0 || (p - right).length() < 6.0 || bar
+        });
+        let options = MedialOptions::default();
+        let surface = dms(&distance, &options).unwrap();
+        assert_invariants(&distance, &surface, &options);
+        assert_eq!(surface.components, 1);
+        let grid = distance.grid;
+        // The groups grown from the two ball centres merge at the neck's narrowest part.
+        let at_waist = |i: usize| (grid.centre(grid.coords(i)).x - middle).abs() <= 2.0;
+        let saddles: Vec<[usize; 3]> = surface.saddles.iter().map(|&s| grid.coords(s)).collect();
+        assert!(surface.saddles.iter().any(|&s| at_waist(s)), "{saddles:?}");
+        // The DMS runs through the whole neck.
+        for x in (left.x as usize + 6)..(right.x as usize - 6) {
+            assert!(
+                surface.voxels.iter().any(|&i| grid.coords(i)[0] == x),
+                "no DMS voxel in the neck slice x = {x}"
+            );
+        }
+    }
+
+    #[test]
     fn separate_parts_give_one_component_each_and_a_warning() {
         let distance = distance_map([24, 12, 12], |p| {
             (p - DVec3::new(6.0, 6.0, 6.0)).length() < 4.5
