@@ -503,5 +503,25 @@ mod tests {
             let surface = dms(&distance, &options).unwrap();
             assert_invariants(&distance, &surface, &options);
         }
+
+        /// The connectivity invariant does not rest on the map being a distance transform:
+        /// arbitrary values (plateaus, jumps, pits) must neither panic nor disconnect a part.
+        #[test]
+        fn arbitrary_maps_keep_every_part_connected(
+            values in prop::collection::vec(0u32..12, 8 * 8 * 8),
+            threshold in 0.0..=2.0f64,
+        ) {
+            let grid = crate::voxel::Grid { dims: [10, 10, 10], origin: DVec3::ZERO, voxel_size: 1.0 };
+            let mut squared = vec![0; grid.len()];
+            for (k, &v) in values.iter().enumerate() {
+                let c = [1 + k % 8, 1 + (k / 8) % 8, 1 + k / 64];
+                squared[grid.index(c)] = v;
+            }
+            prop_assume!(squared.iter().any(|&s| s > 0));
+            let distance = DistanceMap { grid, squared };
+            let options = MedialOptions { exposure_threshold: threshold, ..Default::default() };
+            let surface = dms(&distance, &options).unwrap();
+            assert_invariants(&distance, &surface, &options);
+        }
     }
 }
