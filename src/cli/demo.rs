@@ -90,11 +90,7 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
             "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9.1}",
             name,
             stats.triangles,
-            if stats.signed_volume.is_some() {
-                "yes"
-            } else {
-                "no"
-            },
+            if stats.closed { "yes" } else { "no" },
             format!("{}x{}x{}", s.dims[0], s.dims[1], s.dims[2]),
             s.interior_voxels,
             vol,

@@ -28,11 +28,11 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
     println!("components        {}", stats.components);
     println!("boundary edges    {}", stats.boundary_edges);
     println!("non-manifold edges {}", stats.non_manifold_edges);
+    println!("closed            {}", stats.closed);
     println!("degenerate tris   {}", stats.degenerate_triangles);
-    println!(
-        "bounding box      {:?} .. {:?}",
-        stats.bounding_box_min, stats.bounding_box_max
-    );
+    if let (Some(min), Some(max)) = (stats.bbox_min, stats.bbox_max) {
+        println!("bounding box      {min:?} .. {max:?}");
+    }
     println!("surface area      {:.6}", stats.surface_area);
     match stats.signed_volume {
         Some(v) => println!("signed volume     {v:.6}"),

@@ -3,11 +3,38 @@
 //!
 //! Positions are kept in the input file's units and frame (f64). Every loader validates what it
 //! read ([`Mesh::new`]): non-finite coordinates and out-of-range indices are errors, never a panic.
+//! Loaders weld exactly coincident vertices ([`Mesh::welded`]), so seams that exporters split
+//! for UVs or normals come back connected.
+//!
+//! - [`load`] dispatches on the extension to [`load_obj`], [`load_gltf`], [`load_stl`],
+//!   [`load_ply`]; [`load_gltf_scene`] also returns a glTF skin's joints in the bind pose.
+//! - [`Mesh::stats`] gives [`MeshStats`] (components, boundary and non-manifold edges, volume).
+//! - [`Mesh::oriented_outward`] repairs inconsistent winding ([`OrientReport`]).
 
 mod error;
+mod gltf;
+mod gltf_accessor;
+mod gltf_nodes;
+mod gltf_skin;
+mod load;
+mod obj;
+mod orient;
+mod ply;
 mod shapes;
+mod stats;
+mod stl;
+mod topology;
+mod weld;
 
+pub use self::gltf::{load_gltf, load_gltf_scene, GltfScene};
 pub use error::MeshError;
+pub use load::load;
+pub use obj::load_obj;
+pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION};
+pub use ply::load_ply;
+pub use stats::MeshStats;
+pub use stl::load_stl;
+pub use topology::DEGENERATE_AREA_FRACTION;
 
 use glam::DVec3;
 

@@ -1,15 +1,36 @@
-//! Reports: pictures of the voxel stages, evaluation tables and HTML pages.
+//! Reports: pictures of the voxel stages (distance slices as PNG), orthographic SVG projections
+//! of a mesh with predicted and reference joints, an SVG bar chart of the error per joint, and a
+//! self-contained HTML page combining them with the per-joint table. Tables for
+//! CSV/JSON/Markdown live in [`crate::eval`] (`joint_rows`, `write_csv`, ...).
+//!
+//! The SVG and HTML output is plain string building: no network resources, no extra crates.
 
+mod chart;
+mod error;
+mod html;
 mod slices;
+mod svg;
+#[cfg(test)]
+mod tests;
 
+pub use chart::{error_bar_chart, ChartOptions};
+pub use error::ReportError;
+pub use html::{html_report, write_html_report, ReportInput, ReportOptions};
 pub use slices::{distance_slice, png_bytes, RgbImage};
+pub use svg::{projection_svg, SvgOptions, View};
 
-use thiserror::Error;
-
-/// Errors from writing reports.
-#[derive(Debug, Error)]
-pub enum ReportError {
-    /// An I/O error.
-    #[error("i/o error: {0}")]
-    Io(#[from] std::io::Error),
+/// `text` with the five XML/HTML special characters escaped.
+pub(crate) fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            _ => out.push(c),
+        }
+    }
+    out
 }

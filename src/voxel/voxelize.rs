@@ -6,6 +6,7 @@ use super::winding::winding_votes;
 use super::{Grid, Solid, VoxelError, VoxelOptions, VoxelReport, VoxelSize};
 use crate::mesh::Mesh;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Voxelizes `mesh` into a [`Solid`].
 ///
@@ -29,14 +30,38 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
 
     let votes = winding_votes(&grid, &corners);
     let threshold = 6.0 * options.inside_threshold;
-    let mut inside: Vec<bool> = votes
-        .sum
-        .iter()
-        .map(|&s| (s as f64).abs() > threshold)
+    let [nx, ny, nz] = grid.dims;
+    // Classify slice by slice; the outermost layer of the grid stays outside whatever the votes
+    // (open sheets can push a few votes outside the bounding box).
+    let classified: Vec<(Vec<bool>, usize)> = (0..nz)
+        .into_par_iter()
+        .map(|z| {
+            let mut slice = vec![false; nx * ny];
+            let mut ambiguous = 0;
+            if z == 0 || z + 1 == nz {
+                return (slice, 0);
+            }
+            for y in 1..ny - 1 {
+                for x in 1..nx - 1 {
+                    let counts = votes.counts([x, y, z]);
+                    let sum: i32 = counts.iter().map(|&c| c as i32).sum();
+                    if (sum as f64).abs() > threshold {
+                        slice[x + nx * y] = true;
+                        if counts.iter().any(|&c| c != counts[0]) {
+                            ambiguous += 1;
+                        }
+                    }
+                }
+            }
+            (slice, ambiguous)
+        })
         .collect();
-    let ambiguous_voxels = (0..grid.len())
-        .filter(|&i| inside[i] && votes.ambiguous(i))
-        .count();
+    let ambiguous_voxels = classified.iter().map(|c| c.1).sum();
+    let mut inside: Vec<bool> = Vec::with_capacity(grid.len());
+    for (slice, _) in classified {
+        inside.extend(slice);
+    }
+    drop(votes);
     let surface = surface_voxels(&grid, &corners);
     let (components, dropped_voxels) = keep_largest_component(&grid, &mut inside);
     let interior_voxels = inside.iter().filter(|&&b| b).count();

@@ -31,18 +31,24 @@ struct Crossing {
     entering: i8,
 }
 
-/// Per-voxel results of the six-direction vote.
+/// The six signed crossing counts of every voxel centre, one array per axis laid out column by
+/// column (`column * n + s` with `n` voxels along the axis): `[towards -axis, towards +axis]`.
 pub(crate) struct WindingVotes {
-    /// Sum of the six signed crossing counts (six times the winding-number estimate).
-    pub sum: Vec<i16>,
-    /// Sum of the squares of the six counts: all six agree exactly when `6 * squares == sum^2`.
-    pub squares: Vec<i16>,
+    dims: [usize; 3],
+    per_axis: [Vec<[i8; 2]>; 3],
 }
 
 impl WindingVotes {
-    /// True where the six counts were not all equal (a hole or a self-intersection nearby).
-    pub fn ambiguous(&self, i: usize) -> bool {
-        6 * self.squares[i] as i32 != (self.sum[i] as i32).pow(2)
+    /// The six counts of voxel `[x, y, z]`.
+    #[inline]
+    pub fn counts(&self, [x, y, z]: [usize; 3]) -> [i8; 6] {
+        let [nx, ny, nz] = self.dims;
+        let a = self.per_axis[0][x + nx * (y + ny * z)];
+        // Axis 1 (y): columns indexed by (u, v) = (z, x) as z + nz * x.
+        let b = self.per_axis[1][(z + nz * x) * ny + y];
+        // Axis 2 (z): columns indexed by (u, v) = (x, y) as x + nx * y.
+        let c = self.per_axis[2][(x + nx * y) * nz + z];
+        [a[0], a[1], b[0], b[1], c[0], c[1]]
     }
 }
 
@@ -112,92 +118,68 @@ fn triangle_crossings(corners: [DVec3; 3], axis: usize, dims: [usize; 3], out: &
     }
 }
 
-/// Index into the voxel array of position `s` along column `column` of `axis`.
-#[inline]
-fn voxel_of(dims: [usize; 3], axis: usize, column: usize, s: usize) -> usize {
-    let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-    let mut c = [0usize; 3];
-    c[axis] = s;
-    c[u] = column % dims[u];
-    c[v] = column / dims[u];
-    c[0] + dims[0] * (c[1] + dims[1] * c[2])
-}
-
 /// Runs the six-direction vote for every voxel centre of `grid`.
 ///
 /// `corners` are the triangles' corners in continuous voxel coordinates.
 pub(crate) fn winding_votes(grid: &Grid, corners: &[[DVec3; 3]]) -> WindingVotes {
     let dims = grid.dims;
-    let len = grid.len();
-    let mut sum = vec![0i16; len];
-    let mut squares = vec![0i16; len];
-    for axis in 0..3 {
-        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-        let columns = dims[u] * dims[v];
-        let mut crossings: Vec<Crossing> = corners
-            .par_chunks(1024)
-            .flat_map_iter(|chunk| {
-                let mut out = Vec::new();
-                for &tri in chunk {
-                    triangle_crossings(tri, axis, dims, &mut out);
-                }
-                out
-            })
-            .collect();
-        crossings.par_sort_unstable_by(|p, q| {
-            (p.column, p.depth, p.entering)
-                .partial_cmp(&(q.column, q.depth, q.entering))
-                .unwrap_or(std::cmp::Ordering::Equal)
-        });
-        let starts = column_starts(&crossings, columns);
-        let n = dims[axis];
-        // Per column and voxel: the count seen from the -axis side (entries minus exits before
-        // the centre) and from the +axis side (exits minus entries after it).
-        let per_column: Vec<(usize, Vec<[i8; 2]>)> = (0..columns)
-            .into_par_iter()
-            .filter(|&col| starts[col] != starts[col + 1])
-            .map(|col| {
-                let list = &crossings[starts[col]..starts[col + 1]];
-                let total: i32 = list.iter().map(|c| c.entering as i32).sum();
-                let mut votes = Vec::with_capacity(n);
-                let mut k = 0;
-                let mut before = 0i32;
-                for s in 0..n {
-                    let centre = s as f64 + 0.5;
-                    while k < list.len() && list[k].depth < centre {
-                        before += list[k].entering as i32;
-                        k += 1;
-                    }
-                    votes.push([clamp_i8(before), clamp_i8(before - total)]);
-                }
-                (col, votes)
-            })
-            .collect();
-        for (col, votes) in per_column {
-            for (s, pair) in votes.into_iter().enumerate() {
-                let i = voxel_of(dims, axis, col, s);
-                for w in pair {
-                    sum[i] += w as i16;
-                    squares[i] += (w as i16) * (w as i16);
-                }
+    let per_axis = [0, 1, 2].map(|axis| axis_votes(dims, axis, corners));
+    WindingVotes { dims, per_axis }
+}
+
+/// The two counts of every voxel along every column parallel to `axis`.
+fn axis_votes(dims: [usize; 3], axis: usize, corners: &[[DVec3; 3]]) -> Vec<[i8; 2]> {
+    let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+    let columns = dims[u] * dims[v];
+    let n = dims[axis];
+    let found: Vec<Vec<Crossing>> = corners
+        .par_chunks(2048)
+        .map(|chunk| {
+            let mut out = Vec::new();
+            for &tri in chunk {
+                triangle_crossings(tri, axis, dims, &mut out);
             }
-        }
-    }
-    WindingVotes { sum, squares }
-}
-
-fn clamp_i8(v: i32) -> i8 {
-    v.clamp(-16, 16) as i8
-}
-
-/// `starts[c]..starts[c + 1]` is the range of column `c` in the sorted crossings.
-fn column_starts(crossings: &[Crossing], columns: usize) -> Vec<usize> {
+            out
+        })
+        .collect();
+    // Bucket the crossings by column (counting sort), then order each column by depth.
     let mut starts = vec![0usize; columns + 1];
-    for c in crossings {
+    for c in found.iter().flatten() {
         starts[c.column as usize + 1] += 1;
     }
     for c in 0..columns {
         starts[c + 1] += starts[c];
     }
-    starts
+    let mut fill = starts.clone();
+    let mut sorted = vec![(0.0f64, 0i8); starts[columns]];
+    for c in found.iter().flatten() {
+        let k = &mut fill[c.column as usize];
+        sorted[*k] = (c.depth, c.entering);
+        *k += 1;
+    }
+    let mut votes = vec![[0i8; 2]; columns * n];
+    votes.par_chunks_mut(n).enumerate().for_each(|(col, out)| {
+        let list = &sorted[starts[col]..starts[col + 1]];
+        if list.is_empty() {
+            return;
+        }
+        let mut list = list.to_vec();
+        list.sort_unstable_by(|p, q| p.partial_cmp(q).unwrap_or(std::cmp::Ordering::Equal));
+        let total: i32 = list.iter().map(|c| c.1 as i32).sum();
+        let mut k = 0;
+        let mut before = 0i32;
+        for (s, slot) in out.iter_mut().enumerate() {
+            let centre = s as f64 + 0.5;
+            while k < list.len() && list[k].0 < centre {
+                before += list[k].1 as i32;
+                k += 1;
+            }
+            *slot = [clamp_i8(before), clamp_i8(before - total)];
+        }
+    });
+    votes
+}
+
+fn clamp_i8(v: i32) -> i8 {
+    v.clamp(-16, 16) as i8
 }

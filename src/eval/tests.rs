@@ -1,0 +1,588 @@
+//! Unit tests of the eval stage against analytic skeletons and brute force.
+
+use super::*;
+use crate::skeleton::{Joint, JointId, Skeleton};
+use glam::DVec3;
+use std::path::Path;
+
+fn joint(name: &str, parent: Option<usize>, p: [f64; 3]) -> Joint {
+    Joint {
+        name: name.into(),
+        parent: parent.map(JointId),
+        position: DVec3::from_array(p),
+        deform: true,
+    }
+}
+
+/// A stick humanoid with skelfit anatomical names, 1.8 units tall.
+fn stick_figure() -> Skeleton {
+    Skeleton {
+        joints: vec![
+            joint("pelvis", None, [0.0, 1.0, 0.0]),
+            joint("chest", Some(0), [0.0, 1.3, 0.0]),
+            joint("neck", Some(1), [0.0, 1.5, 0.0]),
+            joint("head", Some(2), [0.0, 1.8, 0.0]),
+            joint("shoulder_L", Some(1), [0.2, 1.45, 0.0]),
+            joint("elbow_L", Some(4), [0.45, 1.2, 0.0]),
+            joint("shoulder_R", Some(1), [-0.2, 1.45, 0.0]),
+            joint("elbow_R", Some(6), [-0.45, 1.2, 0.0]),
+            joint("hip_L", Some(0), [0.1, 0.95, 0.0]),
+            joint("knee_L", Some(8), [0.1, 0.5, 0.0]),
+            joint("ankle_L", Some(9), [0.1, 0.0, 0.0]),
+            joint("hip_R", Some(0), [-0.1, 0.95, 0.0]),
+            joint("knee_R", Some(11), [-0.1, 0.5, 0.0]),
+            joint("ankle_R", Some(12), [-0.1, 0.0, 0.0]),
+        ],
+    }
+}
+
+fn rig(skeleton: Skeleton) -> ReferenceRig {
+    ReferenceRig::from_skeleton("stick", skeleton)
+}
+
+fn translated(skeleton: &Skeleton, by: DVec3) -> Skeleton {
+    let mut s = skeleton.clone();
+    for j in &mut s.joints {
+        j.position += by;
+    }
+    s
+}
+
+#[test]
+fn identical_skeletons_give_zero_error() {
+    let s = stick_figure();
+    let e = evaluate(&rig(s.clone()), &rig(s), None, &EvalOptions::default()).unwrap();
+    assert_eq!(e.joints.len(), 14);
+    assert_eq!(e.method, MatchMethod::Canonical);
+    assert_eq!(e.summary, ErrorSummary::from_values(&[0.0; 14]));
+    assert_eq!(e.summary.max, 0.0);
+    assert_eq!((e.chamfer.j2j, e.chamfer.j2b), (0.0, 0.0));
+    assert!(e.chamfer.b2b < 1e-12, "{}", e.chamfer.b2b); // rounding of bone samples only
+    assert!(e.warnings.is_empty(), "{:?}", e.warnings);
+    assert!(e.unmatched.is_empty());
+}
+
+#[test]
+fn known_offset_gives_exactly_that_error() {
+    let s = stick_figure();
+    let offset = DVec3::new(0.03, 0.0, 0.04); // |offset| = 0.05 exactly in decimal terms
+    let e = evaluate(
+        &rig(translated(&s, offset)),
+        &rig(s),
+        None,
+        &EvalOptions::default(),
+    )
+    .unwrap();
+    for j in &e.joints {
+        assert!((j.error - 0.05).abs() < 1e-12, "{}: {}", j.key, j.error);
+        assert!((j.offset - offset).length() < 1e-12);
+    }
+    for v in [
+        e.summary.mean,
+        e.summary.median,
+        e.summary.max,
+        e.summary.rms,
+    ] {
+        assert!((v - 0.05).abs() < 1e-12, "{v}");
+    }
+    // Upright figure: size = height of the joints' bounding box = 1.8.
+    assert_eq!(e.figure.measure, FigureMeasure::Height);
+    assert!((e.figure.size - 1.8).abs() < 1e-12);
+    assert!((e.summary_percent.mean - 100.0 * 0.05 / 1.8).abs() < 1e-9);
+    // Every joint's nearest neighbour is its own copy, so J2J equals the offset too.
+    assert!((e.chamfer.j2j - 0.05).abs() < 1e-12);
+}
+
+#[test]
+fn single_joint_offset_changes_only_that_joint() {
+    let s = stick_figure();
+    let mut p = s.clone();
+    p.joints[5].position.y -= 0.1;
+    let e = evaluate(&rig(p), &rig(s), None, &EvalOptions::default()).unwrap();
+    assert_eq!(e.worst_joint, "elbow_L");
+    assert!((e.summary.max - 0.1).abs() < 1e-12);
+    assert!((e.summary.mean - 0.1 / 14.0).abs() < 1e-12);
+    assert!((e.summary.rms - (0.01f64 / 14.0).sqrt()).abs() < 1e-12);
+    assert_eq!(e.summary.median, 0.0);
+}
+
+#[test]
+fn summary_statistics() {
+    let s = ErrorSummary::from_values(&[3.0, 1.0, 4.0, 2.0]);
+    assert_eq!(s.count, 4);
+    assert_eq!(s.mean, 2.5);
+    assert_eq!(s.median, 2.5);
+    assert_eq!(s.max, 4.0);
+    assert!((s.rms - (30.0f64 / 4.0).sqrt()).abs() < 1e-12);
+    assert_eq!(ErrorSummary::from_values(&[]), ErrorSummary::default());
+}
+
+/// Deterministic pseudo-random numbers in [0, 1) (64-bit LCG, Knuth's constants).
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn skeleton(&mut self, n: usize) -> Skeleton {
+        let joints = (0..n)
+            .map(|i| {
+                let parent = (i > 0).then(|| (self.next() * i as f64) as usize);
+                joint(
+                    &format!("j{i}"),
+                    parent,
+                    [self.next(), self.next() * 2.0, self.next()],
+                )
+            })
+            .collect();
+        Skeleton { joints }
+    }
+}
+
+fn brute_point_chamfer(a: &[DVec3], b: &[DVec3]) -> f64 {
+    let one_way = |from: &[DVec3], to: &[DVec3]| {
+        let mut total = 0.0;
+        for p in from {
+            let mut best = f64::INFINITY;
+            for q in to {
+                best = best.min((*p - *q).length());
+            }
+            total += best;
+        }
+        total / from.len() as f64
+    };
+    0.5 * (one_way(a, b) + one_way(b, a))
+}
+
+fn dense_bone_points(s: &Skeleton, step: f64) -> Vec<DVec3> {
+    let mut points = Vec::new();
+    for j in &s.joints {
+        if let Some(p) = j.parent {
+            let a = s.joints[p.0].position;
+            let n = ((a - j.position).length() / step).ceil().max(1.0) as usize;
+            for i in 0..=n {
+                points.push(a + (j.position - a) * (i as f64 / n as f64));
+            }
+        }
+    }
+    points
+}
+
+#[test]
+fn chamfer_matches_brute_force() {
+    let mut rng = Lcg(7);
+    for _ in 0..3 {
+        let a = rng.skeleton(12);
+        let b = rng.skeleton(9);
+        let options = ChamferOptions {
+            bone_sample_spacing: 0.01,
+        };
+        let c = chamfer(&a, &b, &options);
+        let ja: Vec<DVec3> = a.joints.iter().map(|j| j.position).collect();
+        let jb: Vec<DVec3> = b.joints.iter().map(|j| j.position).collect();
+        // J2J is exact.
+        assert!((c.j2j - brute_point_chamfer(&ja, &jb)).abs() < 1e-12);
+        // J2B and B2B against densely sampled bones (error bounded by half the step).
+        let step = 2e-3;
+        let da = dense_bone_points(&a, step);
+        let db = dense_bone_points(&b, step);
+        let nearest_mean = |from: &[DVec3], to: &[DVec3]| {
+            from.iter()
+                .map(|p| {
+                    to.iter()
+                        .map(|q| (*p - *q).length())
+                        .fold(f64::INFINITY, f64::min)
+                })
+                .sum::<f64>()
+                / from.len() as f64
+        };
+        let j2b = 0.5 * (nearest_mean(&ja, &db) + nearest_mean(&jb, &da));
+        assert!((c.j2b - j2b).abs() < step, "j2b {} vs {j2b}", c.j2b);
+        let b2b = brute_point_chamfer(&da, &db);
+        // B2B samples the source bones at 0.01 and measures to exact segments: agrees with
+        // the dense point version to within the coarser spacing.
+        assert!((c.b2b - b2b).abs() < 0.01, "b2b {} vs {b2b}", c.b2b);
+        // Symmetric.
+        let d = chamfer(&b, &a, &options);
+        assert!((c.j2j - d.j2j).abs() < 1e-12 && (c.j2b - d.j2b).abs() < 1e-12);
+        assert!((c.b2b - d.b2b).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn point_segment_distance_cases() {
+    let (a, b) = (DVec3::ZERO, DVec3::X);
+    assert_eq!(point_segment_distance(DVec3::new(0.5, 2.0, 0.0), a, b), 2.0);
+    assert_eq!(
+        point_segment_distance(DVec3::new(-3.0, 4.0, 0.0), a, b),
+        5.0
+    );
+    assert_eq!(point_segment_distance(DVec3::new(4.0, 0.0, 0.0), a, b), 3.0);
+    assert_eq!(point_segment_distance(DVec3::Y, a, a), 1.0);
+}
+
+#[test]
+fn no_shared_joints_lists_both_name_sets() {
+    let a = Skeleton {
+        joints: vec![
+            joint("Body", None, [0.0; 3]),
+            joint("Tail1", Some(0), [0.0, 0.0, -1.0]),
+        ],
+    };
+    let b = Skeleton {
+        joints: vec![
+            joint("Root", None, [0.0; 3]),
+            joint("Wing", Some(0), [1.0, 0.0, 0.0]),
+        ],
+    };
+    let err = evaluate(&rig(a), &rig(b), None, &EvalOptions::default()).unwrap_err();
+    let message = err.to_string();
+    assert!(matches!(err, EvalError::NoSharedJoints { .. }));
+    for name in ["Body", "Tail1", "Root", "Wing"] {
+        assert!(message.contains(name), "{message}");
+    }
+}
+
+#[test]
+fn falls_back_to_identical_names() {
+    let a = Skeleton {
+        joints: vec![
+            joint("Body", None, [0.0; 3]),
+            joint("Tail1", Some(0), [0.0, 0.0, -1.0]),
+        ],
+    };
+    let e = evaluate(&rig(a.clone()), &rig(a), None, &EvalOptions::default()).unwrap();
+    assert_eq!(e.method, MatchMethod::Name);
+    assert_eq!(e.joints.len(), 2);
+    assert_eq!(e.figure.measure, FigureMeasure::LongestSide);
+}
+
+#[test]
+fn unit_mismatch_warns() {
+    let s = stick_figure();
+    let mut cm = s.clone();
+    for j in &mut cm.joints {
+        j.position *= 100.0;
+    }
+    let e = evaluate(&rig(cm), &rig(s.clone()), None, &EvalOptions::default()).unwrap();
+    assert_eq!(e.warnings.len(), 1, "{:?}", e.warnings);
+    assert!(e.warnings[0].contains("100.0x"), "{}", e.warnings[0]);
+    // A mesh in other units than the reference is flagged too.
+    let mesh = crate::mesh::Mesh::cuboid(DVec3::ZERO, DVec3::splat(180.0));
+    let e = evaluate(
+        &rig(s.clone()),
+        &rig(s),
+        Some(&mesh),
+        &EvalOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(e.figure.source, SizeSource::Mesh);
+    assert!((e.figure.size - 180.0).abs() < 1e-12);
+    assert_eq!(e.warnings.len(), 1, "{:?}", e.warnings);
+}
+
+#[test]
+fn deforming_filter_reparents() {
+    let mut s = stick_figure();
+    s.joints.insert(0, joint("Root", None, [0.0; 3]));
+    s.joints[0].deform = false;
+    for j in s.joints.iter_mut().skip(1) {
+        j.parent = Some(j.parent.map_or(JointId(0), |p| JointId(p.0 + 1)));
+    }
+    let mut r = rig(s);
+    r.canonical.insert("root_control".into(), JointId(0));
+    r.canonical.insert("head".into(), JointId(4));
+    let d = r.deforming();
+    assert_eq!(d.skeleton, stick_figure());
+    assert_eq!(d.canonical.len(), 1);
+    assert_eq!(d.canonical_joint("head").unwrap().name, "head");
+}
+
+const BVH: &str = "HIERARCHY
+ROOT Hips
+{
+  OFFSET 0.0 90.0 0.0
+  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation
+  JOINT LeftUpLeg
+  {
+    OFFSET 10.0 -5.0 0.0
+    CHANNELS 3 Zrotation Xrotation Yrotation
+    JOINT LeftLeg
+    {
+      OFFSET 0.0 -40.0 0.0
+      CHANNELS 3 Zrotation Xrotation Yrotation
+      End Site
+      {
+        OFFSET 0.0 -40.0 5.0
+      }
+    }
+  }
+  JOINT Spine
+  {
+    OFFSET 0.0 10.0 0.0
+    CHANNELS 3 Zrotation Xrotation Yrotation
+    JOINT Head
+    {
+      OFFSET 0.0 60.0 0.0
+      CHANNELS 3 Zrotation Xrotation Yrotation
+      End Site
+      {
+        OFFSET 0.0 20.0 0.0
+      }
+    }
+  }
+}
+MOTION
+Frames: 1
+Frame Time: 0.033333
+0 90 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0
+";
+
+#[test]
+fn bvh_rest_pose() {
+    let r = parse_bvh(BVH, Path::new("walk.bvh")).unwrap();
+    let names: Vec<&str> = r.skeleton.joints.iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "Hips",
+            "LeftUpLeg",
+            "LeftLeg",
+            "LeftLeg_end",
+            "Spine",
+            "Head",
+            "Head_end"
+        ]
+    );
+    let at = |n: &str| r.skeleton.joint(r.skeleton.find(n).unwrap()).position;
+    assert_eq!(at("Hips"), DVec3::new(0.0, 90.0, 0.0));
+    assert_eq!(at("LeftLeg"), DVec3::new(10.0, 45.0, 0.0));
+    assert_eq!(at("LeftLeg_end"), DVec3::new(10.0, 5.0, 5.0));
+    assert_eq!(at("Head_end"), DVec3::new(0.0, 180.0, 0.0));
+    let end = r.skeleton.joint(r.skeleton.find("Head_end").unwrap());
+    assert!(!end.deform);
+    assert_eq!(end.parent, r.skeleton.find("Head"));
+    assert_eq!(r.skeleton.joints[4].parent, Some(JointId(0)));
+    assert_eq!(r.model, "walk");
+    assert_eq!(r.format, RigFormat::Bvh);
+    // End sites drop out when filtering to deforming joints.
+    assert_eq!(r.deforming().skeleton.joints.len(), 5);
+}
+
+#[test]
+fn bvh_errors_name_the_line() {
+    let broken = BVH.replace("OFFSET 0.0 -40.0 0.0", "OFFSET 0.0 oops 0.0");
+    let message = parse_bvh(&broken, Path::new("x.bvh"))
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("line 12"), "{message}");
+    let truncated = &BVH[..BVH.find("MOTION").unwrap() - 3];
+    assert!(parse_bvh(truncated, Path::new("x.bvh")).is_err());
+    assert!(parse_bvh("HIERARCHY\nMOTION\n", Path::new("x.bvh")).is_err());
+    assert!(parse_bvh("", Path::new("x.bvh")).is_err());
+}
+
+#[test]
+fn skelfit_json_with_names_and_indices() {
+    let text = r#"{"joints": [
+        {"name": "pelvis", "parent": null, "position": [0, 1, 0]},
+        {"name": "spine_01", "parent": "pelvis", "position": [0, 1.2, 0]},
+        {"name": "tip", "parent": 1, "position": [0, 1.4, 0], "deform": false}],
+        "canonical": {"pelvis": "pelvis", "spine": "spine_01"}}"#;
+    let r = parse_json_rig(text, Path::new("out/fit.json")).unwrap();
+    assert_eq!(r.format, RigFormat::Skelfit);
+    assert_eq!(r.model, "fit");
+    assert_eq!(r.skeleton.joints[2].parent, Some(JointId(1)));
+    assert!(!r.skeleton.joints[2].deform);
+    assert_eq!(r.canonical_joint("spine").unwrap().name, "spine_01");
+}
+
+#[test]
+fn invalid_json_skeletons_are_errors() {
+    let cases = [
+        (
+            r#"{"joints": [{"name": "a", "parent": "b", "position": [0,0,0]}, {"name": "b", "position": [0,0,0]}]}"#,
+            "before",
+        ),
+        (
+            r#"{"joints": [{"name": "a", "position": [0,0,0]}, {"name": "a", "position": [0,0,0]}]}"#,
+            "twice",
+        ),
+        (
+            r#"{"joints": [{"name": "a", "parent": 0, "position": [0,0,0]}]}"#,
+            "parents must come before",
+        ),
+        (
+            r#"{"joints": [{"name": "a", "position": [0,0,0]}], "canonical": {"head": "zz"}}"#,
+            "does not exist",
+        ),
+        (r#"{"format": "other-v2", "joints": []}"#, "other-v2"),
+        (r#"{"joints": "#, "not a valid json"),
+    ];
+    for (text, expected) in cases {
+        let message = parse_json_rig(text, Path::new("bad.json"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains(expected),
+            "{message} should mention {expected}"
+        );
+    }
+}
+
+#[test]
+fn missing_file_and_unknown_extension() {
+    let err = load_skeleton(Path::new("/nonexistent/rig.json")).unwrap_err();
+    assert!(matches!(err, EvalError::Io { .. }));
+    assert!(err.to_string().contains("/nonexistent/rig.json"));
+    let err = load_skeleton(Path::new("rig.fbx")).unwrap_err();
+    assert!(matches!(err, EvalError::UnknownFormat { .. }), "{err}");
+}
+
+#[test]
+fn bundled_presets_are_valid() {
+    let presets = parse_presets().unwrap();
+    assert_eq!(presets.len(), 5);
+    for p in &presets {
+        assert!(p.joints.contains_key("pelvis"), "{}", p.preset);
+        assert!(p.joints.keys().all(|k| is_canonical_key(k)));
+    }
+    assert_eq!(
+        preset("mixamo").unwrap().joints["shoulder_L"][0],
+        "mixamorig:LeftArm"
+    );
+    assert_eq!(
+        preset("unity_humanoid").unwrap().joints["shoulder_L"],
+        ["LeftUpperArm"]
+    );
+    assert_eq!(
+        preset("makehuman_game_engine").unwrap().joints["shoulder_L"],
+        ["upperarm_l"]
+    );
+}
+
+fn named(names: &[&str]) -> Skeleton {
+    Skeleton {
+        joints: names
+            .iter()
+            .enumerate()
+            .map(|(i, n)| joint(n, i.checked_sub(1), [0.0, i as f64, 0.0]))
+            .collect(),
+    }
+}
+
+#[test]
+fn presets_are_detected() {
+    let mixamo = named(&[
+        "mixamorig:Hips",
+        "mixamorig:Spine",
+        "mixamorig:Spine1",
+        "mixamorig:LeftArm",
+    ]);
+    let (p, map) = detect_preset(&mixamo).unwrap();
+    assert_eq!(p.preset, "mixamo");
+    assert_eq!(map["shoulder_L"], JointId(3));
+    // Without the namespace (e.g. a Mixamo BVH) it is still Mixamo (Spine2 = chest) ...
+    let bare = named(&["Hips", "Spine", "Spine1", "Spine2", "LeftArm"]);
+    assert_eq!(detect_preset(&bare).unwrap().0.preset, "mixamo");
+    // ... but a CMU skeleton (LowerBack, Spine, Spine1: Spine1 = chest) is CMU.
+    let cmu = named(&["Hips", "LowerBack", "Spine", "Spine1", "Neck", "LeftArm"]);
+    let (p, map) = detect_preset(&cmu).unwrap();
+    assert_eq!(p.preset, "cmu");
+    assert_eq!(map["chest"], JointId(3));
+    // Other namespaces match loosely.
+    let other = named(&["mixamorig1:Hips", "mixamorig1:Spine1", "mixamorig1:Spine2"]);
+    assert_eq!(detect_preset(&other).unwrap().0.preset, "mixamo");
+    let unity = named(&["Hips", "Spine", "Chest", "LeftUpperArm", "LeftLowerArm"]);
+    let (p, map) = detect_preset(&unity).unwrap();
+    assert_eq!(p.preset, "unity_humanoid");
+    assert_eq!(map["elbow_L"], JointId(4));
+    let game = named(&[
+        "pelvis",
+        "spine_01",
+        "spine_02",
+        "spine_03",
+        "upperarm_l",
+        "lowerarm_l",
+    ]);
+    assert_eq!(
+        detect_preset(&game).unwrap().0.preset,
+        "makehuman_game_engine"
+    );
+    assert!(detect_preset(&named(&["Body", "Tail"])).is_none());
+    // Two rigs in different conventions pair through canonical keys.
+    let c = correspond(&rig(mixamo), &rig(unity)).unwrap();
+    assert_eq!(c.method, MatchMethod::Canonical);
+    let keys: Vec<&str> = c.pairs.iter().map(|p| p.key.as_str()).collect();
+    assert_eq!(keys, ["pelvis", "spine", "shoulder_L"]);
+    assert_eq!(
+        c.reference_naming,
+        CanonicalSource::Preset("unity_humanoid".into())
+    );
+}
+
+#[test]
+fn csv_and_json_round_trip() {
+    let s = stick_figure();
+    let e = evaluate(
+        &rig(translated(&s, DVec3::new(0.0, 0.01, 0.0))),
+        &rig(s),
+        None,
+        &EvalOptions::default(),
+    )
+    .unwrap();
+    let rows = joint_rows(&e);
+    let mut bytes = Vec::new();
+    write_csv(&rows, &mut bytes).unwrap();
+    let text = String::from_utf8(bytes).unwrap();
+    assert!(text.starts_with("model,key,predicted_joint,reference_joint,error,error_percent"));
+    let back: Vec<JointRow> = csv::Reader::from_reader(text.as_bytes())
+        .deserialize()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert_eq!(back, rows);
+    let models = vec![model_row(&e)];
+    let mut bytes = Vec::new();
+    write_csv(&models, &mut bytes).unwrap();
+    let back: Vec<ModelRow> = csv::Reader::from_reader(bytes.as_slice())
+        .deserialize()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert_eq!(back, models);
+    let json = to_json(&e).unwrap();
+    let back: Evaluation = serde_json::from_str(&json).unwrap();
+    // serde_json parses floats to within an ulp or two (no `float_roundtrip` feature).
+    assert_eq!(back.joints.len(), e.joints.len());
+    for (b, j) in back.joints.iter().zip(&e.joints) {
+        assert_eq!((&b.key, &b.reference_joint), (&j.key, &j.reference_joint));
+        assert!((b.error - j.error).abs() < 1e-15 && (b.offset - j.offset).length() < 1e-15);
+    }
+    assert!((back.summary.rms - e.summary.rms).abs() < 1e-15);
+    assert_eq!(back.figure, e.figure);
+    let dataset = aggregate(&[e.clone(), e]);
+    let back: DatasetSummary = serde_json::from_str(&to_json(&dataset).unwrap()).unwrap();
+    assert_eq!(back.keys.len(), dataset.keys.len());
+    assert!((back.pooled_percent.mean - dataset.pooled_percent.mean).abs() < 1e-12);
+    assert_eq!(dataset.pooled_percent.count, 28);
+    assert_eq!(dataset.keys[0].key, "pelvis");
+    assert_eq!(dataset.keys[0].count, 2);
+}
+
+#[test]
+fn tables_render() {
+    let s = stick_figure();
+    let e = evaluate(&rig(s.clone()), &rig(s), None, &EvalOptions::default()).unwrap();
+    let md = joint_table(&joint_rows(&e)).markdown();
+    assert!(md.starts_with("| joint | predicted |"));
+    assert_eq!(md.lines().count(), 2 + 14);
+    let plain = model_table(&[model_row(&e)]).plain();
+    assert_eq!(plain.lines().count(), 2);
+    assert!(key_table(&aggregate(&[e]).keys)
+        .markdown()
+        .contains("| elbow_L |"));
+}

@@ -1,0 +1,272 @@
+//! glTF 2.0 (`.gltf` + buffers, `.glb`) reading, with skinned meshes in their bind pose.
+
+use super::gltf_accessor;
+use super::gltf_nodes::NodeTree;
+use super::gltf_skin::SkinBind;
+use super::load::{finish, guarded, parse_error, read_bytes};
+use super::{Mesh, MeshError};
+use crate::skeleton::Skeleton;
+use glam::{DMat4, DVec3};
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::Mode;
+use gltf::Semantic;
+use std::path::Path;
+
+const FORMAT: &str = "gltf";
+
+/// A glTF scene read by [`load_gltf_scene`]: the mesh and, for a skinned file, its skeleton.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GltfScene {
+    /// All triangle primitives of the scene in the bind pose, welded (see [`load_gltf`]).
+    pub mesh: Mesh,
+    /// The joints of the first skin used by a mesh node of the scene, in the same frame as
+    /// `mesh`; `None` when no mesh node is skinned.
+    ///
+    /// Joint `j` sits at `B · inv(IBM_j) · 0` (the bind pose, see [`load_gltf`]); its parent
+    /// is the nearest ancestor node that is a joint of the skin; its name is the node name, or
+    /// `joint_<node index>` for an unnamed node (`<name>_<node index>` if the name is already
+    /// taken); `deform` is true iff some vertex has a nonzero weight on it in a
+    /// `JOINTS_n`/`WEIGHTS_n` pair. Joints are in skin order, moved only where needed to put
+    /// parents before children.
+    pub skeleton: Option<Skeleton>,
+}
+
+/// Reads the mesh of a glTF 2.0 file (`.gltf` with external or embedded buffers, or `.glb`).
+/// Images are not loaded.
+///
+/// Every mesh primitive of the default scene (or the first scene; all root nodes without a
+/// scene) is included: triangles, triangle strips and fans (converted to triangles); points
+/// and lines are skipped. Unskinned primitives get their node's world transform. Skinned
+/// primitives are returned in the bind pose `B · v` with `B = W_root(rest) · IBM_root`, where
+/// `root` is the first joint of the skin whose parent node is not a joint of the skin, `W` the
+/// rest-pose world transform and `IBM` the inverse bind matrix (the node transform of a
+/// skinned mesh is ignored, as the glTF spec requires). An unskinned mesh attached below a
+/// joint of the rig's skin follows that joint into the bind pose. Triangles of nodes with a
+/// mirroring transform (negative determinant) are reversed so they stay outward-wound.
+/// The result is welded and validated like every loader (see [`load`](super::load)).
+///
+/// # Errors
+/// [`MeshError::Io`] (also for a missing external buffer), [`MeshError::Empty`] (empty file, no
+/// triangle primitives), [`MeshError::Parse`] (invalid or truncated glTF/GLB, accessors out of
+/// bounds or of the wrong type, quantized positions), [`MeshError::NonFinite`],
+/// [`MeshError::IndexOutOfRange`] (an index beyond its primitive's vertices),
+/// [`MeshError::Degenerate`].
+pub fn load_gltf(path: &Path) -> Result<Mesh, MeshError> {
+    Ok(load_gltf_scene(path)?.mesh)
+}
+
+/// Reads a glTF 2.0 file like [`load_gltf`], and also the skeleton of its skin in the bind
+/// pose, in the same frame as the mesh (see [`GltfScene::skeleton`]). This is how reference
+/// rigs are read: for the refdata glTF models it reproduces `mesh.obj` (up to the recorded
+/// scale) and `rig_gltf.json`.
+///
+/// # Errors
+/// As [`load_gltf`]; also [`MeshError::Parse`] for a singular inverse bind matrix or a joint
+/// index beyond the skin.
+pub fn load_gltf_scene(path: &Path) -> Result<GltfScene, MeshError> {
+    let bytes = read_bytes(path)?;
+    let raw = guarded(path, FORMAT, || read(path, &bytes))?;
+    let detail = if raw.skipped_primitives > 0 {
+        " (the glTF scene holds only points or lines)"
+    } else {
+        " (the glTF scene has no mesh primitives)"
+    };
+    let mesh = finish(raw.positions, raw.triangles, detail)?;
+    Ok(GltfScene {
+        mesh,
+        skeleton: raw.skeleton,
+    })
+}
+
+/// Everything read from the file before welding.
+struct RawScene {
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    skipped_primitives: usize,
+    skeleton: Option<Skeleton>,
+}
+
+fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
+    let error = |message: String| parse_error(path, FORMAT, message);
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice(bytes).map_err(|e| error(e.to_string()))?;
+    let buffers = gltf::import_buffers(&document, path.parent(), blob).map_err(|e| match e {
+        gltf::Error::Io(source) => MeshError::Io {
+            path: path.to_path_buf(),
+            source,
+        },
+        other => error(format!("cannot load buffers: {other}")),
+    })?;
+    let buffers: Vec<&[u8]> = buffers.iter().map(|b| &b.0[..]).collect();
+    let tree = NodeTree::new(&document).map_err(error)?;
+    let roots: Vec<usize> = match document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
+        Some(scene) => scene.nodes().map(|n| n.index()).collect(),
+        None => tree.roots(),
+    };
+    let nodes: Vec<gltf::Node> = document.nodes().collect();
+    let mesh_nodes: Vec<usize> = tree
+        .preorder(&document, &roots)
+        .into_iter()
+        .filter(|&n| nodes[n].mesh().is_some())
+        .collect();
+
+    // The rig: the first skin used by a mesh node of the scene.
+    let mut binds: Vec<SkinBind> = Vec::new();
+    for &n in &mesh_nodes {
+        if let Some(skin) = nodes[n].skin() {
+            if !binds.iter().any(|b| b.skin == skin.index()) {
+                binds.push(SkinBind::new(&skin, &buffers, &tree).map_err(error)?);
+            }
+        }
+    }
+    let rig = binds.first();
+
+    let mut raw = RawScene {
+        positions: Vec::new(),
+        triangles: Vec::new(),
+        skipped_primitives: 0,
+        skeleton: None,
+    };
+    for &n in &mesh_nodes {
+        let node = &nodes[n];
+        let transform = match node.skin() {
+            Some(skin) => binds
+                .iter()
+                .find(|b| b.skin == skin.index())
+                .map_or(DMat4::IDENTITY, |b| b.bind),
+            None => match rig.and_then(|r| r.joint_ancestor(n, &tree).map(|k| (r, k))) {
+                Some((rig, k)) => {
+                    rig.joint_bind_world(k).map_err(error)?
+                        * tree.world[rig.joints[k]].inverse()
+                        * tree.world[n]
+                }
+                None => tree.world[n],
+            },
+        };
+        if let Some(mesh) = node.mesh() {
+            append_mesh(&mesh, transform, &buffers, &mut raw).map_err(|e| match e {
+                Failure::Message(m) => error(m),
+                Failure::Mesh(e) => e,
+            })?;
+        }
+    }
+
+    if let Some(rig) = rig {
+        let skinned: Vec<usize> = mesh_nodes
+            .iter()
+            .copied()
+            .filter(|&n| nodes[n].skin().map(|s| s.index()) == Some(rig.skin))
+            .collect();
+        let deform = rig
+            .deforming(&document, &skinned, &buffers)
+            .map_err(error)?;
+        raw.skeleton = Some(rig.skeleton(&document, &tree, &deform).map_err(error)?);
+    }
+    Ok(raw)
+}
+
+/// Why reading a primitive failed: a message for [`MeshError::Parse`] or a finished error.
+enum Failure {
+    Message(String),
+    Mesh(MeshError),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Failure::Message(message)
+    }
+}
+
+/// Appends the triangle primitives of `mesh`, transformed by `transform`.
+fn append_mesh(
+    mesh: &gltf::Mesh,
+    transform: DMat4,
+    buffers: &[&[u8]],
+    raw: &mut RawScene,
+) -> Result<(), Failure> {
+    let mirrored = transform.determinant() < 0.0;
+    for primitive in mesh.primitives() {
+        let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
+        let mode = primitive.mode();
+        if !matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
+            raw.skipped_primitives += 1;
+            continue;
+        }
+        let positions_accessor = primitive
+            .get(&Semantic::Positions)
+            .ok_or_else(|| format!("{what} has no POSITION attribute"))?;
+        gltf_accessor::check(
+            &positions_accessor,
+            buffers,
+            &[DataType::F32],
+            Dimensions::Vec3,
+            &format!("POSITION of {what} (quantized positions are not supported)"),
+        )?;
+        let reader = primitive.reader(|b| buffers.get(b.index()).copied());
+        let positions: Vec<DVec3> = reader
+            .read_positions()
+            .ok_or_else(|| format!("POSITION of {what} has no data"))?
+            .map(|p| transform.transform_point3(DVec3::from_array(p.map(f64::from))))
+            .collect();
+        let vertex_count = positions.len();
+        let indices: Vec<u32> = match primitive.indices() {
+            Some(accessor) => {
+                gltf_accessor::check(
+                    &accessor,
+                    buffers,
+                    &[DataType::U8, DataType::U16, DataType::U32],
+                    Dimensions::Scalar,
+                    &format!("indices of {what}"),
+                )?;
+                reader
+                    .read_indices()
+                    .ok_or_else(|| format!("indices of {what} have no data"))?
+                    .into_u32()
+                    .collect()
+            }
+            None => (0..vertex_count as u32).collect(),
+        };
+        let offset = raw.positions.len() as u32;
+        for tri in assemble(mode, &indices) {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= vertex_count) {
+                return Err(Failure::Mesh(MeshError::IndexOutOfRange {
+                    triangle: raw.triangles.len(),
+                    index: index as usize,
+                    vertex_count,
+                }));
+            }
+            let [a, b, c] = tri.map(|i| i + offset);
+            raw.triangles
+                .push(if mirrored { [a, c, b] } else { [a, b, c] });
+        }
+        raw.positions.extend(positions);
+    }
+    Ok(())
+}
+
+/// Triangles of a triangle-list, strip or fan index sequence, wound as the glTF spec defines.
+fn assemble(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
+    let strip_len = indices.len().saturating_sub(2);
+    match mode {
+        Mode::Triangles => indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+        Mode::TriangleStrip => (0..strip_len)
+            .map(|i| {
+                let odd = i % 2;
+                [indices[i], indices[i + 1 + odd], indices[i + 2 - odd]]
+            })
+            .collect(),
+        Mode::TriangleFan => (0..strip_len)
+            .map(|i| [indices[i + 1], indices[i + 2], indices[0]])
+            .collect(),
+        _ => Vec::new(),
+    }
+}

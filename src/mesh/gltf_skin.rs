@@ -1,0 +1,238 @@
+//! The bind pose of a glTF skin and its joints as a [`Skeleton`].
+
+use super::gltf_accessor;
+use super::gltf_nodes::NodeTree;
+use crate::skeleton::{Joint, JointId, Skeleton};
+use glam::{DMat4, DVec3};
+use gltf::accessor::{DataType, Dimensions};
+use gltf::{Document, Semantic, Skin};
+use std::collections::HashMap;
+
+/// A skin placed in its bind pose.
+pub(super) struct SkinBind {
+    /// Index of the skin in the document.
+    pub skin: usize,
+    /// Node index of every joint, in skin order.
+    pub joints: Vec<usize>,
+    /// Inverse bind matrix of every joint (identity when the file gives none).
+    pub inverse_bind: Vec<DMat4>,
+    /// `B = W_root(rest) · IBM_root`: maps bind-space vertices into the world, where `root` is
+    /// the first joint whose parent node is not a joint of the skin.
+    pub bind: DMat4,
+    /// Joint index (into `joints`) of every node that is a joint of this skin.
+    pub joint_of_node: HashMap<usize, usize>,
+}
+
+impl SkinBind {
+    /// Reads the joints and inverse bind matrices of `skin` and computes `B`.
+    pub fn new(skin: &Skin, buffers: &[&[u8]], tree: &NodeTree) -> Result<Self, String> {
+        let joints: Vec<usize> = skin.joints().map(|n| n.index()).collect();
+        if joints.is_empty() {
+            return Err(format!("skin {} has no joints", skin.index()));
+        }
+        let inverse_bind = match skin.inverse_bind_matrices() {
+            None => vec![DMat4::IDENTITY; joints.len()],
+            Some(accessor) => {
+                let what = format!("inverseBindMatrices of skin {}", skin.index());
+                gltf_accessor::check(
+                    &accessor,
+                    buffers,
+                    &[DataType::F32],
+                    Dimensions::Mat4,
+                    &what,
+                )?;
+                let matrices: Vec<DMat4> = skin
+                    .reader(|b| buffers.get(b.index()).copied())
+                    .read_inverse_bind_matrices()
+                    .ok_or_else(|| format!("{what} has no data"))?
+                    .map(|m| DMat4::from_cols_array_2d(&m.map(|c| c.map(f64::from))))
+                    .collect();
+                if matrices.len() < joints.len() {
+                    return Err(format!(
+                        "{what} holds {} matrices for {} joints",
+                        matrices.len(),
+                        joints.len()
+                    ));
+                }
+                matrices
+            }
+        };
+        let joint_of_node: HashMap<usize, usize> = joints
+            .iter()
+            .enumerate()
+            .rev() // the first occurrence wins for a (malformed) repeated joint
+            .map(|(k, &node)| (node, k))
+            .collect();
+        let root = joints
+            .iter()
+            .position(|&node| {
+                tree.parent[node].is_none_or(|parent| !joint_of_node.contains_key(&parent))
+            })
+            .unwrap_or(0);
+        let bind = tree.world[joints[root]] * inverse_bind[root];
+        Ok(Self {
+            skin: skin.index(),
+            joints,
+            inverse_bind,
+            bind,
+            joint_of_node,
+        })
+    }
+
+    /// The bind-pose world transform of joint `k`: `B · inv(IBM_k)`.
+    pub fn joint_bind_world(&self, k: usize) -> Result<DMat4, String> {
+        let ibm = self.inverse_bind[k];
+        let inverse = ibm.inverse();
+        if ibm.determinant() == 0.0 || !inverse.is_finite() {
+            return Err(format!(
+                "the inverse bind matrix of joint {k} (node {}) of skin {} is singular",
+                self.joints[k], self.skin
+            ));
+        }
+        Ok(self.bind * inverse)
+    }
+
+    /// The nearest ancestor of `node` (itself excluded) that is a joint of this skin.
+    pub fn joint_ancestor(&self, node: usize, tree: &NodeTree) -> Option<usize> {
+        let mut current = tree.parent[node];
+        let mut steps = 0;
+        while let Some(n) = current {
+            if let Some(&k) = self.joint_of_node.get(&n) {
+                return Some(k);
+            }
+            steps += 1;
+            if steps > tree.parent.len() {
+                return None;
+            }
+            current = tree.parent[n];
+        }
+        None
+    }
+
+    /// Which joints carry a nonzero weight in any `JOINTS_n`/`WEIGHTS_n` pair of the
+    /// primitives of `mesh_nodes` (nodes using this skin).
+    pub fn deforming(
+        &self,
+        document: &Document,
+        mesh_nodes: &[usize],
+        buffers: &[&[u8]],
+    ) -> Result<Vec<bool>, String> {
+        let mut deform = vec![false; self.joints.len()];
+        let nodes: Vec<_> = document.nodes().collect();
+        for &n in mesh_nodes {
+            let Some(mesh) = nodes[n].mesh() else {
+                continue;
+            };
+            for primitive in mesh.primitives() {
+                let reader = primitive.reader(|b| buffers.get(b.index()).copied());
+                for set in 0.. {
+                    let (Some(joints), Some(weights)) = (
+                        primitive.get(&Semantic::Joints(set)),
+                        primitive.get(&Semantic::Weights(set)),
+                    ) else {
+                        break;
+                    };
+                    let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
+                    gltf_accessor::check(
+                        &joints,
+                        buffers,
+                        &[DataType::U8, DataType::U16],
+                        Dimensions::Vec4,
+                        &format!("JOINTS_{set} of {what}"),
+                    )?;
+                    gltf_accessor::check(
+                        &weights,
+                        buffers,
+                        &[DataType::F32, DataType::U8, DataType::U16],
+                        Dimensions::Vec4,
+                        &format!("WEIGHTS_{set} of {what}"),
+                    )?;
+                    let (Some(joints), Some(weights)) =
+                        (reader.read_joints(set), reader.read_weights(set))
+                    else {
+                        break;
+                    };
+                    for (js, ws) in joints.into_u16().zip(weights.into_f32()) {
+                        for (j, w) in js.into_iter().zip(ws) {
+                            if w > 0.0 {
+                                let slot = deform.get_mut(j as usize).ok_or_else(|| {
+                                    format!(
+                                        "JOINTS_{set} of {what} names joint {j} but skin {} \
+                                         has {} joints",
+                                        self.skin,
+                                        self.joints.len()
+                                    )
+                                })?;
+                                *slot = true;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(deform)
+    }
+
+    /// The skin's joints in the bind pose as a [`Skeleton`], parents before children.
+    pub fn skeleton(
+        &self,
+        document: &Document,
+        tree: &NodeTree,
+        deform: &[bool],
+    ) -> Result<Skeleton, String> {
+        let nodes: Vec<_> = document.nodes().collect();
+        let count = self.joints.len();
+        let mut positions = Vec::with_capacity(count);
+        for k in 0..count {
+            positions.push(self.joint_bind_world(k)?.transform_point3(DVec3::ZERO));
+        }
+        let parents: Vec<Option<usize>> = self
+            .joints
+            .iter()
+            .map(|&node| self.joint_ancestor(node, tree))
+            .collect();
+        // Stable topological order: skin order, each joint after its parent.
+        let mut order = Vec::with_capacity(count);
+        let mut placed = vec![false; count];
+        while order.len() < count {
+            let before = order.len();
+            for k in 0..count {
+                if !placed[k] && parents[k].is_none_or(|p| placed[p] || p == k) {
+                    placed[k] = true;
+                    order.push(k);
+                }
+            }
+            if order.len() == before {
+                return Err(format!("the joints of skin {} form a cycle", self.skin));
+            }
+        }
+        let mut id_of = vec![0; count];
+        for (id, &k) in order.iter().enumerate() {
+            id_of[k] = id;
+        }
+        let mut taken = std::collections::HashSet::new();
+        let joints = order
+            .iter()
+            .map(|&k| {
+                let node = self.joints[k];
+                let base = nodes[node]
+                    .name()
+                    .filter(|n| !n.is_empty())
+                    .map_or_else(|| format!("joint_{node}"), str::to_string);
+                let name = if taken.contains(&base) {
+                    format!("{base}_{node}")
+                } else {
+                    base
+                };
+                taken.insert(name.clone());
+                Joint {
+                    name,
+                    parent: parents[k].filter(|&p| p != k).map(|p| JointId(id_of[p])),
+                    position: positions[k],
+                    deform: deform[k],
+                }
+            })
+            .collect();
+        Ok(Skeleton { joints })
+    }
+}

@@ -1,0 +1,164 @@
+//! Edge and vertex connectivity of a triangle mesh: shared edges, components, degeneracy.
+
+use super::Mesh;
+
+/// A triangle counts as degenerate when its area is at most this fraction of the squared
+/// bounding-box diagonal (or it repeats a vertex index). `1e-14` sits a few orders of magnitude
+/// above f64 rounding of the cross product, so only truly flat (collinear) triangles qualify.
+pub const DEGENERATE_AREA_FRACTION: f64 = 1e-14;
+
+/// One use of an undirected edge by a triangle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(super) struct HalfEdge {
+    /// Lower vertex index of the edge.
+    pub low: u32,
+    /// Higher vertex index of the edge.
+    pub high: u32,
+    /// The triangle using the edge.
+    pub triangle: u32,
+    /// Whether the triangle runs along the edge from `low` to `high`.
+    pub forward: bool,
+}
+
+impl Mesh {
+    /// Every triangle edge (skipping edges between equal indices), sorted so that the uses of
+    /// one undirected edge are adjacent, in triangle order.
+    pub(super) fn half_edges(&self) -> Vec<HalfEdge> {
+        let mut edges = Vec::with_capacity(self.triangles.len() * 3);
+        for (t, tri) in self.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if a != b {
+                    edges.push(HalfEdge {
+                        low: a.min(b),
+                        high: a.max(b),
+                        triangle: t as u32,
+                        forward: a < b,
+                    });
+                }
+            }
+        }
+        edges.sort_unstable();
+        edges
+    }
+
+    /// Groups of [`HalfEdge`]s that share one undirected edge.
+    pub(super) fn edge_groups(edges: &[HalfEdge]) -> impl Iterator<Item = &[HalfEdge]> {
+        edges.chunk_by(|a, b| (a.low, a.high) == (b.low, b.high))
+    }
+
+    /// Per triangle, whether it is degenerate: a repeated index or an area of at most
+    /// [`DEGENERATE_AREA_FRACTION`] × (bounding-box diagonal)².
+    pub fn degenerate_triangles(&self) -> Vec<bool> {
+        let diagonal_sq = self
+            .bounding_box()
+            .map_or(0.0, |(min, max)| (max - min).length_squared());
+        let limit = DEGENERATE_AREA_FRACTION * diagonal_sq;
+        (0..self.triangles.len())
+            .map(|t| {
+                let [a, b, c] = self.triangles[t];
+                if a == b || b == c || a == c {
+                    return true;
+                }
+                let [pa, pb, pc] = self.corners(t);
+                (pb - pa).cross(pc - pa).length() * 0.5 <= limit
+            })
+            .collect()
+    }
+
+    /// The connected component of every triangle (triangles are connected when they share a
+    /// vertex), numbered from 0 in order of first triangle, and the number of components.
+    pub fn triangle_components(&self) -> (Vec<u32>, usize) {
+        let mut sets = DisjointSets::new(self.positions.len());
+        for &[a, b, c] in &self.triangles {
+            sets.union(a, b);
+            sets.union(b, c);
+        }
+        let mut label = vec![u32::MAX; self.positions.len()];
+        let mut count = 0u32;
+        let components = self
+            .triangles
+            .iter()
+            .map(|tri| {
+                let root = sets.find(tri[0]) as usize;
+                if label[root] == u32::MAX {
+                    label[root] = count;
+                    count += 1;
+                }
+                label[root]
+            })
+            .collect();
+        (components, count as usize)
+    }
+}
+
+/// Union-find over `0..n` with path halving and union by lower index (deterministic roots).
+pub(super) struct DisjointSets {
+    parent: Vec<u32>,
+}
+
+impl DisjointSets {
+    /// `n` singleton sets.
+    pub fn new(n: usize) -> Self {
+        Self {
+            parent: (0..n as u32).collect(),
+        }
+    }
+
+    /// The root of `i`'s set.
+    pub fn find(&mut self, mut i: u32) -> u32 {
+        while self.parent[i as usize] != i {
+            let grandparent = self.parent[self.parent[i as usize] as usize];
+            self.parent[i as usize] = grandparent;
+            i = grandparent;
+        }
+        i
+    }
+
+    /// Merges the sets of `a` and `b`.
+    pub fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        let (low, high) = (ra.min(rb), ra.max(rb));
+        self.parent[high as usize] = low;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    #[test]
+    fn cube_edges_are_each_used_twice_in_opposite_directions() {
+        let cube = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        let edges = cube.half_edges();
+        let groups: Vec<_> = Mesh::edge_groups(&edges).collect();
+        assert_eq!(groups.len(), 18);
+        for g in groups {
+            assert_eq!(g.len(), 2);
+            assert_ne!(g[0].forward, g[1].forward);
+        }
+    }
+
+    #[test]
+    fn two_cubes_are_two_components() {
+        let a = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        let mut b = Mesh::cuboid(DVec3::splat(2.0), DVec3::splat(3.0));
+        b.triangles.iter_mut().flatten().for_each(|i| *i += 8);
+        let mesh = Mesh {
+            positions: [a.positions, b.positions].concat(),
+            triangles: [a.triangles, b.triangles].concat(),
+        };
+        let (labels, count) = mesh.triangle_components();
+        assert_eq!(count, 2);
+        assert!(labels[..12].iter().all(|&l| l == 0));
+        assert!(labels[12..].iter().all(|&l| l == 1));
+    }
+
+    #[test]
+    fn collinear_triangle_is_degenerate() {
+        let p = vec![DVec3::ZERO, DVec3::X, DVec3::X * 2.0, DVec3::Y];
+        let mesh = Mesh::new(p, vec![[0, 1, 2], [0, 1, 3], [0, 0, 3]]).unwrap();
+        assert_eq!(mesh.degenerate_triangles(), vec![true, false, true]);
+    }
+}

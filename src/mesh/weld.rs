@@ -1,0 +1,180 @@
+//! Welding: merging coincident vertices.
+
+use super::Mesh;
+use glam::DVec3;
+use std::collections::HashMap;
+
+impl Mesh {
+    /// A copy with coincident vertices merged.
+    ///
+    /// `tolerance` is a fraction of the bounding-box diagonal: two vertices closer than
+    /// `tolerance × diagonal` are merged. `0.0` (what the loaders use) merges only vertices with
+    /// exactly equal coordinates (`-0.0 == 0.0`), which reconnects seams that exporters split
+    /// for UVs or normals without moving anything.
+    ///
+    /// With a positive tolerance the merge is greedy in vertex order: each vertex joins the
+    /// first earlier kept vertex within range (not the transitive closure, so chains of close
+    /// vertices are not collapsed into one) and takes its position.
+    ///
+    /// The output is deterministic: kept vertices stay in their original order, vertices no
+    /// triangle uses are dropped, and triangles that end up with a repeated index are dropped;
+    /// the other triangles keep their order and winding.
+    ///
+    /// # Example
+    /// ```
+    /// use glam::DVec3;
+    /// use skelfit::mesh::Mesh;
+    /// // Two triangles of a square whose shared edge was split (six vertices).
+    /// let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+    /// let mesh = Mesh::new(p.to_vec(), vec![[0, 1, 2], [3, 4, 5]]).unwrap();
+    /// let welded = mesh.welded(0.0);
+    /// assert_eq!(welded.positions.len(), 4);
+    /// assert_eq!(welded.triangles, vec![[0, 1, 2], [1, 3, 2]]);
+    /// ```
+    pub fn welded(&self, tolerance: f64) -> Mesh {
+        let representative = if tolerance > 0.0 {
+            self.merge_within(tolerance)
+        } else {
+            self.merge_exact()
+        };
+        let mut used = vec![false; self.positions.len()];
+        let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(self.triangles.len());
+        for tri in &self.triangles {
+            let [a, b, c] = tri.map(|i| representative[i as usize]);
+            if a != b && b != c && a != c {
+                for i in [a, b, c] {
+                    used[i as usize] = true;
+                }
+                triangles.push([a, b, c]);
+            }
+        }
+        let mut new_index = vec![u32::MAX; self.positions.len()];
+        let mut positions = Vec::new();
+        for (i, &p) in self.positions.iter().enumerate() {
+            if used[i] {
+                new_index[i] = positions.len() as u32;
+                positions.push(p);
+            }
+        }
+        for tri in &mut triangles {
+            *tri = tri.map(|i| new_index[i as usize]);
+        }
+        Mesh {
+            positions,
+            triangles,
+        }
+    }
+
+    /// For every vertex, the lowest-index vertex with exactly the same coordinates.
+    fn merge_exact(&self) -> Vec<u32> {
+        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(self.positions.len());
+        self.positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| *first.entry(exact_key(*p)).or_insert(i as u32))
+            .collect()
+    }
+
+    /// For every vertex, the first earlier kept vertex within `tolerance × diagonal`, or itself.
+    fn merge_within(&self, tolerance: f64) -> Vec<u32> {
+        let diagonal = self
+            .bounding_box()
+            .map_or(0.0, |(min, max)| (max - min).length());
+        let radius = tolerance * diagonal;
+        if !(radius > 0.0 && radius.is_finite()) {
+            return self.merge_exact();
+        }
+        let cell_of = |p: DVec3| (p / radius).floor().as_i64vec3().to_array();
+        let mut cells: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+        let mut representative = Vec::with_capacity(self.positions.len());
+        for (i, &p) in self.positions.iter().enumerate() {
+            let [cx, cy, cz] = cell_of(p);
+            let mut found = None;
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for dz in -1..=1 {
+                        let Some(kept) = cells.get(&[cx + dx, cy + dy, cz + dz]) else {
+                            continue;
+                        };
+                        for &k in kept {
+                            if self.positions[k as usize].distance(p) <= radius
+                                && found.is_none_or(|f: u32| k < f)
+                            {
+                                found = Some(k);
+                            }
+                        }
+                    }
+                }
+            }
+            match found {
+                Some(k) => representative.push(k),
+                None => {
+                    cells.entry([cx, cy, cz]).or_default().push(i as u32);
+                    representative.push(i as u32);
+                }
+            }
+        }
+        representative
+    }
+}
+
+/// Bit pattern of a position with `-0.0` normalised to `0.0`, for exact hashing.
+fn exact_key(p: DVec3) -> [u64; 3] {
+    (p + DVec3::ZERO).to_array().map(f64::to_bits)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_weld_reconnects_a_split_cube() {
+        let cube = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        // Split every corner: one vertex per triangle corner.
+        let positions: Vec<DVec3> = (0..cube.triangles.len())
+            .flat_map(|t| cube.corners(t))
+            .collect();
+        let triangles = (0..cube.triangles.len() as u32)
+            .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+            .collect();
+        let soup = Mesh::new(positions, triangles).unwrap();
+        let welded = soup.welded(0.0);
+        assert_eq!(welded.positions.len(), 8);
+        assert_eq!(welded.triangles.len(), 12);
+        assert!((welded.signed_volume() - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn negative_zero_welds_with_zero() {
+        let p = vec![DVec3::new(-0.0, 0.0, 0.0), DVec3::X, DVec3::Y, DVec3::ZERO];
+        let mesh = Mesh::new(p, vec![[0, 1, 2], [3, 2, 1]]).unwrap();
+        assert_eq!(mesh.welded(0.0).positions.len(), 3);
+    }
+
+    #[test]
+    fn tolerance_weld_merges_near_vertices_and_drops_collapsed_triangles() {
+        let p = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::new(1e-9, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+        ];
+        // Triangle 1 collapses onto vertex 0 (indices 0 and 3 merge).
+        let mesh = Mesh::new(p, vec![[0, 1, 2], [0, 3, 2], [3, 1, 4]]).unwrap();
+        let exact = mesh.welded(0.0);
+        assert_eq!(exact.triangles.len(), 3);
+        let loose = mesh.welded(1e-6);
+        assert_eq!(loose.triangles, vec![[0, 1, 2], [0, 1, 3]]);
+        assert_eq!(loose.positions.len(), 4);
+    }
+
+    #[test]
+    fn unused_vertices_are_dropped_in_order() {
+        let p = vec![DVec3::Z, DVec3::ZERO, DVec3::X, DVec3::Y];
+        let mesh = Mesh::new(p, vec![[1, 2, 3]]).unwrap();
+        let welded = mesh.welded(0.0);
+        assert_eq!(welded.positions, vec![DVec3::ZERO, DVec3::X, DVec3::Y]);
+        assert_eq!(welded.triangles, vec![[0, 1, 2]]);
+    }
+}
