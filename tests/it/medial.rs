@@ -6,7 +6,6 @@ use skelfit::distance::{edt, DistanceMap};
 use skelfit::medial::{dms, DmsKind, MedialError, MedialOptions, MedialSurface};
 use skelfit::mesh::Mesh;
 use skelfit::voxel::{voxelize, Grid, Solid, VoxelOptions, VoxelReport, VoxelSize};
-use std::path::Path;
 
 fn distance_of(mesh: &Mesh, fraction: f64) -> DistanceMap {
     let options = VoxelOptions {
@@ -206,40 +205,13 @@ fn out_of_range_options_and_bad_maps_are_clear_errors() {
     assert!(wrapped.to_string().contains("pad the grid"));
 }
 
-/// Reads a refdata `mesh.obj` (`v` and triangulated `f` lines only, as the refdata README
-/// documents).
-fn read_obj(path: &Path) -> Mesh {
-    let text = std::fs::read_to_string(path).expect("read mesh.obj");
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let v: Vec<f64> = words.take(3).map(|w| w.parse().unwrap()).collect();
-                positions.push(DVec3::new(v[0], v[1], v[2]));
-            }
-            Some("f") => {
-                let f: Vec<u32> = words
-                    .map(|w| w.split('/').next().unwrap().parse::<u32>().unwrap() - 1)
-                    .collect();
-                for k in 1..f.len() - 1 {
-                    triangles.push([f[0], f[k], f[k + 1]]);
-                }
-            }
-            _ => {}
-        }
-    }
-    Mesh::new(positions, triangles).expect("valid mesh")
-}
-
 /// Checks that the DMS of a refdata model at 1/128 of its longest side is 26-connected at the
 /// default threshold and at 1.0 (ch.4.4, ch.5), and that it reaches along the figure.
 fn assert_model_dms_connected(relative: &str) {
     let Some(dir) = crate::common::model(relative) else {
         return;
     };
-    let mesh = read_obj(&dir.join("mesh.obj"));
+    let mesh = skelfit::mesh::load(&dir.join("mesh.obj")).expect("load mesh.obj");
     let distance = distance_of(&mesh, 1.0 / 128.0);
     let figure = extent(
         &distance,
