@@ -1,11 +1,15 @@
 //! Steepest-ascent bridging between DMS voxels of a group (dissertation ch.4.3).
 
-use super::neighbourhood::NEIGHBOUR_COUNT;
+use super::neighbourhood::{LinearNeighbours, NEIGHBOUR_COUNT};
 use super::record::{Label, VoxelRecord};
 use super::union_find::UnionFind;
 
-/// Marks "no voxel" in the `u32` voxel-index arrays of the stage.
+/// Marks "no voxel" in `u32` voxel indices.
 pub(crate) const NO_VOXEL: u32 = u32::MAX;
+
+/// Marks "no neighbour" in neighbour directions (indices into
+/// [`NEIGHBOURS_26`](crate::voxel::NEIGHBOURS_26)).
+pub(crate) const NO_DIRECTION: u8 = u8::MAX;
 
 /// Slope from a voxel of squared distance `from` to a neighbour of squared distance `to` at
 /// centre distance `length`: `(sqrt(d_n) - sqrt(d_i)) / |i - n|` (ch.4.3).
@@ -21,6 +25,8 @@ struct Candidate {
     root: u32,
     /// Voxel index of the neighbour.
     voxel: u32,
+    /// Its direction from the current voxel (index into `NEIGHBOURS_26`).
+    direction: u8,
     /// Its ascent from the current voxel.
     ascent: f64,
     /// Whether it already belongs to the DMS.
@@ -57,6 +63,7 @@ impl AdjacentGroups {
             candidates: [Candidate {
                 root: NO_VOXEL,
                 voxel: NO_VOXEL,
+                direction: NO_DIRECTION,
                 ascent: f64::NEG_INFINITY,
                 medial: false,
             }; NEIGHBOUR_COUNT],
@@ -69,46 +76,52 @@ impl AdjacentGroups {
         self.len
     }
 
-    /// Records the processed neighbour `voxel` of group `root` at the given ascent.
+    /// Records the processed neighbour `voxel`, in `direction`, of group `root` at the given
+    /// ascent.
     #[inline]
-    pub fn offer(&mut self, root: usize, voxel: usize, ascent: f64, medial: bool) {
+    pub fn offer(
+        &mut self,
+        root: usize,
+        voxel: usize,
+        direction: usize,
+        ascent: f64,
+        medial: bool,
+    ) {
         let root = root as u32;
+        let candidate = Candidate {
+            root,
+            voxel: voxel as u32,
+            direction: direction as u8,
+            ascent,
+            medial,
+        };
         let found = self.candidates[..self.len]
             .iter_mut()
             .find(|c| c.root == root);
         match found {
             Some(c) => {
                 if c.beaten_by(ascent, medial) {
-                    *c = Candidate {
-                        root,
-                        voxel: voxel as u32,
-                        ascent,
-                        medial,
-                    };
+                    *c = candidate;
                 }
             }
             None => {
-                self.candidates[self.len] = Candidate {
-                    root,
-                    voxel: voxel as u32,
-                    ascent,
-                    medial,
-                };
+                self.candidates[self.len] = candidate;
                 self.len += 1;
             }
         }
     }
 
-    /// `(group representative, steepest-ascent neighbour in it)` for each adjacent group, in
-    /// order of first contact.
-    pub fn groups(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+    /// `(group representative, steepest-ascent neighbour in it, its direction)` for each
+    /// adjacent group, in order of first contact.
+    pub fn groups(&self) -> impl Iterator<Item = (usize, usize, u8)> + '_ {
         self.candidates[..self.len]
             .iter()
-            .map(|c| (c.root as usize, c.voxel as usize))
+            .map(|c| (c.root as usize, c.voxel as usize, c.direction))
     }
 
-    /// The steepest-ascent neighbour over all adjacent groups, or `None` without any.
-    pub fn steepest(&self) -> Option<usize> {
+    /// The direction of the steepest-ascent neighbour over all adjacent groups, or `None`
+    /// without any.
+    pub fn steepest(&self) -> Option<u8> {
         let (first, rest) = self.candidates[..self.len].split_first()?;
         let mut best = first;
         for c in rest {
@@ -116,7 +129,7 @@ impl AdjacentGroups {
                 best = c;
             }
         }
-        Some(best.voxel as usize)
+        Some(best.direction)
     }
 }
 
@@ -125,7 +138,11 @@ impl AdjacentGroups {
 ///
 /// Pointers always lead to voxels processed earlier in the same group, and every group holds
 /// a DMS voxel (its first voxel is one), so the walk ends at a DMS voxel of `start`'s group.
-pub(crate) fn bridge(start: usize, voxels: &mut UnionFind<VoxelRecord>) -> usize {
+pub(crate) fn bridge(
+    start: usize,
+    voxels: &mut UnionFind<VoxelRecord>,
+    neighbours: &LinearNeighbours,
+) -> usize {
     let mut voxel = start;
     let mut relabelled = 0;
     loop {
@@ -137,13 +154,13 @@ pub(crate) fn bridge(start: usize, voxels: &mut UnionFind<VoxelRecord>) -> usize
         record.label = Label::Bridging;
         relabelled += 1;
         debug_assert_ne!(
-            record.pointer, NO_VOXEL,
+            record.pointer, NO_DIRECTION,
             "non-DMS voxel {voxel} without pointer"
         );
-        if record.pointer == NO_VOXEL {
+        if record.pointer == NO_DIRECTION {
             return relabelled;
         }
-        voxel = record.pointer as usize;
+        voxel = neighbours.at(voxel, record.pointer as usize);
     }
 }
 
@@ -154,38 +171,49 @@ mod tests {
     #[test]
     fn steepest_prefers_ascent_then_medial_then_first() {
         let mut groups = AdjacentGroups::new();
-        groups.offer(7, 100, 0.0, false);
-        groups.offer(7, 101, 0.0, true);
-        groups.offer(9, 200, 0.5, false);
-        groups.offer(9, 201, 0.5, false);
+        groups.offer(7, 100, 0, 0.0, false);
+        groups.offer(7, 101, 1, 0.0, true);
+        groups.offer(9, 200, 2, 0.5, false);
+        groups.offer(9, 201, 3, 0.5, false);
         assert_eq!(groups.len(), 2);
         let found: Vec<_> = groups.groups().collect();
-        assert_eq!(found, vec![(7, 101), (9, 200)]);
-        assert_eq!(groups.steepest(), Some(200));
+        assert_eq!(found, vec![(7, 101, 1), (9, 200, 2)]);
+        assert_eq!(groups.steepest(), Some(2));
         assert_eq!(AdjacentGroups::new().steepest(), None);
     }
 
     #[test]
     fn bridge_relabels_until_a_medial_voxel() {
-        let mut voxels = UnionFind::new((0..4).map(|_| VoxelRecord::new(1)));
-        let labels = [
-            Label::True,
-            Label::NonMedial,
-            Label::NonMedial,
-            Label::Unprocessed,
-        ];
-        for (i, label) in labels.into_iter().enumerate() {
-            voxels.item_mut(i).label = label;
-            voxels.item_mut(i).pointer = if i == 1 || i == 2 {
-                i as u32 - 1
-            } else {
-                NO_VOXEL
-            };
+        use crate::voxel::{Grid, NEIGHBOURS_26};
+        let grid = Grid {
+            dims: [6, 3, 3],
+            origin: glam::DVec3::ZERO,
+            voxel_size: 1.0,
+        };
+        let neighbours = LinearNeighbours::new(&grid);
+        let minus_x = NEIGHBOURS_26
+            .iter()
+            .position(|n| n.offset == [-1, 0, 0])
+            .unwrap() as u8;
+        let at = |x| grid.index([x, 1, 1]);
+        let mut voxels = UnionFind::new((0..grid.len()).map(|_| VoxelRecord::new(1)));
+        voxels.item_mut(at(1)).label = Label::True;
+        for x in [2, 3] {
+            voxels.item_mut(at(x)).label = Label::NonMedial;
+            voxels.item_mut(at(x)).pointer = minus_x;
         }
-        assert_eq!(bridge(2, &mut voxels), 2);
-        let after: Vec<Label> = voxels.items().map(|r| r.label).take(3).collect();
-        assert_eq!(after, [Label::True, Label::Bridging, Label::Bridging]);
-        assert_eq!(bridge(2, &mut voxels), 0);
+        assert_eq!(bridge(at(3), &mut voxels, &neighbours), 2);
+        let after: Vec<Label> = (1..5).map(|x| voxels.item(at(x)).label).collect();
+        assert_eq!(
+            after,
+            [
+                Label::True,
+                Label::Bridging,
+                Label::Bridging,
+                Label::Unprocessed
+            ]
+        );
+        assert_eq!(bridge(at(3), &mut voxels, &neighbours), 0);
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! Extraction of the discrete medial surface from the distance map (dissertation ch.4.3).
 
-use super::bridging::{ascent, bridge, AdjacentGroups, NO_VOXEL};
+use super::bridging::{ascent, bridge, AdjacentGroups, NO_DIRECTION};
 use super::contour::{contour_order, ContourArrays};
 use super::exposure::{exposure_from_largest, voxel_exposure};
 use super::neighbourhood::{
@@ -133,7 +133,7 @@ impl Extraction {
                     label => {
                         let root = self.voxels.find(n);
                         let slope = ascent(squared, record.squared, CLASS_LENGTHS[class]);
-                        adjacent.offer(root, n, slope, label.is_medial());
+                        adjacent.offer(root, n, k, slope, label.is_medial());
                     }
                 }
             }
@@ -153,9 +153,9 @@ impl Extraction {
                 };
             }
             1 => {
-                let (root, step) = adjacent.groups().next().expect("one group");
+                let (root, step, direction) = adjacent.groups().next().expect("one group");
                 let record = self.voxels.item_mut(voxel);
-                record.pointer = step as u32;
+                record.pointer = direction;
                 record.label = if sufficient {
                     Label::True
                 } else {
@@ -163,20 +163,20 @@ impl Extraction {
                 };
                 self.voxels.union(voxel, root);
                 if sufficient {
-                    bridge(step, &mut self.voxels);
+                    bridge(step, &mut self.voxels, &self.neighbours);
                 }
             }
             _ => {
                 let record = self.voxels.item_mut(voxel);
-                record.pointer = adjacent.steepest().map_or(NO_VOXEL, |v| v as u32);
+                record.pointer = adjacent.steepest().unwrap_or(NO_DIRECTION);
                 record.label = if sufficient {
                     Label::True
                 } else {
                     Label::Bridging
                 };
                 self.saddles.push(voxel);
-                for (root, step) in adjacent.groups() {
-                    bridge(step, &mut self.voxels);
+                for (root, step, _) in adjacent.groups() {
+                    bridge(step, &mut self.voxels, &self.neighbours);
                     self.voxels.union(voxel, root);
                 }
             }
@@ -204,20 +204,17 @@ impl Extraction {
             .map(|&i| voxel_exposure(&distance.squared, i, &self.neighbours))
             .collect();
         let squared = voxels.iter().map(|&i| distance.squared[i]).collect();
-        // Components numbered by their smallest voxel; `root_id` is indexed by group root.
-        let mut root_id = vec![NOT_MEDIAL; len];
-        let mut components = 0usize;
+        // Components numbered in order of their smallest voxel (lookups only: deterministic).
+        let mut root_id = std::collections::HashMap::new();
         let component = voxels
             .iter()
             .map(|&i| {
                 let root = self.voxels.find(i);
-                if root_id[root] == NOT_MEDIAL {
-                    root_id[root] = components as u32;
-                    components += 1;
-                }
-                root_id[root]
+                let next = root_id.len() as u32;
+                *root_id.entry(root).or_insert(next)
             })
             .collect();
+        let components = root_id.len();
         self.saddles.sort_unstable();
         let warnings = self.warnings(voxels.len(), components, interior_voxels);
         MedialSurface {

@@ -1,6 +1,6 @@
 //! The per-voxel bookkeeping of the extraction (dissertation ch.4.3).
 
-use super::bridging::NO_VOXEL;
+use super::bridging::NO_DIRECTION;
 
 /// The DMS classification field of ch.4.3: processing state and membership.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,8 +31,10 @@ impl Label {
 pub(crate) struct VoxelRecord {
     /// Squared distance map value, voxel units squared; 0 outside.
     pub squared: u32,
-    /// Steepest-ascent neighbour once processed ([`NO_VOXEL`] for the first voxel of a group).
-    pub pointer: u32,
+    /// Direction of the steepest-ascent neighbour once processed, as an index into
+    /// [`NEIGHBOURS_26`](crate::voxel::NEIGHBOURS_26) ([`NO_DIRECTION`] for the first voxel of
+    /// a group). A direction rather than a voxel index keeps the record at 8 bytes.
+    pub pointer: u8,
     /// DMS classification.
     pub label: Label,
     /// Number of processed 26-neighbours while unprocessed.
@@ -44,9 +46,22 @@ impl VoxelRecord {
     pub fn new(squared: u32) -> Self {
         Self {
             squared,
-            pointer: NO_VOXEL,
+            pointer: NO_DIRECTION,
             label: Label::Unprocessed,
             processed: 0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn record_and_union_find_node_stay_small() {
+        // 8 bytes of record + 4 of parent link + 1 of rank: 16 bytes per grid voxel.
+        assert_eq!(std::mem::size_of::<VoxelRecord>(), 8);
+        let sets = crate::medial::union_find::UnionFind::new(std::iter::once(VoxelRecord::new(1)));
+        assert_eq!(sets.node_size(), 16);
     }
 }

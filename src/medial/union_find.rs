@@ -50,6 +50,12 @@ impl<T: Copy> UnionFind<T> {
         self.nodes.iter().map(|n| &n.item)
     }
 
+    /// Bytes per element (link, rank and record).
+    #[cfg(test)]
+    pub fn node_size(&self) -> usize {
+        std::mem::size_of::<Node<T>>()
+    }
+
     /// The representative of `index`'s set.
     #[inline]
     pub fn find(&mut self, index: usize) -> usize {
