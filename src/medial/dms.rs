@@ -36,8 +36,9 @@ const USEFUL_THRESHOLDS: std::ops::RangeInclusive<f64> = 0.25..=1.0;
 /// 3. the labelled voxels are collected into a [`MedialSurface`].
 ///
 /// Each group's DMS voxels stay 26-connected throughout, so the DMS of a 26-connected figure
-/// is 26-connected. The time is `O(n lg* n)` in the `n` interior voxels (plus a linear scan of
-/// the grid) and the result is the same on any number of threads.
+/// is 26-connected. The time is `O(n lg* n)` in the `n` interior voxels (plus linear scans of
+/// the grid); working memory is about 24 bytes per grid voxel. The computation is sequential,
+/// so the result is the same on any number of threads.
 ///
 /// Interpretation choices where ch.4 leaves room (see also [`MedialOptions`]):
 /// - "1" voxels (ch.4.4) are those with squared distance exactly 1. With
@@ -57,8 +58,9 @@ const USEFUL_THRESHOLDS: std::ops::RangeInclusive<f64> = 0.25..=1.0;
 /// distance map, [`MedialError::SizeMismatch`], [`MedialError::GridTooLarge`],
 /// [`MedialError::EmptyFigure`] or [`MedialError::InteriorOnBorder`].
 ///
-/// A degenerate figure is not an error: a one-voxel-thick figure gives a single-voxel DMS
-/// (its first voxel) and a warning in [`MedialSurface::warnings`].
+/// A degenerate figure is not an error: when every interior voxel is an ignored "1" voxel (a
+/// figure one or two voxels thick, or a single voxel) the DMS is the single voxel that started
+/// the only group, and [`MedialSurface::warnings`] says to use a smaller voxel size.
 pub fn dms(distance: &DistanceMap, options: &MedialOptions) -> Result<MedialSurface, MedialError> {
     options.validate()?;
     let interior = checked_interior_count(distance)?;
