@@ -5,6 +5,7 @@
 
 mod common;
 mod demo;
+mod eval;
 mod info;
 mod voxelize;
 
@@ -25,6 +26,9 @@ enum Command {
     /// Run the main job on the bundled data: statistics, voxelization and distance maps of every
     /// model below data/, results in reports/demo/.
     Demo(demo::DemoArgs),
+    /// Compare a predicted skeleton with a reference rig joint by joint (per-joint error, chamfer
+    /// distances; CSV, JSON and a self-contained HTML report).
+    Eval(eval::EvalArgs),
     /// Print statistics of a mesh: vertices, triangles, components, boundary and non-manifold
     /// edges, bounding box, volume.
     Info(info::InfoArgs),
@@ -37,6 +41,7 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Demo(args) => demo::run(args),
+        Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),
         Command::Voxelize(args) => voxelize::run(args),
     };

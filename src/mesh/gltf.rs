@@ -89,7 +89,10 @@ struct RawScene {
 fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
     let error = |message: String| parse_error(path, FORMAT, message);
     let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice(bytes).map_err(|e| error(e.to_string()))?;
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| error(e.to_string()))?;
+    let json = document.into_json();
+    check_attribute_indices(&json).map_err(error)?;
+    let document = gltf::Document::from_json(json).map_err(|e| error(e.to_string()))?;
     let buffers = gltf::import_buffers(&document, path.parent(), blob).map_err(|e| match e {
         gltf::Error::Io(source) => MeshError::Io {
             path: path.to_path_buf(),
@@ -166,6 +169,26 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         raw.skeleton = Some(rig.skeleton(&document, &tree, &deform).map_err(error)?);
     }
     Ok(raw)
+}
+
+/// Checks that every primitive attribute names an existing accessor, which the `gltf` crate's
+/// own validation assumes (it indexes the accessors of `POSITION` before checking the index).
+fn check_attribute_indices(json: &gltf::json::Root) -> Result<(), String> {
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            for (semantic, index) in &primitive.attributes {
+                if index.value() >= json.accessors.len() {
+                    return Err(format!(
+                        "mesh {m} primitive {p}: attribute {semantic:?} names accessor {} \
+                         but there are {}",
+                        index.value(),
+                        json.accessors.len()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Why reading a primitive failed: a message for [`MeshError::Parse`] or a finished error.
@@ -268,5 +291,26 @@ fn assemble(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
             .map(|i| [indices[i + 1], indices[i + 2], indices[0]])
             .collect(),
         _ => Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_and_fans_keep_a_consistent_winding() {
+        let indices = [0, 1, 2, 3, 4];
+        assert_eq!(
+            assemble(Mode::TriangleStrip, &indices),
+            vec![[0, 1, 2], [1, 3, 2], [2, 3, 4]]
+        );
+        assert_eq!(
+            assemble(Mode::TriangleFan, &indices),
+            vec![[1, 2, 0], [2, 3, 0], [3, 4, 0]]
+        );
+        assert_eq!(assemble(Mode::Triangles, &indices), vec![[0, 1, 2]]);
+        assert!(assemble(Mode::TriangleStrip, &[0, 1]).is_empty());
+        assert!(assemble(Mode::Lines, &indices).is_empty());
     }
 }

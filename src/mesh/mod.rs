@@ -30,7 +30,7 @@ pub use self::gltf::{load_gltf, load_gltf_scene, GltfScene};
 pub use error::MeshError;
 pub use load::load;
 pub use obj::load_obj;
-pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION};
+pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION, FLAT_VOLUME_FRACTION};
 pub use ply::load_ply;
 pub use stats::MeshStats;
 pub use stl::load_stl;

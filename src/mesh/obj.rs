@@ -16,7 +16,8 @@ const FORMAT: &str = "obj";
 /// without faces; [`MeshError::Parse`] for bytes that are not OBJ text;
 /// [`MeshError::IndexOutOfRange`] for a face vertex index that does not exist (the triangle
 /// number counts the triangles the faces before it produce); [`MeshError::NonFinite`] for a
-/// `nan`/`inf` coordinate; [`MeshError::Degenerate`] when every face has zero area.
+/// `nan`/`inf` coordinate of a vertex some face uses (the vertex number counts vertices in
+/// order of first use by a face); [`MeshError::Degenerate`] when every face has zero area.
 pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
     let bytes = read_bytes(path)?;
     let text = std::str::from_utf8(&bytes)

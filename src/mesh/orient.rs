@@ -11,6 +11,11 @@ use std::collections::VecDeque;
 /// a flat sheet does not).
 pub const CLOSED_ISH_BOUNDARY_FRACTION: f64 = 0.05;
 
+/// A closed-ish patch whose |signed volume| is at most this fraction of its bounding-box
+/// diagonal cubed is flat (e.g. two triangles back to back): its volume sign is rounding noise,
+/// so it is oriented like an open patch instead.
+pub const FLAT_VOLUME_FRACTION: f64 = 1e-9;
+
 /// What [`Mesh::oriented_outward`] changed.
 #[derive(Debug, Clone, Default, PartialEq, Eq, Serialize)]
 pub struct OrientReport {
@@ -35,7 +40,8 @@ impl Mesh {
     ///    disagrees across the shared edge.
     /// 2. A closed-ish patch (boundary edges at most [`CLOSED_ISH_BOUNDARY_FRACTION`] of its
     ///    edges) is turned inside out when its signed volume about its centroid is negative;
-    ///    an open patch keeps the winding of the majority of its input triangles.
+    ///    an open or flat (see [`FLAT_VOLUME_FRACTION`]) patch keeps the winding of the
+    ///    majority of its input triangles (ties keep the input).
     ///
     /// Best effort: non-manifold edges (used by three or more triangles) separate patches, so
     /// pieces glued along such edges are oriented independently; a non-orientable patch keeps
@@ -105,8 +111,12 @@ impl Mesh {
             let boundary: usize = members.iter().map(|&t| boundary_uses[t as usize]).sum();
             // Edges ≈ (half edges + boundary edges) / 2.
             let edge_count = (half_edge_count + boundary) as f64 / 2.0;
-            let invert = if boundary as f64 <= CLOSED_ISH_BOUNDARY_FRACTION * edge_count {
-                self.patch_volume(members, &flip) < 0.0
+            let volume = self.patch_volume(members, &flip);
+            let closed_ish = boundary as f64 <= CLOSED_ISH_BOUNDARY_FRACTION * edge_count;
+            let invert = if closed_ish
+                && volume.abs() > FLAT_VOLUME_FRACTION * self.patch_size(members).powi(3)
+            {
+                volume < 0.0
             } else {
                 let flipped = members.iter().filter(|&&t| flip[t as usize]).count();
                 2 * flipped > members.len()
@@ -136,6 +146,16 @@ impl Mesh {
             triangles,
         };
         (mesh, report)
+    }
+
+    /// Bounding-box diagonal of the triangles `members`.
+    fn patch_size(&self, members: &[u32]) -> f64 {
+        let mut corners = members.iter().flat_map(|&t| self.corners(t as usize));
+        let Some(first) = corners.next() else {
+            return 0.0;
+        };
+        let (min, max) = corners.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p)));
+        (max - min).length()
     }
 
     /// Signed volume of the triangles `members` (with `flip` applied) about their centroid.
@@ -180,6 +200,25 @@ mod tests {
         assert_eq!(fixed, sphere);
         assert_eq!(report.flipped_triangles, sphere.triangles.len());
         assert_eq!(report.inverted_patches, 1);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn any_pattern_of_flipped_triangles_is_repaired(
+            flips in proptest::collection::vec(proptest::bool::ANY, 48),
+        ) {
+            let sphere = Mesh::uv_sphere(DVec3::new(0.0, 2.0, -1.0), 1.5, 4, 8);
+            proptest::prop_assert_eq!(sphere.triangles.len(), flips.len());
+            let mut broken = sphere.clone();
+            for (tri, &flip) in broken.triangles.iter_mut().zip(&flips) {
+                if flip {
+                    tri.swap(1, 2);
+                }
+            }
+            let (fixed, report) = broken.oriented_outward();
+            proptest::prop_assert_eq!(&fixed, &sphere);
+            proptest::prop_assert_eq!(report.flipped_triangles, flips.iter().filter(|&&f| f).count());
+        }
     }
 
     #[test]

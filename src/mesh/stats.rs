@@ -13,6 +13,10 @@ pub struct MeshStats {
     pub triangles: usize,
     /// Connected components (triangles are connected when they share a vertex).
     pub components: usize,
+    /// Components when triangles connect only across manifold edges (used by exactly two
+    /// triangles): trimesh's "bodies", what refdata's README calls "parts"; at least
+    /// `components`, more where pieces meet only at non-manifold edges or single vertices.
+    pub manifold_components: usize,
     /// Undirected edges used by exactly one triangle (holes, open seams).
     pub boundary_edges: usize,
     /// Undirected edges used by more than two triangles.
@@ -61,6 +65,7 @@ impl Mesh {
             vertices: self.positions.len(),
             triangles: self.triangles.len(),
             components: self.triangle_components().1,
+            manifold_components: self.manifold_components().1,
             boundary_edges,
             non_manifold_edges,
             closed,

@@ -90,6 +90,33 @@ impl Mesh {
             .collect();
         (components, count as usize)
     }
+
+    /// Like [`Mesh::triangle_components`], but triangles are connected only across manifold
+    /// edges (edges used by exactly two triangles), so pieces that merely touch at a vertex or
+    /// meet at a non-manifold edge count separately. This is trimesh's notion of a body
+    /// (`split`, face adjacency), which refdata's README reports as "parts".
+    pub fn manifold_components(&self) -> (Vec<u32>, usize) {
+        let mut sets = DisjointSets::new(self.triangles.len());
+        let edges = self.half_edges();
+        for group in Mesh::edge_groups(&edges) {
+            if let [a, b] = group {
+                sets.union(a.triangle, b.triangle);
+            }
+        }
+        let mut label = vec![u32::MAX; self.triangles.len()];
+        let mut count = 0u32;
+        let components = (0..self.triangles.len() as u32)
+            .map(|t| {
+                let root = sets.find(t) as usize;
+                if label[root] == u32::MAX {
+                    label[root] = count;
+                    count += 1;
+                }
+                label[root]
+            })
+            .collect();
+        (components, count as usize)
+    }
 }
 
 /// Union-find over `0..n` with path halving and union by lower index (deterministic roots).
@@ -153,6 +180,26 @@ mod tests {
         assert_eq!(count, 2);
         assert!(labels[..12].iter().all(|&l| l == 0));
         assert!(labels[12..].iter().all(|&l| l == 1));
+    }
+
+    #[test]
+    fn cubes_sharing_an_edge_are_one_component_but_two_manifold_components() {
+        let a = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        let b = Mesh::cuboid(DVec3::ONE, DVec3::splat(2.0));
+        // Shift b so that its corner edge (x from 1 to 2) lies on a's edge y = z = 1.
+        let b = b.transformed(|p| p - DVec3::X);
+        let mesh = Mesh {
+            positions: [a.positions, b.positions].concat(),
+            triangles: [
+                a.triangles,
+                b.triangles.iter().map(|t| t.map(|i| i + 8)).collect(),
+            ]
+            .concat(),
+        }
+        .welded(0.0);
+        assert_eq!(mesh.triangle_components().1, 1);
+        assert_eq!(mesh.manifold_components().1, 2);
+        assert_eq!(mesh.stats().non_manifold_edges, 1);
     }
 
     #[test]
