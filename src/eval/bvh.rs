@@ -192,6 +192,7 @@ impl Parser<'_> {
             parent,
             position,
             deform: true,
+            ..Default::default()
         });
         loop {
             let (line, token) = self.take()?;
@@ -223,6 +224,7 @@ impl Parser<'_> {
                         parent: Some(id),
                         position: end,
                         deform: false,
+                        ..Default::default()
                     });
                 }
                 "}" => return Ok(()),

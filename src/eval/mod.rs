@@ -23,6 +23,7 @@
 //!     parent: parent.map(JointId),
 //!     position: DVec3::new(0.0, y, 0.0),
 //!     deform: true,
+//!     ..Default::default()
 //! };
 //! let reference = Skeleton { joints: vec![joint("pelvis", None, 1.0), joint("neck", Some(0), 1.5), joint("head", Some(1), 1.7)] };
 //! let mut predicted = reference.clone();

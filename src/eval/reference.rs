@@ -168,6 +168,7 @@ pub fn parse_json_rig(text: &str, origin: &Path) -> Result<ReferenceRig, EvalErr
             parent,
             position,
             deform: joint.deform,
+            ..Default::default()
         });
     }
     let mut canonical = BTreeMap::new();

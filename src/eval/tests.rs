@@ -11,6 +11,7 @@ fn joint(name: &str, parent: Option<usize>, p: [f64; 3]) -> Joint {
         parent: parent.map(JointId),
         position: DVec3::from_array(p),
         deform: true,
+        ..Default::default()
     }
 }
 

@@ -230,6 +230,7 @@ impl SkinBind {
                     parent: parents[k].filter(|&p| p != k).map(|p| JointId(id_of[p])),
                     position: positions[k],
                     deform: deform[k],
+                    ..Default::default()
                 }
             })
             .collect();

@@ -12,6 +12,7 @@ fn rigs() -> (ReferenceRig, ReferenceRig) {
         parent: parent.map(JointId),
         position: DVec3::from_array(p),
         deform: true,
+        ..Default::default()
     };
     let reference = Skeleton {
         joints: vec![
