@@ -86,9 +86,9 @@ pub(crate) fn keep_largest_component(grid: &Grid, inside: &mut [bool]) -> (usize
         }
     }
     let mut size = vec![0usize; runs.len()];
-    for k in 0..runs.len() {
+    for (k, run) in runs.iter().enumerate() {
         let root = find(&mut parent, k as u32) as usize;
-        size[root] += runs[k].end - runs[k].start;
+        size[root] += run.end - run.start;
     }
     let components = (0..runs.len()).filter(|&k| parent[k] == k as u32).count();
     // Largest size; ties go to the smallest root, whose first run has the lowest voxel index.
