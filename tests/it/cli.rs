@@ -1,0 +1,155 @@
+//! End-to-end tests of the `skelfit` binary: outputs, errors and exit codes.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn skelfit(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_skelfit"))
+        .args(args)
+        .output()
+        .expect("the skelfit binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn bundled_humanoid() -> String {
+    crate::common::data_dir()
+        .join("humanoid/mh_neutral_default/mesh.obj")
+        .display()
+        .to_string()
+}
+
+#[test]
+fn info_prints_json_stats_of_the_bundled_humanoid() {
+    let out = skelfit(&["info", &bundled_humanoid(), "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stats: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(stats["triangles"], 26756);
+    assert_eq!(stats["closed"], true);
+}
+
+#[test]
+fn voxelize_reports_volume_and_writes_slices() {
+    let dir = tempfile::tempdir().unwrap();
+    let slices = dir.path().join("slices");
+    let out = skelfit(&[
+        "voxelize",
+        &bundled_humanoid(),
+        "--resolution",
+        "96",
+        "--json",
+        "--slices",
+        slices.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let interior = summary["interior_volume"].as_f64().unwrap();
+    let mesh = summary["mesh_volume"].as_f64().unwrap();
+    assert!((interior - mesh).abs() / mesh < 0.05);
+    assert!(summary["max_inscribed_radius"].as_f64().unwrap() > 0.05);
+    let pngs = std::fs::read_dir(&slices).unwrap().count();
+    assert_eq!(pngs, 7);
+    for entry in std::fs::read_dir(&slices).unwrap() {
+        let bytes = std::fs::read(entry.unwrap().path()).unwrap();
+        assert_eq!(&bytes[1..4], b"PNG");
+    }
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn bad_inputs_exit_one_with_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: Vec<(String, &str)> = vec![
+        (
+            dir.path().join("missing.obj").display().to_string(),
+            "cannot read",
+        ),
+        (write(dir.path(), "empty.obj", b""), "no triangles"),
+        (
+            write(
+                dir.path(),
+                "garbage.glb",
+                &[0xde, 0xad, 0xbe, 0xef, 7, 7, 7],
+            ),
+            "not a valid",
+        ),
+        (write(dir.path(), "garbage.stl", &[1, 2, 3]), "not a valid"),
+        (
+            write(
+                dir.path(),
+                "nan.obj",
+                b"v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n",
+            ),
+            "non-finite",
+        ),
+        (
+            write(
+                dir.path(),
+                "range.obj",
+                b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+            ),
+            "vertex",
+        ),
+        (
+            write(
+                dir.path(),
+                "flat.obj",
+                b"v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n",
+            ),
+            "zero area",
+        ),
+        (
+            write(dir.path(), "unknown.xyz", b"1 2 3"),
+            "unknown mesh format",
+        ),
+    ];
+    for (path, expected) in cases {
+        let out = skelfit(&["voxelize", &path]);
+        assert_eq!(out.status.code(), Some(1), "{path}: {}", stderr(&out));
+        let err = stderr(&out);
+        assert!(err.starts_with("skelfit: error: "), "{path}: {err}");
+        assert!(
+            err.to_lowercase().contains(expected),
+            "{path}: expected '{expected}' in {err}"
+        );
+        assert!(!err.contains("panicked"), "{path}: {err}");
+    }
+    // A single triangle loads but cannot be voxelized.
+    let single = write(
+        dir.path(),
+        "single.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0.5\nf 1 2 3\n",
+    );
+    let out = skelfit(&["voxelize", &single]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("no voxel lies inside"),
+        "{}",
+        stderr(&out)
+    );
+    // The voxel budget names a size that fits.
+    let out = skelfit(&[
+        "voxelize",
+        &bundled_humanoid(),
+        "--resolution",
+        "2000",
+        "--max-voxels",
+        "1000000",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("exceeds the budget"),
+        "{}",
+        stderr(&out)
+    );
+    // Usage errors exit 2.
+    let out = skelfit(&["voxelize"]);
+    assert_eq!(out.status.code(), Some(2));
+}
