@@ -20,6 +20,7 @@ mod load;
 mod obj;
 mod orient;
 mod ply;
+mod retessellate;
 mod shapes;
 mod stats;
 mod stl;
