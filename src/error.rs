@@ -15,6 +15,9 @@ pub enum Error {
     /// Building the discrete medial surface failed.
     #[error(transparent)]
     Medial(#[from] crate::medial::MedialError),
+    /// Growing the path tree failed.
+    #[error(transparent)]
+    Paths(#[from] crate::paths::PathError),
     /// Loading or comparing skeletons failed.
     #[error(transparent)]
     Eval(#[from] crate::eval::EvalError),
