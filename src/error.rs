@@ -18,6 +18,9 @@ pub enum Error {
     /// Growing the path tree failed.
     #[error(transparent)]
     Paths(#[from] crate::paths::PathError),
+    /// Building the general control skeleton failed.
+    #[error(transparent)]
+    General(#[from] crate::general::GeneralError),
     /// Loading or comparing skeletons failed.
     #[error(transparent)]
     Eval(#[from] crate::eval::EvalError),

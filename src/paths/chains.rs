@@ -62,8 +62,14 @@ pub fn chains(
 }
 
 fn chain(surface: &MedialSurface, positions: &[usize], nodes: Vec<usize>, radius: usize) -> Chain {
-    let voxels: Vec<usize> = nodes.iter().map(|&v| surface.voxels[positions[v]]).collect();
-    let centres: Vec<DVec3> = nodes.iter().map(|&v| surface.centre(positions[v])).collect();
+    let voxels: Vec<usize> = nodes
+        .iter()
+        .map(|&v| surface.voxels[positions[v]])
+        .collect();
+    let centres: Vec<DVec3> = nodes
+        .iter()
+        .map(|&v| surface.centre(positions[v]))
+        .collect();
     let smoothed = smooth(&centres, radius);
     let mut cumulative = Vec::with_capacity(nodes.len());
     let mut total = 0.0;

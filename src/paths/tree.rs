@@ -1,8 +1,8 @@
 //! Growth of the path tree (dissertation ch.5.2.4).
 
 use super::{
-    chains, extreme_points, heart, Chain, Coverage, DmsGraph, ExtremePoint, PathError,
-    PathOptions, Search,
+    chains, extreme_points, heart, Chain, Coverage, DmsGraph, ExtremePoint, PathError, PathOptions,
+    Search,
 };
 use crate::medial::MedialSurface;
 use crate::voxel::Grid;

@@ -3,6 +3,7 @@
 mod common;
 mod distance;
 mod eval;
+mod general;
 mod medial;
 mod mesh;
 mod voxel;
