@@ -60,7 +60,7 @@ impl GeneralOptions {
     /// The [`GeneralError`] variant naming the first offending parameter and its value.
     pub fn validate(&self) -> Result<(), GeneralError> {
         let e = self.approximation_error;
-        if !(e >= 0.0 && !e.is_nan()) {
+        if e.is_nan() || e < 0.0 {
             return Err(GeneralError::InvalidApproximationError { value: e });
         }
         if !(0.0..=1.0).contains(&self.min_fraction) {

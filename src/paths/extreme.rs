@@ -95,13 +95,13 @@ fn group(surface: &MedialSurface, points: &mut [ExtremePoint], radius: f64) {
     }
     let mut number = vec![usize::MAX; points.len()];
     let mut next = 0;
-    for i in 0..points.len() {
+    for (i, point) in points.iter_mut().enumerate() {
         let root = find(&mut label, i);
         if number[root] == usize::MAX {
             number[root] = next;
             next += 1;
         }
-        points[i].group = number[root];
+        point.group = number[root];
     }
 }
 
