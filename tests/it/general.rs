@@ -434,3 +434,35 @@ fn a_segment_limit_caps_the_skeleton() {
         1
     );
 }
+
+/// Prints stage timings on a fine grid (about a million interior voxels). Run with
+/// `cargo test --release -- --ignored --nocapture general::fine_grid_timings`.
+#[test]
+#[ignore]
+fn fine_grid_timings() {
+    let Some(dir) = common::model("humanoid/mh_male_young_average") else {
+        return;
+    };
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    for fraction in [0.01, 0.005, 0.0035, 0.0025] {
+        let options = GeneralSkeletonOptions {
+            voxel: VoxelOptions {
+                size: skelfit::voxel::VoxelSize::Fraction(fraction),
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let start = Instant::now();
+        let general = general_skeleton(&mesh, &options).unwrap();
+        let solid = voxelize(&mesh, &options.voxel).unwrap();
+        println!(
+            "fraction {fraction}: {} interior voxels, {} path-tree voxels, {} segments, {} joints, {:.0} ms total, {:?}",
+            solid.interior_count(),
+            general.path_tree.voxels.len(),
+            general.segments.len(),
+            general.skeleton.len(),
+            start.elapsed().as_secs_f64() * 1e3,
+            general.timings.iter().map(|(n, t)| format!("{n} {t:.0}")).collect::<Vec<_>>()
+        );
+    }
+}
