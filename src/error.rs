@@ -15,6 +15,12 @@ pub enum Error {
     /// Building the discrete medial surface failed.
     #[error(transparent)]
     Medial(#[from] crate::medial::MedialError),
+    /// Growing the path tree failed.
+    #[error(transparent)]
+    Paths(#[from] crate::paths::PathError),
+    /// Building the general control skeleton failed.
+    #[error(transparent)]
+    General(#[from] crate::general::GeneralError),
     /// Loading or comparing skeletons failed.
     #[error(transparent)]
     Eval(#[from] crate::eval::EvalError),

@@ -37,9 +37,12 @@
 pub mod distance;
 pub mod error;
 pub mod eval;
+pub mod general;
 pub mod medial;
 pub mod mesh;
 pub mod output;
+pub mod paths;
+pub mod pipeline;
 pub mod report;
 pub mod skeleton;
 pub mod voxel;

@@ -4,6 +4,7 @@ mod cli;
 mod common;
 mod distance;
 mod eval;
+mod general;
 mod medial;
 mod mesh;
 mod voxel;

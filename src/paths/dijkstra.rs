@@ -1,0 +1,121 @@
+//! Multi-source, incremental Dijkstra searches over the DMS (dissertation ch.5.2.4).
+
+use super::DmsGraph;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// Marks "no parent" in [`Search::parent`].
+const NO_PARENT: u32 = u32::MAX;
+
+/// A shortest-path search over a [`DmsGraph`] from a growing set of zero-cost sources.
+///
+/// Costs only ever decrease as sources are added, so a search is updated in place: adding
+/// sources relaxes outward from them and stops where the old costs are already lower. This is
+/// how the path tree keeps its distance to the covered region and its weighted distance to the
+/// tree current while it grows ("the coverage can simply be updated in the area surrounding the
+/// new extension", ch.5.2.4).
+///
+/// The heap is ordered by `(cost, position)`, and a cost is replaced only by a strictly lower
+/// one, so results are deterministic.
+#[derive(Debug, Clone)]
+pub struct Search {
+    /// Cost per DMS position (`f64::INFINITY` when unreached).
+    pub cost: Vec<f64>,
+    /// Predecessor on a cheapest path to the sources, `u32::MAX` for sources and unreached.
+    parent: Vec<u32>,
+    heap: BinaryHeap<Reverse<(u64, u32)>>,
+}
+
+/// Heap key of a non-negative cost: for non-negative finite floats the IEEE bit patterns sort
+/// like the numbers.
+#[inline]
+fn key(cost: f64) -> u64 {
+    cost.to_bits()
+}
+
+impl Search {
+    /// A search over `n` positions with no sources yet.
+    pub fn new(n: usize) -> Self {
+        Self {
+            cost: vec![f64::INFINITY; n],
+            parent: vec![NO_PARENT; n],
+            heap: BinaryHeap::new(),
+        }
+    }
+
+    /// Adds zero-cost `sources` and relaxes outward. Entering position `q` from `p` over a step
+    /// of length `step` (voxel units) costs `weight(q, step)`, which must be non-negative.
+    pub fn add_sources(
+        &mut self,
+        graph: &DmsGraph,
+        sources: impl IntoIterator<Item = usize>,
+        weight: impl Fn(usize, f64) -> f64,
+    ) {
+        for s in sources {
+            if self.cost[s] > 0.0 {
+                self.cost[s] = 0.0;
+                self.parent[s] = NO_PARENT;
+                self.heap.push(Reverse((key(0.0), s as u32)));
+            }
+        }
+        while let Some(Reverse((k, p))) = self.heap.pop() {
+            let p = p as usize;
+            let cost = self.cost[p];
+            if key(cost) != k {
+                continue;
+            }
+            for (q, step) in graph.neighbours(p) {
+                let candidate = cost + weight(q, step);
+                if candidate < self.cost[q] {
+                    self.cost[q] = candidate;
+                    self.parent[q] = p as u32;
+                    self.heap.push(Reverse((key(candidate), q as u32)));
+                }
+            }
+        }
+    }
+
+    /// The cheapest path from `p` back to a source: `p` first, the source last. Empty when `p`
+    /// is unreached.
+    pub fn path_to_source(&self, p: usize) -> Vec<usize> {
+        if !self.cost[p].is_finite() {
+            return Vec::new();
+        }
+        let mut path = vec![p];
+        let mut at = p;
+        while self.parent[at] != NO_PARENT {
+            at = self.parent[at] as usize;
+            path.push(at);
+        }
+        path
+    }
+}
+
+/// Path lengths (voxel units: steps of 1, sqrt 2, sqrt 3) over the DMS from the nearest of
+/// `sources`; `f64::INFINITY` where unreachable. The "depth labelling" of ch.5.2.4.
+pub fn path_lengths(graph: &DmsGraph, sources: &[usize]) -> Vec<f64> {
+    let mut search = Search::new(graph.len());
+    search.add_sources(graph, sources.iter().copied(), |_, step| step);
+    search.cost
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::testing::surface;
+    use super::*;
+
+    #[test]
+    fn path_lengths_along_a_diagonal_line_use_step_lengths() {
+        let coords: Vec<[usize; 3]> = (1..6).map(|i| [i, i, 1]).collect();
+        let s = surface([8, 8, 3], &coords, 4);
+        let graph = DmsGraph::new(&s);
+        let d = path_lengths(&graph, &[0]);
+        assert!((d[4] - 4.0 * std::f64::consts::SQRT_2).abs() < 1e-12);
+        let mut search = Search::new(graph.len());
+        search.add_sources(&graph, [4], |_, step| step);
+        assert_eq!(search.path_to_source(0), vec![0, 1, 2, 3, 4]);
+        // Adding a closer source lowers costs in place.
+        search.add_sources(&graph, [0], |_, step| step);
+        assert_eq!(search.cost[1], std::f64::consts::SQRT_2);
+    }
+}

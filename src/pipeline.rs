@@ -1,0 +1,65 @@
+//! Drivers that run the pipeline stages in order.
+
+use crate::distance::edt;
+use crate::general::{control_skeleton, GeneralOptions, GeneralSkeleton};
+use crate::medial::{dms, MedialOptions};
+use crate::mesh::Mesh;
+use crate::paths::{path_tree, PathOptions};
+use crate::voxel::{voxelize, VoxelOptions};
+use serde::Serialize;
+use std::time::Instant;
+
+/// All parameters of [`general_skeleton`], one options struct per stage. Table 5.2 of the
+/// dissertation maps onto them as: voxel-size → `voxel.size`, exposure threshold →
+/// `medial.exposure_threshold`, closeness-of-fit → `paths.closeness`, approximation-error,
+/// min-fraction, max-fraction, number-of-segments → `general`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct GeneralSkeletonOptions {
+    /// Voxelization (default voxel size 0.01 of the longest bounding-box side).
+    pub voxel: VoxelOptions,
+    /// Discrete medial surface (default exposure threshold 0.5).
+    pub medial: MedialOptions,
+    /// Path tree (default closeness of fit 0.1).
+    pub paths: PathOptions,
+    /// Skeletal graph, joints and frames.
+    pub general: GeneralOptions,
+}
+
+/// Fits a general control skeleton into `mesh` (dissertation ch.5): voxelize, exact distance
+/// map, discrete medial surface, path tree, skeletal graph and joints. Stage timings are
+/// recorded in [`GeneralSkeleton::timings`]; warnings of every stage are collected in
+/// [`GeneralSkeleton::warnings`].
+///
+/// # Errors
+/// The first failing stage's error: invalid options of any stage (checked before any work),
+/// a mesh that does not voxelize, an empty medial surface.
+pub fn general_skeleton(
+    mesh: &Mesh,
+    options: &GeneralSkeletonOptions,
+) -> crate::Result<GeneralSkeleton> {
+    options.medial.validate()?;
+    options.paths.validate()?;
+    options.general.validate()?;
+    let mut timings = Vec::new();
+    let mut clock = Instant::now();
+    let mut lap = |name: &str, timings: &mut Vec<(String, f64)>| {
+        let now = Instant::now();
+        timings.push((name.to_string(), (now - clock).as_secs_f64() * 1e3));
+        clock = now;
+    };
+    let solid = voxelize(mesh, &options.voxel)?;
+    lap("voxelize", &mut timings);
+    let distance = edt(&solid);
+    lap("distance", &mut timings);
+    let surface = dms(&distance, &options.medial)?;
+    lap("medial", &mut timings);
+    let tree = path_tree(&surface, &options.paths)?;
+    lap("paths", &mut timings);
+    let mut general = control_skeleton(tree, &options.general)?;
+    lap("general", &mut timings);
+    let mut warnings = surface.warnings;
+    warnings.append(&mut general.warnings);
+    general.warnings = warnings;
+    general.timings = timings;
+    Ok(general)
+}
