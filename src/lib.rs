@@ -37,11 +37,13 @@
 pub mod distance;
 pub mod error;
 pub mod eval;
+pub mod export;
 pub mod medial;
 pub mod mesh;
 pub mod output;
 pub mod report;
 pub mod skeleton;
+pub mod skin;
 pub mod voxel;
 
 pub use error::{Error, Result};

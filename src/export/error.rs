@@ -1,0 +1,56 @@
+//! Errors of the exporters.
+
+use std::path::PathBuf;
+
+/// Why a rig could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// Writing the file failed.
+    #[error("cannot write {path}: {cause}; check the folder exists and is writable")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        #[source]
+        cause: std::io::Error,
+    },
+    /// The skeleton has no joints.
+    #[error("the skeleton has no joints: nothing to export")]
+    EmptySkeleton,
+    /// The skeleton breaks its invariants.
+    #[error("the skeleton is invalid: {message}")]
+    InvalidSkeleton {
+        /// The problems found, joined.
+        message: String,
+    },
+    /// A joint name cannot be written in this format.
+    #[error("joint name {name:?} cannot be written as {format}: {reason}; rename the joint")]
+    InvalidName {
+        /// The name.
+        name: String,
+        /// The format.
+        format: &'static str,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// The skin, mesh and skeleton do not belong together.
+    #[error("{what} has {found} entries but {expected} are needed: export the skin with the mesh and skeleton it was made for")]
+    SizeMismatch {
+        /// Which input.
+        what: &'static str,
+        /// Entries needed.
+        expected: usize,
+        /// Entries given.
+        found: usize,
+    },
+    /// The data does not fit the format's limits.
+    #[error("{what} is too large for {format}: {detail}")]
+    TooLarge {
+        /// What overflowed.
+        what: &'static str,
+        /// The format.
+        format: &'static str,
+        /// Details.
+        detail: String,
+    },
+}

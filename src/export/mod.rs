@@ -1,0 +1,3 @@
+//! Export (in progress).
+mod error;
+pub use error::ExportError;
