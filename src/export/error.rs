@@ -43,6 +43,17 @@ pub enum ExportError {
         /// Entries given.
         found: usize,
     },
+    /// The mesh has no triangles.
+    #[error("the mesh has no triangles: export a mesh with at least one triangle")]
+    EmptyMesh,
+    /// A canonical key names a joint the skeleton does not have.
+    #[error("canonical key {key:?} names joint {joint:?}, which the skeleton does not have: pass names of existing joints")]
+    UnknownCanonicalJoint {
+        /// The canonical key.
+        key: String,
+        /// The joint name given.
+        joint: String,
+    },
     /// The data does not fit the format's limits.
     #[error("{what} is too large for {format}: {detail}")]
     TooLarge {
@@ -53,4 +64,28 @@ pub enum ExportError {
         /// Details.
         detail: String,
     },
+}
+
+/// Rejects empty or invalid skeletons.
+pub(super) fn check_skeleton(skeleton: &crate::skeleton::Skeleton) -> Result<(), ExportError> {
+    if skeleton.is_empty() {
+        return Err(ExportError::EmptySkeleton);
+    }
+    skeleton
+        .validate()
+        .map_err(|problems| ExportError::InvalidSkeleton {
+            message: problems
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("; "),
+        })
+}
+
+/// Wraps an I/O error with the path written.
+pub(super) fn io_error(path: &std::path::Path, cause: std::io::Error) -> ExportError {
+    ExportError::Io {
+        path: path.to_owned(),
+        cause,
+    }
 }
