@@ -3,6 +3,8 @@
 mod common;
 mod distance;
 mod eval;
+mod export;
 mod medial;
 mod mesh;
+mod skin;
 mod voxel;
