@@ -153,6 +153,12 @@ fn glb_files_pass_the_khronos_validator() {
     let (bytes, ..) = humanoid_glb(2);
     let human = dir.path().join("humanoid.glb");
     std::fs::write(&human, bytes).unwrap();
+    // Keep the files for inspection (e.g. a Blender import) when asked to.
+    if let Some(keep) = std::env::var_os("SKELFIT_KEEP_EXPORTS") {
+        for file in [&capsule, &human] {
+            std::fs::copy(file, Path::new(&keep).join(file.file_name().unwrap())).unwrap();
+        }
+    }
     if let Some(report) = validate(&[capsule, human]) {
         eprintln!("{report}");
         assert_eq!(report.matches("numErrors=0 ").count(), 2, "{report}");
