@@ -43,6 +43,14 @@ pub enum ExportError {
         /// Entries given.
         found: usize,
     },
+    /// A mesh vertex or weight is not finite.
+    #[error("{what} {index} is not finite: export meshes and skins built by skelfit, which keep every value finite")]
+    NonFinite {
+        /// What is not finite (`"vertex"`, `"weight of vertex"`).
+        what: &'static str,
+        /// Its index.
+        index: usize,
+    },
     /// The mesh has no triangles.
     #[error("the mesh has no triangles: export a mesh with at least one triangle")]
     EmptyMesh,

@@ -61,7 +61,8 @@ impl Default for GltfOptions {
 /// # Errors
 /// [`ExportError::EmptySkeleton`], [`ExportError::InvalidSkeleton`],
 /// [`ExportError::SizeMismatch`] when `skin` was made for another mesh,
-/// [`ExportError::EmptyMesh`] without triangles, [`ExportError::TooLarge`] beyond 4 GiB or
+/// [`ExportError::EmptyMesh`] without triangles, [`ExportError::NonFinite`] for a NaN or
+/// infinite position or weight (or a negative weight), [`ExportError::TooLarge`] beyond 4 GiB or
 /// 65535 joints.
 pub fn glb_bytes(
     mesh: &Mesh,
@@ -93,6 +94,23 @@ pub fn glb_bytes(
     }
     if mesh.triangles.is_empty() || vertices == 0 {
         return Err(ExportError::EmptyMesh);
+    }
+    if let Some(index) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        return Err(ExportError::NonFinite {
+            what: "vertex",
+            index,
+        });
+    }
+    if let Some(index) = skin
+        .engine
+        .weights
+        .iter()
+        .position(|w| w.iter().any(|x| !x.is_finite() || *x < 0.0))
+    {
+        return Err(ExportError::NonFinite {
+            what: "weight of vertex",
+            index,
+        });
     }
     if let Some(&bad) = skin
         .engine

@@ -36,6 +36,7 @@ pub struct Skin {
 ///
 /// # Errors
 /// [`SkinError::EmptySkeleton`], [`SkinError::InvalidSkeleton`], [`SkinError::TooManyJoints`],
+/// [`SkinError::InvalidOption`], [`SkinError::NonFiniteVertex`],
 /// [`SkinError::UnknownJoint`] for a segment naming a missing joint, and the errors of
 /// [`influence`].
 pub fn skin(
@@ -47,6 +48,10 @@ pub fn skin(
     options: &SkinOptions,
 ) -> Result<Skin, SkinError> {
     check_skeleton(skeleton)?;
+    options.validate()?;
+    if let Some(vertex) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        return Err(SkinError::NonFiniteVertex { vertex });
+    }
     for (segment, s) in segments.iter().enumerate() {
         for joint in std::iter::once(s.joint).chain(s.child) {
             if joint.0 >= skeleton.len() {
@@ -152,6 +157,7 @@ pub fn skin_from_bones(
     options: &SkinOptions,
 ) -> Result<Skin, SkinError> {
     check_skeleton(skeleton)?;
+    options.validate()?;
     if distance.grid != solid.grid {
         return Err(SkinError::GridMismatch);
     }

@@ -56,6 +56,22 @@ pub enum SkinError {
         /// Entries given.
         found: usize,
     },
+    /// An option is out of its valid range.
+    #[error("skin option {name} is {value}; {expected}")]
+    InvalidOption {
+        /// The field of [`SkinOptions`](super::SkinOptions).
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What is allowed.
+        expected: &'static str,
+    },
+    /// A mesh vertex is not finite.
+    #[error("mesh vertex {vertex} is not finite: load meshes through skelfit::mesh, which rejects NaN and infinite coordinates")]
+    NonFiniteVertex {
+        /// Index of the vertex.
+        vertex: usize,
+    },
     /// A pose rotation is not finite.
     #[error("the pose rotation of joint {joint} is not finite: give finite unit quaternions")]
     NonFinitePose {

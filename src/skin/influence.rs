@@ -51,7 +51,7 @@ impl Influence {
 /// of threads.
 ///
 /// # Errors
-/// [`SkinError::GridMismatch`] when `distance` belongs to another grid,
+/// [`SkinError::InvalidOption`] for options out of range, [`SkinError::GridMismatch`] when `distance` belongs to another grid,
 /// [`SkinError::VoxelOutOfRange`] for a chain voxel outside the grid,
 /// [`SkinError::NoInfluence`] when no segment covers any interior voxel.
 pub fn influence(
@@ -61,6 +61,7 @@ pub fn influence(
     segments: &[SegmentVoxels],
     options: &SkinOptions,
 ) -> Result<Influence, SkinError> {
+    options.validate()?;
     let grid = solid.grid;
     if distance.grid != grid
         || distance.squared.len() != grid.len()
@@ -155,11 +156,7 @@ fn coverage(
     sphere_scale: f64,
 ) -> Vec<(u32, u32)> {
     let grid = solid.grid;
-    let scale = if sphere_scale.is_finite() && sphere_scale > 0.0 {
-        sphere_scale
-    } else {
-        1.0
-    };
+    let scale = sphere_scale;
     segments
         .par_iter()
         .enumerate()
@@ -212,5 +209,108 @@ impl Interner {
         self.sets.push(set.clone());
         self.ids.insert(set, id);
         id
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::distance::edt;
+    use crate::skeleton::JointId;
+    use crate::voxel::{voxelize, VoxelOptions, VoxelSize};
+    use glam::DVec3;
+
+    fn cube() -> (Mesh, Solid, DistanceMap) {
+        let mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        let options = VoxelOptions {
+            size: VoxelSize::Fraction(1.0 / 20.0),
+            ..Default::default()
+        };
+        let solid = voxelize(&mesh, &options).unwrap();
+        let distance = edt(&solid);
+        (mesh, solid, distance)
+    }
+
+    fn segment(solid: &Solid, at: DVec3, joint: usize) -> SegmentVoxels {
+        let c = solid.grid.voxel_at(at).unwrap();
+        SegmentVoxels {
+            joint: JointId(joint),
+            child: None,
+            tip: None,
+            voxels: vec![solid.grid.index(c)],
+        }
+    }
+
+    #[test]
+    fn one_central_sphere_influences_the_whole_cube_and_its_vertices() {
+        let (mesh, solid, distance) = cube();
+        let centre = segment(&solid, DVec3::splat(0.5), 0);
+        let influence =
+            influence(&solid, &distance, &mesh, &[centre], &SkinOptions::default()).unwrap();
+        // The ball of radius ~10 voxels covers about half the cube; propagation does the rest.
+        assert!(influence.covered > 1000 && influence.covered < solid.interior_count());
+        for i in solid.interior_indices() {
+            assert_eq!(influence.at(i), &[0]);
+        }
+        for &p in &mesh.positions {
+            let c = solid.grid.voxel_at(p).unwrap();
+            assert_eq!(influence.at(solid.grid.index(c)), &[0], "vertex at {p}");
+        }
+    }
+
+    #[test]
+    fn two_spheres_split_the_cube_and_meet_in_the_middle() {
+        let (mesh, solid, distance) = cube();
+        let segments = [
+            segment(&solid, DVec3::new(0.275, 0.525, 0.525), 0),
+            segment(&solid, DVec3::new(0.725, 0.525, 0.525), 1),
+        ];
+        let run = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| {
+                    influence(&solid, &distance, &mesh, &segments, &SkinOptions::default()).unwrap()
+                })
+        };
+        let influence = run(1);
+        assert_eq!(influence, run(3), "same result on any number of threads");
+        let at = |p: DVec3| influence.at(solid.grid.index(solid.grid.voxel_at(p).unwrap()));
+        assert_eq!(at(DVec3::new(0.125, 0.525, 0.525)), &[0]);
+        assert_eq!(at(DVec3::new(0.875, 0.525, 0.525)), &[1]);
+        assert_eq!(at(DVec3::new(0.525, 0.975, 0.525)), &[0, 1]);
+        assert!(influence
+            .sets
+            .iter()
+            .all(|s| [&[0][..], &[1], &[0, 1]].contains(&s.as_slice())));
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        let (mesh, solid, distance) = cube();
+        let mut far = segment(&solid, DVec3::splat(0.5), 0);
+        far.voxels = vec![solid.grid.len()];
+        let options = SkinOptions::default();
+        assert!(matches!(
+            influence(&solid, &distance, &mesh, &[far], &options),
+            Err(SkinError::VoxelOutOfRange { .. })
+        ));
+        assert_eq!(
+            influence(&solid, &distance, &mesh, &[], &options),
+            Err(SkinError::NoInfluence)
+        );
+        let bad = SkinOptions {
+            sphere_scale: f64::NAN,
+            ..options
+        };
+        let centre = segment(&solid, DVec3::splat(0.5), 0);
+        assert!(matches!(
+            influence(&solid, &distance, &mesh, &[centre], &bad),
+            Err(SkinError::InvalidOption {
+                name: "sphere_scale",
+                ..
+            })
+        ));
     }
 }

@@ -1,5 +1,6 @@
 //! Parameters of the skinning stage.
 
+use super::SkinError;
 use crate::voxel::Connectivity;
 
 /// Options of [`skin`](super::skin) and [`skin_from_bones`](super::skin_from_bones).
@@ -40,5 +41,52 @@ impl Default for SkinOptions {
             bone_search_radius: 3,
             leaf_extension: 1.0,
         }
+    }
+}
+
+impl SkinOptions {
+    /// Checks every field is in range.
+    ///
+    /// # Errors
+    /// [`SkinError::InvalidOption`] naming the first field out of range.
+    pub fn validate(&self) -> Result<(), SkinError> {
+        let positive = "give a finite number above zero";
+        let non_negative = "give a finite number of zero or more";
+        for (name, value, ok, expected) in [
+            (
+                "sphere_scale",
+                self.sphere_scale,
+                self.sphere_scale > 0.0,
+                positive,
+            ),
+            (
+                "bone_sample_spacing",
+                self.bone_sample_spacing,
+                self.bone_sample_spacing > 0.0,
+                positive,
+            ),
+            (
+                "leaf_extension",
+                self.leaf_extension,
+                self.leaf_extension >= 0.0,
+                non_negative,
+            ),
+        ] {
+            if !(ok && value.is_finite()) {
+                return Err(SkinError::InvalidOption {
+                    name,
+                    value,
+                    expected,
+                });
+            }
+        }
+        if self.bone_search_radius > 64 {
+            return Err(SkinError::InvalidOption {
+                name: "bone_search_radius",
+                value: self.bone_search_radius as f64,
+                expected: "give at most 64 voxels",
+            });
+        }
+        Ok(())
     }
 }

@@ -121,7 +121,7 @@ fn samples(a: DVec3, b: DVec3, voxel_size: f64, spacing: f64) -> usize {
     let spacing = if spacing.is_finite() && spacing > 0.0 {
         spacing
     } else {
-        0.5
+        SkinOptions::default().bone_sample_spacing
     };
     ((length / spacing).ceil() as usize).clamp(1, 1 << 20)
 }

@@ -140,6 +140,24 @@ mod tests {
         assert!((dropped[0] - 0.1).abs() < 1e-12);
     }
 
+    proptest::proptest! {
+        #[test]
+        fn anchor_weights_are_a_partition_of_one(distances in proptest::collection::vec(0.0f64..10.0, 1..12)) {
+            let w = anchor_weights(&distances);
+            proptest::prop_assert_eq!(w.len(), distances.len());
+            proptest::prop_assert!(w.iter().all(|&x| x >= 0.0));
+            proptest::prop_assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+            // Closer segments never weigh less.
+            for i in 0..w.len() {
+                for j in 0..w.len() {
+                    if distances[i] < distances[j] {
+                        proptest::prop_assert!(w[i] >= w[j]);
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn segment_distance_handles_points_and_ends() {
         let a = DVec3::ZERO;
