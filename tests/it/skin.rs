@@ -208,3 +208,39 @@ fn humanoid_weights_are_non_negative_and_sum_to_one() {
     let rest = deform(&mesh, &skeleton, &skin, &skeleton.rest_pose()).unwrap();
     assert_eq!(rest, mesh);
 }
+
+#[test]
+fn bending_a_humanoid_joint_moves_only_its_own_limb() {
+    let (mesh, skeleton) = humanoid();
+    let solid = voxelize(&mesh, &VoxelOptions::default()).unwrap();
+    let distance = edt(&solid);
+    let skin =
+        skin_from_bones(&mesh, &skeleton, &solid, &distance, &SkinOptions::default()).unwrap();
+    // (joint, region the moved vertices must lie in: +X is the figure's left, +Y up).
+    let cases: [(&str, fn(DVec3) -> bool); 3] = [
+        ("lowerarm_l", |p| p.x > 0.2 && p.y > 0.8),
+        ("calf_r", |p| p.x < -0.05 && p.y < 0.6),
+        ("head", |p| p.y > 1.4 && p.x.abs() < 0.1),
+    ];
+    for (name, region) in cases {
+        let id = skeleton.find(name).unwrap();
+        let mut pose = skeleton.rest_pose();
+        pose[id.0] = DQuat::from_rotation_x(1.0);
+        let bent = deform(&mesh, &skeleton, &skin, &pose).unwrap();
+        let moved: Vec<usize> = (0..mesh.positions.len())
+            .filter(|&v| bent.positions[v] != mesh.positions[v])
+            .collect();
+        assert!(
+            moved.len() > 500,
+            "{name} moved only {} vertices",
+            moved.len()
+        );
+        for v in moved {
+            assert!(
+                region(mesh.positions[v]),
+                "{name} moved vertex {v} at {}",
+                mesh.positions[v]
+            );
+        }
+    }
+}
