@@ -217,7 +217,8 @@ fn bending_a_humanoid_joint_moves_only_its_own_limb() {
     let skin =
         skin_from_bones(&mesh, &skeleton, &solid, &distance, &SkinOptions::default()).unwrap();
     // (joint, region the moved vertices must lie in: +X is the figure's left, +Y up).
-    let cases: [(&str, fn(DVec3) -> bool); 3] = [
+    type Region = fn(DVec3) -> bool;
+    let cases: [(&str, Region); 3] = [
         ("lowerarm_l", |p| p.x > 0.2 && p.y > 0.8),
         ("calf_r", |p| p.x < -0.05 && p.y < 0.6),
         ("head", |p| p.y > 1.4 && p.x.abs() < 0.1),
