@@ -8,6 +8,8 @@ use glam::{DAffine3, DMat4, DQuat, DVec3};
 use serde_json::{json, Value};
 use std::path::Path;
 
+/// Name of the node that holds the root joints of a skeleton with several roots.
+pub const FOREST_ROOT_NAME: &str = "skeleton_root";
 /// glTF component type: unsigned short.
 const UNSIGNED_SHORT: u32 = 5123;
 /// glTF component type: unsigned int.
@@ -55,7 +57,9 @@ impl Default for GltfOptions {
 /// `f32`); one mesh with `POSITION` (`f32`, with `min`/`max`), `NORMAL` (area-weighted vertex
 /// normals, `+Y` for isolated vertices), `JOINTS_0` (`u16`) and `WEIGHTS_0` (`f32`,
 /// [`Skin::engine`]) and `u32` indices; the skinned mesh node sits at the scene root beside the
-/// root joint(s). Positions are in the mesh's units and frame. The same input gives the same
+/// root joint. A skeleton with several root joints gets one extra plain node,
+/// [`FOREST_ROOT_NAME`], holding them (glTF wants the joints of a skin under a common root);
+/// it comes after the mesh node and is not a joint. Positions are in the mesh's units and frame. The same input gives the same
 /// bytes.
 ///
 /// # Errors
@@ -221,16 +225,22 @@ pub fn glb_bytes(
     let roots: Vec<usize> = (0..joint_count)
         .filter(|&k| skeleton.joints[k].parent.is_none())
         .collect();
-    let mut scene_nodes = roots.clone();
-    scene_nodes.push(mesh_node);
-    let mut skin_json = json!({
+    // glTF requires the joints of a skin to share a root node: a skeleton with several root
+    // joints hangs them under one plain (identity) node that is not a joint.
+    let skeleton_root = match roots[..] {
+        [root] => root,
+        _ => {
+            nodes.push(json!({"name": FOREST_ROOT_NAME, "children": roots}));
+            nodes.len() - 1
+        }
+    };
+    let scene_nodes = vec![skeleton_root, mesh_node];
+    let skin_json = json!({
         "joints": (0..joint_count).collect::<Vec<_>>(),
         "inverseBindMatrices": 5,
         "name": "armature",
+        "skeleton": skeleton_root,
     });
-    if let [root] = roots[..] {
-        skin_json["skeleton"] = json!(root);
-    }
 
     let bin_len = bin.bytes.len();
     if u32::try_from(bin_len).is_err() {

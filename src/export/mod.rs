@@ -21,6 +21,6 @@ mod obj;
 pub use bvh::{bvh_text, write_bvh, BvhOptions};
 pub use error::ExportError;
 use error::{check_skeleton, io_error};
-pub use gltf::{glb_bytes, write_glb, GltfOptions};
+pub use gltf::{glb_bytes, write_glb, GltfOptions, FOREST_ROOT_NAME};
 pub use json::{skeleton_json, write_skeleton_json, JsonOptions, SKELETON_FORMAT};
 pub use obj::{obj_text, write_obj};

@@ -6,7 +6,7 @@ use skelfit::distance::edt;
 use skelfit::eval::load_skeleton;
 use skelfit::export::{
     bvh_text, glb_bytes, obj_text, skeleton_json, write_bvh, write_glb, write_obj,
-    write_skeleton_json, BvhOptions, GltfOptions, JsonOptions,
+    write_skeleton_json, BvhOptions, ExportError, GltfOptions, JsonOptions,
 };
 use skelfit::mesh::{load, Mesh};
 use skelfit::skeleton::Skeleton;
@@ -153,15 +153,30 @@ fn glb_files_pass_the_khronos_validator() {
     let (bytes, ..) = humanoid_glb(2);
     let human = dir.path().join("humanoid.glb");
     std::fs::write(&human, bytes).unwrap();
+    // Two roots: the capsule chain plus a free-standing control joint that deforms nothing.
+    let mut forest = rig.skeleton.clone();
+    forest.joints.push(skelfit::skeleton::Joint {
+        deform: false,
+        ..skelfit::skeleton::Joint::new("ik_target", None, glam::DVec3::new(1.0, 0.0, 0.0))
+    });
+    let two_roots = dir.path().join("two_roots.glb");
+    write_glb(
+        &two_roots,
+        &rig.mesh,
+        &forest,
+        &skin,
+        &GltfOptions::default(),
+    )
+    .unwrap();
     // Keep the files for inspection (e.g. a Blender import) when asked to.
     if let Some(keep) = std::env::var_os("SKELFIT_KEEP_EXPORTS") {
-        for file in [&capsule, &human] {
+        for file in [&capsule, &human, &two_roots] {
             std::fs::copy(file, Path::new(&keep).join(file.file_name().unwrap())).unwrap();
         }
     }
-    if let Some(report) = validate(&[capsule, human]) {
+    if let Some(report) = validate(&[capsule, human, two_roots]) {
         eprintln!("{report}");
-        assert_eq!(report.matches("numErrors=0 ").count(), 2, "{report}");
+        assert_eq!(report.matches("numErrors=0 ").count(), 3, "{report}");
     }
 }
 
@@ -273,4 +288,34 @@ fn obj_round_trips_through_the_mesh_loader() {
     assert_eq!(std::fs::read_to_string(&path).unwrap(), obj_text(&rig.mesh));
     let back = load(&path).unwrap();
     assert_eq!(back.triangles.len(), rig.mesh.triangles.len());
+}
+
+#[test]
+fn exporters_report_bad_input_and_leave_no_file() {
+    let rig = capsule_rig();
+    let skin = capsule_skin(&rig);
+    let options = GltfOptions::default();
+    let mut fewer = rig.mesh.clone();
+    fewer.positions.pop();
+    assert!(matches!(
+        glb_bytes(&fewer, &rig.skeleton, &skin, &options),
+        Err(ExportError::SizeMismatch { .. })
+    ));
+    let empty = Skeleton::default();
+    assert!(matches!(
+        glb_bytes(&rig.mesh, &empty, &skin, &options),
+        Err(ExportError::EmptySkeleton)
+    ));
+    let mut renamed = rig.skeleton.clone();
+    renamed.joints[1].name = "bad\nname".into();
+    assert!(matches!(
+        bvh_text(&renamed, &BvhOptions::default()),
+        Err(ExportError::InvalidName { .. })
+    ));
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("no/such/folder/out.glb");
+    let err = write_glb(&missing, &rig.mesh, &rig.skeleton, &skin, &options).unwrap_err();
+    assert!(matches!(err, ExportError::Io { .. }), "{err}");
+    assert!(err.to_string().starts_with("cannot write"));
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
