@@ -24,6 +24,12 @@ pub enum Error {
     /// Loading or comparing skeletons failed.
     #[error(transparent)]
     Eval(#[from] crate::eval::EvalError),
+    /// Skinning a mesh to a skeleton failed.
+    #[error(transparent)]
+    Skin(#[from] crate::skin::SkinError),
+    /// Writing a rig (glTF, BVH, JSON, OBJ) failed.
+    #[error(transparent)]
+    Export(#[from] crate::export::ExportError),
     /// Writing a report or picture failed.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),

@@ -37,6 +37,7 @@
 pub mod distance;
 pub mod error;
 pub mod eval;
+pub mod export;
 pub mod general;
 pub mod medial;
 pub mod mesh;
@@ -45,6 +46,7 @@ pub mod paths;
 pub mod pipeline;
 pub mod report;
 pub mod skeleton;
+pub mod skin;
 pub mod voxel;
 
 pub use error::{Error, Result};

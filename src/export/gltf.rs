@@ -1,0 +1,426 @@
+//! Skinned binary glTF (`.glb`): the mesh, its engine weights and the armature in one file.
+
+use super::{check_skeleton, io_error, ExportError};
+use crate::mesh::Mesh;
+use crate::skeleton::Skeleton;
+use crate::skin::{Skin, MAX_ENGINE_INFLUENCES};
+use glam::{DAffine3, DMat4, DQuat, DVec3};
+use serde_json::{json, Value};
+use std::path::Path;
+
+/// Name of the node that holds the root joints of a skeleton with several roots.
+pub const FOREST_ROOT_NAME: &str = "skeleton_root";
+/// glTF component type: unsigned short.
+const UNSIGNED_SHORT: u32 = 5123;
+/// glTF component type: unsigned int.
+const UNSIGNED_INT: u32 = 5125;
+/// glTF component type: float.
+const FLOAT: u32 = 5126;
+/// Buffer view target of vertex attributes.
+const ARRAY_BUFFER: u32 = 34962;
+/// Buffer view target of indices.
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+/// GLB header magic `glTF`.
+const GLB_MAGIC: u32 = 0x4654_6C67;
+/// GLB chunk type of the JSON chunk.
+const CHUNK_JSON: u32 = 0x4E4F_534A;
+/// GLB chunk type of the binary chunk.
+const CHUNK_BIN: u32 = 0x004E_4942;
+
+// The engine weights hold exactly this many influences per vertex (one JOINTS_0/WEIGHTS_0 set).
+const _: () = assert!(MAX_ENGINE_INFLUENCES == 4);
+
+/// Options of [`glb_bytes`] and [`write_glb`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct GltfOptions {
+    /// Name of the mesh and of its node. Default `"skin"`.
+    pub mesh_name: String,
+    /// Value of `asset.generator`. Default `"skelfit <version>"`.
+    pub generator: String,
+}
+
+impl Default for GltfOptions {
+    fn default() -> Self {
+        Self {
+            mesh_name: "skin".into(),
+            generator: format!("skelfit {}", env!("CARGO_PKG_VERSION")),
+        }
+    }
+}
+
+/// The bytes of a skinned binary glTF 2.0 file of `mesh` bound to `skeleton` by `skin`.
+///
+/// Layout: one node per joint (node index = joint index, named after the joint), with its
+/// rest transform relative to its parent as translation + rotation (rotation from
+/// [`Joint::frame`](crate::skeleton::Joint::frame)); one skin listing every joint in joint order
+/// with inverse bind matrices (the inverse of each joint's world rest transform, column-major
+/// `f32`); one mesh with `POSITION` (`f32`, with `min`/`max`), `NORMAL` (area-weighted vertex
+/// normals, `+Y` for isolated vertices), `JOINTS_0` (`u16`) and `WEIGHTS_0` (`f32`,
+/// [`Skin::engine`]) and `u32` indices; the skinned mesh node sits at the scene root beside the
+/// root joint. A skeleton with several root joints gets one extra plain node,
+/// [`FOREST_ROOT_NAME`], holding them (glTF wants the joints of a skin under a common root);
+/// it comes after the mesh node and is not a joint. Positions are in the mesh's units and frame. The same input gives the same
+/// bytes.
+///
+/// # Errors
+/// [`ExportError::EmptySkeleton`], [`ExportError::InvalidSkeleton`],
+/// [`ExportError::SizeMismatch`] when `skin` was made for another mesh,
+/// [`ExportError::EmptyMesh`] without triangles, [`ExportError::NonFinite`] for a NaN or
+/// infinite position or weight (or a negative weight), [`ExportError::TooLarge`] beyond 4 GiB or
+/// 65535 joints.
+pub fn glb_bytes(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    skin: &Skin,
+    options: &GltfOptions,
+) -> Result<Vec<u8>, ExportError> {
+    check_skeleton(skeleton)?;
+    let joint_count = skeleton.len();
+    if joint_count > usize::from(u16::MAX) {
+        return Err(ExportError::TooLarge {
+            what: "the skeleton",
+            format: "glTF",
+            detail: format!("{joint_count} joints, JOINTS_0 holds at most 65535"),
+        });
+    }
+    let vertices = mesh.positions.len();
+    for (what, found) in [
+        ("the skin's engine joints", skin.engine.joints.len()),
+        ("the skin's engine weights", skin.engine.weights.len()),
+    ] {
+        if found != vertices {
+            return Err(ExportError::SizeMismatch {
+                what,
+                expected: vertices,
+                found,
+            });
+        }
+    }
+    if mesh.triangles.is_empty() || vertices == 0 {
+        return Err(ExportError::EmptyMesh);
+    }
+    if let Some(index) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        return Err(ExportError::NonFinite {
+            what: "vertex",
+            index,
+        });
+    }
+    if let Some(index) = skin
+        .engine
+        .weights
+        .iter()
+        .position(|w| w.iter().any(|x| !x.is_finite() || *x < 0.0))
+    {
+        return Err(ExportError::NonFinite {
+            what: "weight of vertex",
+            index,
+        });
+    }
+    if let Some(&bad) = skin
+        .engine
+        .joints
+        .iter()
+        .flatten()
+        .find(|&&j| usize::from(j) >= joint_count)
+    {
+        return Err(ExportError::SizeMismatch {
+            what: "a skin joint index",
+            expected: joint_count,
+            found: usize::from(bad) + 1,
+        });
+    }
+
+    let mut bin = Binary::default();
+    let indices = bin.push(
+        mesh.triangles
+            .iter()
+            .flatten()
+            .flat_map(|i| i.to_le_bytes()),
+        Some(ELEMENT_ARRAY_BUFFER),
+    );
+    let positions: Vec<[f32; 3]> = mesh
+        .positions
+        .iter()
+        .map(|p| p.as_vec3().to_array())
+        .collect();
+    let (min, max) = bounds(&positions);
+    let position_view = bin.push(
+        positions.iter().flatten().flat_map(|x| x.to_le_bytes()),
+        Some(ARRAY_BUFFER),
+    );
+    let normals = vertex_normals(mesh);
+    let normal_view = bin.push(
+        normals.iter().flatten().flat_map(|x| x.to_le_bytes()),
+        Some(ARRAY_BUFFER),
+    );
+    let joints_view = bin.push(
+        skin.engine
+            .joints
+            .iter()
+            .flatten()
+            .flat_map(|j| j.to_le_bytes()),
+        Some(ARRAY_BUFFER),
+    );
+    let weights_view = bin.push(
+        skin.engine
+            .weights
+            .iter()
+            .flatten()
+            .flat_map(|w| w.to_le_bytes()),
+        Some(ARRAY_BUFFER),
+    );
+    let ibm_view = bin.push(
+        skeleton.joints.iter().flat_map(|j| {
+            let m = DMat4::from(j.rest_transform().inverse());
+            m.as_mat4()
+                .to_cols_array()
+                .into_iter()
+                .flat_map(f32::to_le_bytes)
+        }),
+        None,
+    );
+
+    let accessor = |view: usize, component: u32, count: usize, kind: &str| json!({"bufferView": view, "componentType": component, "count": count, "type": kind});
+    let mut position_accessor = accessor(position_view, FLOAT, vertices, "VEC3");
+    position_accessor["min"] = json!(min.map(f64::from));
+    position_accessor["max"] = json!(max.map(f64::from));
+    let accessors = vec![
+        accessor(indices, UNSIGNED_INT, mesh.triangles.len() * 3, "SCALAR"),
+        position_accessor,
+        accessor(normal_view, FLOAT, vertices, "VEC3"),
+        accessor(joints_view, UNSIGNED_SHORT, vertices, "VEC4"),
+        accessor(weights_view, FLOAT, vertices, "VEC4"),
+        accessor(ibm_view, FLOAT, joint_count, "MAT4"),
+    ];
+
+    let mut nodes: Vec<Value> = skeleton
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(k, joint)| {
+            let local = match joint.parent {
+                Some(p) => skeleton.joint(p).rest_transform().inverse() * joint.rest_transform(),
+                None => joint.rest_transform(),
+            };
+            let (translation, rotation) = trs(
+                &local,
+                joint.frame,
+                joint.parent.map(|p| skeleton.joint(p).frame),
+            );
+            let mut node =
+                json!({"name": joint.name, "translation": translation, "rotation": rotation});
+            let children: Vec<usize> = skeleton
+                .children(crate::skeleton::JointId(k))
+                .iter()
+                .map(|c| c.0)
+                .collect();
+            if !children.is_empty() {
+                node["children"] = json!(children);
+            }
+            node
+        })
+        .collect();
+    let mesh_node = nodes.len();
+    nodes.push(json!({"name": options.mesh_name, "mesh": 0, "skin": 0}));
+    let roots: Vec<usize> = (0..joint_count)
+        .filter(|&k| skeleton.joints[k].parent.is_none())
+        .collect();
+    // glTF requires the joints of a skin to share a root node: a skeleton with several root
+    // joints hangs them under one plain (identity) node that is not a joint.
+    let skeleton_root = match roots[..] {
+        [root] => root,
+        _ => {
+            nodes.push(json!({"name": FOREST_ROOT_NAME, "children": roots}));
+            nodes.len() - 1
+        }
+    };
+    let scene_nodes = vec![skeleton_root, mesh_node];
+    let skin_json = json!({
+        "joints": (0..joint_count).collect::<Vec<_>>(),
+        "inverseBindMatrices": 5,
+        "name": "armature",
+        "skeleton": skeleton_root,
+    });
+
+    let bin_len = bin.bytes.len();
+    if u32::try_from(bin_len).is_err() {
+        return Err(ExportError::TooLarge {
+            what: "the mesh",
+            format: "GLB",
+            detail: format!("{bin_len} bytes of binary data, a GLB holds under 4 GiB"),
+        });
+    }
+    let document = json!({
+        "asset": {"version": "2.0", "generator": options.generator},
+        "scene": 0,
+        "scenes": [{"name": "scene", "nodes": scene_nodes}],
+        "nodes": nodes,
+        "meshes": [{
+            "name": options.mesh_name,
+            "primitives": [{
+                "attributes": {"POSITION": 1, "NORMAL": 2, "JOINTS_0": 3, "WEIGHTS_0": 4},
+                "indices": 0,
+                "mode": 4,
+            }],
+        }],
+        "skins": [skin_json],
+        "accessors": accessors,
+        "bufferViews": bin.views,
+        "buffers": [{"byteLength": bin_len}],
+    });
+    let json_bytes = serde_json::to_vec(&document).map_err(|e| ExportError::TooLarge {
+        what: "the glTF document",
+        format: "JSON",
+        detail: e.to_string(),
+    })?;
+    pack_glb(json_bytes, bin.bytes)
+}
+
+/// Writes [`glb_bytes`] to `path` atomically ([`crate::output::write_atomic`]).
+///
+/// # Errors
+/// As [`glb_bytes`], and [`ExportError::Io`] when the file cannot be written.
+pub fn write_glb(
+    path: &Path,
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    skin: &Skin,
+    options: &GltfOptions,
+) -> Result<(), ExportError> {
+    let bytes = glb_bytes(mesh, skeleton, skin, options)?;
+    crate::output::write_atomic(path, &bytes).map_err(|cause| io_error(path, cause))
+}
+
+/// Translation and unit rotation of a local rest transform. The rotation is computed from the
+/// frames directly (`parent⁻¹ · frame`) and normalised, so it is unit length in `f32`.
+fn trs(local: &DAffine3, frame: DQuat, parent: Option<DQuat>) -> ([f64; 3], [f64; 4]) {
+    let rotation = match parent {
+        Some(p) => p.inverse() * frame,
+        None => frame,
+    }
+    .normalize();
+    let rotation = if rotation.is_finite() {
+        rotation
+    } else {
+        DQuat::IDENTITY
+    };
+    let t: DVec3 = local.translation;
+    (clean(t.to_array()), clean(rotation.to_array()))
+}
+
+/// Replaces negative zeros by zeros so that equal transforms print equally.
+fn clean<const N: usize>(values: [f64; N]) -> [f64; N] {
+    values.map(|v| if v == 0.0 { 0.0 } else { v })
+}
+
+/// Component-wise bounds of `f32` points.
+fn bounds(points: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+    let mut min = [f32::INFINITY; 3];
+    let mut max = [f32::NEG_INFINITY; 3];
+    for p in points {
+        for a in 0..3 {
+            min[a] = min[a].min(p[a]);
+            max[a] = max[a].max(p[a]);
+        }
+    }
+    (min, max)
+}
+
+/// Unit vertex normals: the sum of the (area-weighted) normals of the triangles around each
+/// vertex, normalised; `+Y` where that sum vanishes (isolated vertices, degenerate fans).
+fn vertex_normals(mesh: &Mesh) -> Vec<[f32; 3]> {
+    let mut sums = vec![DVec3::ZERO; mesh.positions.len()];
+    for t in 0..mesh.triangles.len() {
+        let [a, b, c] = mesh.corners(t);
+        let n = (b - a).cross(c - a);
+        for &i in &mesh.triangles[t] {
+            sums[i as usize] += n;
+        }
+    }
+    sums.iter()
+        .map(|n| n.try_normalize().unwrap_or(DVec3::Y).as_vec3().to_array())
+        .collect()
+}
+
+/// The binary chunk under construction and its buffer views.
+#[derive(Default)]
+struct Binary {
+    bytes: Vec<u8>,
+    views: Vec<Value>,
+}
+
+impl Binary {
+    /// Appends one buffer view (4-byte aligned) and returns its index.
+    fn push(&mut self, data: impl Iterator<Item = u8>, target: Option<u32>) -> usize {
+        while self.bytes.len() % 4 != 0 {
+            self.bytes.push(0);
+        }
+        let offset = self.bytes.len();
+        self.bytes.extend(data);
+        let mut view =
+            json!({"buffer": 0, "byteOffset": offset, "byteLength": self.bytes.len() - offset});
+        if let Some(target) = target {
+            view["target"] = json!(target);
+        }
+        self.views.push(view);
+        self.views.len() - 1
+    }
+}
+
+/// Packs a JSON document and binary data into a GLB container (glTF 2.0 §4.4): a 12-byte
+/// header, the JSON chunk padded with spaces and the BIN chunk padded with zeros to 4 bytes.
+fn pack_glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, ExportError> {
+    while json.len() % 4 != 0 {
+        json.push(b' ');
+    }
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let too_large = || ExportError::TooLarge {
+        what: "the file",
+        format: "GLB",
+        detail: format!("{total} bytes, a GLB holds under 4 GiB"),
+    };
+    let total32 = u32::try_from(total).map_err(|_| too_large())?;
+    let mut out = Vec::with_capacity(total);
+    out.extend(GLB_MAGIC.to_le_bytes());
+    out.extend(2u32.to_le_bytes());
+    out.extend(total32.to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend(CHUNK_JSON.to_le_bytes());
+    out.extend(json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(CHUNK_BIN.to_le_bytes());
+    out.extend(bin);
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn glb_container_is_aligned_and_sized() {
+        let bytes = pack_glb(b"{}".to_vec(), vec![1, 2, 3]).unwrap();
+        assert_eq!(bytes.len() % 4, 0);
+        assert_eq!(
+            u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize,
+            bytes.len()
+        );
+        assert_eq!(&bytes[0..4], b"glTF");
+        assert_eq!(u32::from_le_bytes(bytes[12..16].try_into().unwrap()), 4);
+    }
+
+    #[test]
+    fn normals_are_unit_with_a_fallback() {
+        let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        mesh.positions.push(DVec3::splat(5.0));
+        let normals = vertex_normals(&mesh);
+        for n in &normals {
+            let len = glam::Vec3::from_array(*n).length();
+            assert!((len - 1.0).abs() < 1e-6);
+        }
+        assert_eq!(*normals.last().unwrap(), [0.0, 1.0, 0.0]);
+    }
+}

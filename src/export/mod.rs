@@ -1,0 +1,26 @@
+//! Export: files a person can open in Blender or a game engine.
+//!
+//! - [`glb_bytes`] / [`write_glb`]: a skinned binary glTF 2.0 file (mesh, engine weights,
+//!   armature with rest frames, inverse bind matrices) that the Khronos validator accepts.
+//! - [`skeleton_json`] / [`write_skeleton_json`]: skelfit's own `skelfit-skeleton-v1` JSON,
+//!   read back by [`crate::eval::load_skeleton`].
+//! - [`bvh_text`] / [`write_bvh`]: a BVH hierarchy with one rest frame.
+//! - [`obj_text`] / [`write_obj`]: a (posed) mesh as OBJ.
+//!
+//! Every writer produces the same bytes for the same input (fixed float formatting, no
+//! timestamps, no hash-map order) and writes through [`crate::output::write_atomic`], so a
+//! failed export never leaves a half-written file. Outputs are in the input mesh's units and
+//! frame.
+
+mod bvh;
+mod error;
+mod gltf;
+mod json;
+mod obj;
+
+pub use bvh::{bvh_text, write_bvh, BvhOptions};
+pub use error::ExportError;
+use error::{check_skeleton, io_error};
+pub use gltf::{glb_bytes, write_glb, GltfOptions, FOREST_ROOT_NAME};
+pub use json::{skeleton_json, write_skeleton_json, JsonOptions, SKELETON_FORMAT};
+pub use obj::{obj_text, write_obj};
