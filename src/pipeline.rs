@@ -1,11 +1,12 @@
 //! Drivers that run the pipeline stages in order.
 
-use crate::distance::edt;
+use crate::distance::{edt, DistanceMap};
 use crate::general::{control_skeleton, GeneralOptions, GeneralSkeleton};
 use crate::medial::{dms, MedialOptions};
 use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
-use crate::voxel::{voxelize, VoxelOptions};
+use crate::skin::{skin, SegmentVoxels, Skin, SkinOptions};
+use crate::voxel::{voxelize, Grid, Solid, VoxelOptions, VoxelReport};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -37,6 +38,17 @@ pub fn general_skeleton(
     mesh: &Mesh,
     options: &GeneralSkeletonOptions,
 ) -> crate::Result<GeneralSkeleton> {
+    general_stages(mesh, options).map(|stages| stages.general)
+}
+
+/// What the general stages produce, with the voxel data later stages (skinning) reuse.
+struct GeneralStages {
+    general: GeneralSkeleton,
+    solid: Solid,
+    distance: DistanceMap,
+}
+
+fn general_stages(mesh: &Mesh, options: &GeneralSkeletonOptions) -> crate::Result<GeneralStages> {
     options.medial.validate()?;
     options.paths.validate()?;
     options.general.validate()?;
@@ -61,5 +73,84 @@ pub fn general_skeleton(
     warnings.append(&mut general.warnings);
     general.warnings = warnings;
     general.timings = timings;
-    Ok(general)
+    Ok(GeneralStages {
+        general,
+        solid,
+        distance,
+    })
+}
+
+/// Options of [`general_rig`]: the skeleton's and the skin's.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GeneralRigOptions {
+    /// Voxelization, medial surface, path tree and skeletal graph.
+    pub skeleton: GeneralSkeletonOptions,
+    /// Regions of influence and weights.
+    pub skin: SkinOptions,
+}
+
+/// A general control skeleton with the mesh anchored to it (dissertation ch.5 end to end).
+#[derive(Debug, Clone)]
+pub struct GeneralRig {
+    /// The skeleton, its segments and path tree; `timings` also holds the `skin` stage.
+    pub general: GeneralSkeleton,
+    /// Per-vertex weights (anchor weights and engine weights).
+    pub skin: Skin,
+    /// The voxel grid used.
+    pub grid: Grid,
+    /// What voxelization found (interior voxels, dropped parts).
+    pub voxels: VoxelReport,
+    /// Warnings of every stage, skinning included, as sentences.
+    pub warnings: Vec<String>,
+}
+
+/// Fits a general control skeleton into `mesh` and anchors the mesh to it: the stages of
+/// [`general_skeleton`], then regions of influence from each segment's chain voxels and the
+/// per-vertex weights of ch.5.2.5 ([`crate::skin::skin`]).
+///
+/// # Errors
+/// As [`general_skeleton`], plus [`crate::skin::SkinError`] for invalid skin options.
+pub fn general_rig(mesh: &Mesh, options: &GeneralRigOptions) -> crate::Result<GeneralRig> {
+    options.skin.validate()?;
+    let GeneralStages {
+        mut general,
+        solid,
+        distance,
+    } = general_stages(mesh, &options.skeleton)?;
+    let clock = Instant::now();
+    let segments: Vec<SegmentVoxels> = general
+        .segments
+        .iter()
+        .map(|s| SegmentVoxels {
+            joint: s.joint,
+            child: Some(s.child),
+            tip: None,
+            voxels: {
+                let mut v = s.voxels.clone();
+                v.sort_unstable();
+                v.dedup();
+                v
+            },
+        })
+        .collect();
+    let skin = skin(
+        mesh,
+        &general.skeleton,
+        &solid,
+        &distance,
+        &segments,
+        &options.skin,
+    )?;
+    general
+        .timings
+        .push(("skin".to_string(), clock.elapsed().as_secs_f64() * 1e3));
+    let mut warnings = general.warnings.clone();
+    warnings.extend(skin.warnings.iter().map(ToString::to_string));
+    Ok(GeneralRig {
+        grid: solid.grid,
+        voxels: solid.report.clone(),
+        general,
+        skin,
+        warnings,
+    })
 }

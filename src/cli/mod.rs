@@ -7,6 +7,7 @@ mod common;
 mod demo;
 mod eval;
 mod info;
+mod skeleton;
 mod voxelize;
 
 use clap::{Parser, Subcommand};
@@ -32,6 +33,9 @@ enum Command {
     /// Print statistics of a mesh: vertices, triangles, components, boundary and non-manifold
     /// edges, bounding box, volume.
     Info(info::InfoArgs),
+    /// Fit the general control skeleton of any figure (dissertation ch.5), skin the mesh to it
+    /// and write a skinned .glb (plus JSON/BVH on request).
+    Skeleton(skeleton::SkeletonArgs),
     /// Voxelize a mesh and compute its exact distance map; print grid, interior and timings.
     Voxelize(voxelize::VoxelizeArgs),
 }
@@ -43,6 +47,7 @@ pub fn main() -> ExitCode {
         Command::Demo(args) => demo::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),
+        Command::Skeleton(args) => skeleton::run(args),
         Command::Voxelize(args) => voxelize::run(args),
     };
     match result {

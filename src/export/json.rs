@@ -19,6 +19,10 @@ pub struct JsonOptions {
     /// Canonical anatomical key (`pelvis`, `elbow_L`, ...) → joint name, written as
     /// `canonical`. Default empty (omitted).
     pub canonical: BTreeMap<String, String>,
+    /// Run information written as `run` after the joints (e.g. stage timings, voxel counts,
+    /// warnings). Default `None` (omitted). Timings differ between runs: leave this out where
+    /// byte-identical files are wanted.
+    pub run: Option<serde_json::Value>,
 }
 
 #[derive(Serialize)]
@@ -31,6 +35,8 @@ struct Document<'a> {
     #[serde(skip_serializing_if = "BTreeMap::is_empty")]
     canonical: &'a BTreeMap<String, String>,
     joints: Vec<JointRecord<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    run: Option<&'a serde_json::Value>,
 }
 
 #[derive(Serialize)]
@@ -88,6 +94,7 @@ pub fn skeleton_json(skeleton: &Skeleton, options: &JsonOptions) -> Result<Strin
         units: options.units.as_deref(),
         canonical: &options.canonical,
         joints,
+        run: options.run.as_ref(),
     };
     let mut text = serde_json::to_string_pretty(&document).map_err(|e| ExportError::TooLarge {
         what: "the skeleton",

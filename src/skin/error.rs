@@ -109,3 +109,23 @@ pub enum SkinWarning {
         max_dropped: f64,
     },
 }
+
+impl std::fmt::Display for SkinWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SkinWarning::SegmentOutside { segment, joint } => write!(
+                f,
+                "segment {segment} (moved by {joint}) lies outside the figure and influences no vertex directly"
+            ),
+            SkinWarning::UnreachedVertices { count, first } => write!(
+                f,
+                "{count} vertices (first: {first}) are not connected to the interior; each was bound to its nearest segment"
+            ),
+            SkinWarning::TruncatedInfluences { count, max_dropped } => write!(
+                f,
+                "{count} vertices have more than four influences; engine weights keep the four largest (at most {:.1} % of a vertex's weight dropped)",
+                100.0 * max_dropped
+            ),
+        }
+    }
+}

@@ -1,0 +1,198 @@
+//! `skelfit skeleton MESH -o OUT.glb [--json OUT.json] [--bvh OUT.bvh] [parameters]`: the
+//! general control skeleton of any figure (dissertation ch.5), skinned and exported.
+
+use super::common::{load_mesh, VoxelArgs};
+use anyhow::Context;
+use clap::Args;
+use serde_json::json;
+use skelfit::export::{
+    write_bvh, write_glb, write_skeleton_json, BvhOptions, GltfOptions, JsonOptions,
+};
+use skelfit::pipeline::{general_rig, GeneralRig, GeneralRigOptions};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// Arguments of `skelfit skeleton`.
+#[derive(Debug, Args)]
+pub struct SkeletonArgs {
+    /// Mesh file (.obj, .gltf, .glb, .stl, .ply).
+    pub mesh: PathBuf,
+    /// Skinned binary glTF to write (mesh, armature, weights).
+    #[arg(short, long, value_name = "OUT.glb")]
+    pub output: PathBuf,
+    /// Also write the skeleton as skelfit JSON (with stage timings under "run").
+    #[arg(long, value_name = "OUT.json")]
+    pub json: Option<PathBuf>,
+    /// Also write the skeleton as BVH.
+    #[arg(long, value_name = "OUT.bvh")]
+    pub bvh: Option<PathBuf>,
+    #[command(flatten)]
+    pub voxel: VoxelArgs,
+    /// Exposure threshold of the medial surface, [0, 2] (Table 5.2: default 0.5).
+    #[arg(long, value_name = "F")]
+    pub exposure: Option<f64>,
+    /// Closeness of fit: minimum branch length as a fraction of the heart radius, [0, 1]
+    /// (Table 5.2: default 0.1).
+    #[arg(long, value_name = "F")]
+    pub closeness: Option<f64>,
+    /// Approximation error of skeletal edges, voxels (Table 5.2: default 0.4).
+    #[arg(long, value_name = "F")]
+    pub approx_error: Option<f64>,
+    /// Chains shorter than this fraction of the heart radius are not split (default 0.1).
+    #[arg(long, value_name = "F")]
+    pub min_fraction: Option<f64>,
+    /// Chains longer than this fraction of the heart radius are always split (default 0.3).
+    #[arg(long, value_name = "F")]
+    pub max_fraction: Option<f64>,
+    /// Maximum number of segments (default: automatic).
+    #[arg(long, value_name = "N")]
+    pub segments: Option<usize>,
+    /// Put the root joint at the lowest end point instead of a deep segment (ch.5.3).
+    #[arg(long)]
+    pub root_at_lowest: bool,
+    /// Print the summary as JSON on stdout.
+    #[arg(long = "print-json")]
+    pub print_json: bool,
+}
+
+impl SkeletonArgs {
+    /// Validated pipeline options (ranges are checked by the library before any work).
+    pub fn options(&self) -> anyhow::Result<GeneralRigOptions> {
+        let mut options = GeneralRigOptions::default();
+        options.skeleton.voxel = self.voxel.options()?;
+        if let Some(v) = self.exposure {
+            options.skeleton.medial.exposure_threshold = v;
+        }
+        if let Some(v) = self.closeness {
+            options.skeleton.paths.closeness = v;
+        }
+        let general = &mut options.skeleton.general;
+        if let Some(v) = self.approx_error {
+            general.approximation_error = v;
+        }
+        if let Some(v) = self.min_fraction {
+            general.min_fraction = v;
+        }
+        if let Some(v) = self.max_fraction {
+            general.max_fraction = v;
+        }
+        general.segments = self.segments;
+        general.root_at_lowest = self.root_at_lowest;
+        Ok(options)
+    }
+}
+
+/// A spinner on stderr while `work` runs (drawn only when stderr is a terminal).
+pub fn with_spinner<T>(message: String, work: impl FnOnce() -> T) -> T {
+    let spinner = indicatif::ProgressBar::new_spinner();
+    spinner.set_message(message);
+    spinner.enable_steady_tick(Duration::from_millis(120));
+    let out = work();
+    spinner.finish_and_clear();
+    out
+}
+
+/// Runs the command.
+pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
+    let options = args.options()?;
+    let start = Instant::now();
+    let mesh = load_mesh(&args.mesh)?;
+    let load_ms = start.elapsed().as_secs_f64() * 1e3;
+    let rig = with_spinner(format!("rigging {}", args.mesh.display()), || {
+        general_rig(&mesh, &options)
+    })
+    .context("fitting the general control skeleton")?;
+    let clock = Instant::now();
+    write_glb(
+        &args.output,
+        &mesh,
+        &rig.general.skeleton,
+        &rig.skin,
+        &GltfOptions::default(),
+    )?;
+    let run = run_info(&args.mesh, &rig, load_ms);
+    if let Some(path) = &args.json {
+        let json_options = JsonOptions {
+            model: model_name(&args.mesh),
+            run: Some(run.clone()),
+            ..Default::default()
+        };
+        write_skeleton_json(path, &rig.general.skeleton, &json_options)?;
+    }
+    if let Some(path) = &args.bvh {
+        write_bvh(path, &rig.general.skeleton, &BvhOptions::default())?;
+    }
+    let export_ms = clock.elapsed().as_secs_f64() * 1e3;
+    if args.print_json {
+        let mut run = run;
+        run["timings_ms"]["export"] = json!(export_ms);
+        println!("{}", serde_json::to_string_pretty(&run)?);
+    } else {
+        print_summary(args, &rig, load_ms, export_ms);
+    }
+    for w in &rig.warnings {
+        eprintln!("skelfit: warning: {w}");
+    }
+    Ok(())
+}
+
+fn model_name(path: &Path) -> Option<String> {
+    let stem = path.file_stem()?.to_string_lossy().into_owned();
+    if stem == "mesh" {
+        // refdata layout: <kind>/<model>/mesh.obj
+        path.parent()?
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+    } else {
+        Some(stem)
+    }
+}
+
+/// Run information: sizes, stage timings and warnings.
+pub fn run_info(mesh: &Path, rig: &GeneralRig, load_ms: f64) -> serde_json::Value {
+    let mut timings = serde_json::Map::new();
+    timings.insert("load".into(), json!(load_ms));
+    for (stage, ms) in &rig.general.timings {
+        timings.insert(stage.clone(), json!(ms));
+    }
+    json!({
+        "mesh": mesh.display().to_string(),
+        "grid": rig.grid.dims,
+        "voxel_size": rig.grid.voxel_size,
+        "interior_voxels": rig.voxels.interior_voxels,
+        "joints": rig.general.skeleton.len(),
+        "segments": rig.general.segments.len(),
+        "end_effectors": rig.general.end_effectors().len(),
+        "heart_radius": rig.general.path_tree.heart_radius,
+        "timings_ms": timings,
+        "warnings": rig.warnings,
+    })
+}
+
+fn print_summary(args: &SkeletonArgs, rig: &GeneralRig, load_ms: f64, export_ms: f64) {
+    let g = &rig.general;
+    println!("mesh            {}", args.mesh.display());
+    println!(
+        "grid            {} x {} x {} ({} interior voxels of {:.6})",
+        rig.grid.dims[0],
+        rig.grid.dims[1],
+        rig.grid.dims[2],
+        rig.voxels.interior_voxels,
+        rig.grid.voxel_size
+    );
+    println!(
+        "skeleton        {} joints, {} segments, {} end effectors",
+        g.skeleton.len(),
+        g.segments.len(),
+        g.end_effectors().len()
+    );
+    let stages: Vec<String> = std::iter::once(format!("load {load_ms:.1}"))
+        .chain(g.timings.iter().map(|(s, ms)| format!("{s} {ms:.1}")))
+        .chain(std::iter::once(format!("export {export_ms:.1}")))
+        .collect();
+    println!("timings (ms)    {}", stages.join(", "));
+    println!("wrote           {}", args.output.display());
+    for path in [&args.json, &args.bvh].into_iter().flatten() {
+        println!("wrote           {}", path.display());
+    }
+}
