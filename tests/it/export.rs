@@ -190,6 +190,7 @@ fn skeleton_json_round_trips_through_load_skeleton() {
         model: Some("mh".into()),
         units: Some("m".into()),
         canonical,
+        ..Default::default()
     };
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("skeleton.json");
