@@ -139,8 +139,8 @@ fn check_model(
     let ends = end_positions(&general);
     if std::env::var_os("SKELFIT_PRINT_ENDS").is_some() {
         println!(
-            "{relative} ends {ends:?} heart {}",
-            general.path_tree.heart_centre
+            "{relative} root {} heart {} ends {ends:?}",
+            general.skeleton.joints[0].position, general.path_tree.heart_centre
         );
     }
     let mut report = Vec::new();
