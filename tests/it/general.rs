@@ -134,6 +134,23 @@ fn check_model(
             joint.position
         );
     }
+    // Frames (ch.5.2.5): z along each segment from the joint that rotates it (the root's frame
+    // follows one of its two halves); proper rotations everywhere.
+    let s = &general.skeleton;
+    for seg in &general.segments {
+        let (joint, child) = (s.joint(seg.joint), s.joint(seg.child));
+        let m = s.frame_matrix(seg.joint);
+        assert!((m.determinant() - 1.0).abs() < 1e-9);
+        let along = (child.position - joint.position).normalize();
+        if joint.parent.is_some() {
+            assert!(
+                m.z_axis.dot(along) > 1.0 - 1e-9,
+                "{relative}: {} z axis not along its segment",
+                joint.name
+            );
+        }
+        assert!(!seg.voxels.is_empty());
+    }
     let (lo, hi) = mesh.bounding_box().unwrap();
     let size = (hi - lo).max_element();
     let ends = end_positions(&general);
