@@ -10,7 +10,12 @@
 //! mesh file ──mesh::load──▶ Mesh ──voxel::voxelize──▶ Solid (inside mask on a Grid)
 //!                                   └─distance::edt──▶ DistanceMap (exact squared EDT)
 //!                                   └─medial::dms────▶ MedialSurface
+//!                                   └─paths::path_tree─▶ PathTree (heart, extreme points, chains)
+//!                                   └─general::control_skeleton─▶ GeneralSkeleton (Skeleton + segments)
 //! ```
+//!
+//! [`pipeline::general_skeleton`] runs the whole chain from a mesh to a general control
+//! skeleton (dissertation ch.5).
 //!
 //! See `ARCHITECTURE.md` in the repository for the whole map, the conventions (units, axes,
 //! determinism, errors) and the seed sections each module implements.

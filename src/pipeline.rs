@@ -31,6 +31,18 @@ pub struct GeneralSkeletonOptions {
 /// recorded in [`GeneralSkeleton::timings`]; warnings of every stage are collected in
 /// [`GeneralSkeleton::warnings`].
 ///
+/// ```
+/// use skelfit::mesh::Mesh;
+/// use skelfit::pipeline::{general_skeleton, GeneralSkeletonOptions};
+///
+/// // A capsule: one chain along its axis, two end effectors.
+/// let mesh = Mesh::capsule(glam::DVec3::ZERO, 0.2, 0.6, 8, 16);
+/// let general = general_skeleton(&mesh, &GeneralSkeletonOptions::default()).unwrap();
+/// assert_eq!(general.end_effectors().len(), 2);
+/// assert_eq!(general.skeleton.joints[0].name, "root");
+/// assert!(general.skeleton.validate().is_ok());
+/// ```
+///
 /// # Errors
 /// The first failing stage's error: invalid options of any stage (checked before any work),
 /// a mesh that does not voxelize, an empty medial surface.

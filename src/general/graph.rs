@@ -69,11 +69,12 @@ fn best_split(chain: &Chain, a: usize, b: usize, voxel_size: f64) -> Option<usiz
 }
 
 /// Builds the skeletal graph of `tree` (ch.5.2.5): one edge per chain, then repeatedly the edge
-/// of largest error is split at its best vertex ([`best_split`]): always when its section is
-/// longer than `max_fraction * heart_radius`, else while its error exceeds
-/// `approximation_error`; sections shorter than `min_fraction * heart_radius` are never split;
-/// splitting stops early at [`GeneralOptions::segments`] edges. The heap is ordered by
-/// `(error, lowest edge index)`, so the result is deterministic.
+/// of largest error is split at its best vertex (the chain vertex minimising the larger error
+/// of the two halves, Figure 5.8): always when its section is longer than
+/// `max_fraction * heart_radius`, else while its error exceeds `approximation_error` (voxel
+/// units); sections shorter than `min_fraction * heart_radius` are never split; splitting stops
+/// early at [`GeneralOptions::segments`] edges. The heap pops the largest error first, the
+/// lowest edge slot among equals, so the result is deterministic.
 pub fn skeletal_graph(tree: &PathTree, options: &GeneralOptions) -> SkeletalGraph {
     let voxel_size = tree.grid.voxel_size;
     let min_length = options.min_fraction * tree.heart_radius_voxels;

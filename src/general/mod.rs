@@ -96,3 +96,88 @@ pub fn control_skeleton(
         warnings,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::paths::testing::surface;
+    use crate::paths::{path_tree, PathOptions};
+
+    /// A T of one-voxel lines: a bar along x and a stem along y from its middle.
+    fn t_shape() -> PathTree {
+        let mut coords = Vec::new();
+        for i in 1..30 {
+            coords.push([i, 2, 2]);
+        }
+        for j in 3..20 {
+            coords.push([15, j, 2]);
+        }
+        path_tree(&surface([31, 21, 5], &coords, 1), &PathOptions::default()).unwrap()
+    }
+
+    #[test]
+    fn a_branch_gets_coincident_joints_and_every_leaf_an_end_effector() {
+        let tree = t_shape();
+        assert_eq!(tree.chains.len(), 3);
+        let options = GeneralOptions {
+            min_fraction: 1.0,
+            max_fraction: 1.0,
+            ..Default::default()
+        };
+        let general = control_skeleton(tree, &options).unwrap();
+        let s = &general.skeleton;
+        assert!(s.validate().is_ok());
+        // root + 2 coincident joints at the junction (3 edges meet) + 3 end effectors.
+        assert_eq!(s.len(), 6, "{:#?}", s.joints);
+        assert_eq!(general.end_effectors().len(), 3);
+        let junction = s.joints.iter().filter(|j| j.name.starts_with("joint_"));
+        let positions: Vec<_> = junction.map(|j| j.position).collect();
+        assert_eq!(positions.len(), 2);
+        assert_eq!(positions[0], positions[1]);
+        // Two root halves and one segment per distal edge; every voxel list is non-empty.
+        assert_eq!(general.segments.len(), 4);
+        assert!(general.segments.iter().all(|seg| !seg.voxels.is_empty()));
+        for joint in &s.joints {
+            let m = glam::DMat3::from_quat(joint.frame);
+            assert!((m.determinant() - 1.0).abs() < 1e-9);
+        }
+        assert!(s
+            .joints
+            .iter()
+            .filter(|j| !j.deform)
+            .all(|j| j.dofs.is_empty()));
+    }
+
+    #[test]
+    fn splitting_respects_the_segment_limit_and_lowest_root_option() {
+        let options = GeneralOptions {
+            approximation_error: 0.0,
+            min_fraction: 0.0,
+            max_fraction: 0.0,
+            segments: Some(6),
+            root_at_lowest: true,
+            up: glam::DVec3::Y,
+        };
+        let general = control_skeleton(t_shape(), &options).unwrap();
+        assert_eq!(general.graph.edges.len(), 6);
+        // The lowest end vertex is the left or right end of the bar (y = 2), not the stem tip.
+        let root = general.skeleton.joints[0].position;
+        assert_eq!(root.y, 2.5);
+        assert_eq!(
+            general.skeleton.children(crate::skeleton::JointId(0)).len(),
+            1
+        );
+    }
+
+    #[test]
+    fn a_single_voxel_tree_gives_one_joint_and_a_warning() {
+        let tree = path_tree(
+            &surface([3, 3, 3], &[[1, 1, 1]], 1),
+            &PathOptions::default(),
+        );
+        let general = control_skeleton(tree.unwrap(), &GeneralOptions::default()).unwrap();
+        assert_eq!(general.skeleton.len(), 1);
+        assert!(general.segments.is_empty());
+        assert!(!general.warnings.is_empty());
+    }
+}

@@ -36,7 +36,7 @@ mod graph;
 mod heart;
 mod options;
 #[cfg(test)]
-mod testing;
+pub(crate) mod testing;
 mod tree;
 
 pub use chains::{chains, Chain};

@@ -134,13 +134,30 @@ fn check_model(
             joint.position
         );
     }
+    // Frames (ch.5.2.5): z along each segment from the joint that rotates it (the root's frame
+    // follows one of its two halves); proper rotations everywhere.
+    let s = &general.skeleton;
+    for seg in &general.segments {
+        let (joint, child) = (s.joint(seg.joint), s.joint(seg.child));
+        let m = s.frame_matrix(seg.joint);
+        assert!((m.determinant() - 1.0).abs() < 1e-9);
+        let along = (child.position - joint.position).normalize();
+        if joint.parent.is_some() {
+            assert!(
+                m.z_axis.dot(along) > 1.0 - 1e-9,
+                "{relative}: {} z axis not along its segment",
+                joint.name
+            );
+        }
+        assert!(!seg.voxels.is_empty());
+    }
     let (lo, hi) = mesh.bounding_box().unwrap();
     let size = (hi - lo).max_element();
     let ends = end_positions(&general);
     if std::env::var_os("SKELFIT_PRINT_ENDS").is_some() {
         println!(
-            "{relative} ends {ends:?} heart {}",
-            general.path_tree.heart_centre
+            "{relative} root {} heart {} ends {ends:?}",
+            general.skeleton.joints[0].position, general.path_tree.heart_centre
         );
     }
     let mut report = Vec::new();
@@ -444,14 +461,16 @@ fn fine_grid_timings() {
         return;
     };
     let mesh = load(&dir.join("mesh.obj")).unwrap();
-    for fraction in [0.01, 0.005, 0.0035, 0.0025] {
+    for (fraction, e) in [(0.01, 0.4), (0.01, 1.0), (0.01, 2.0), (0.005, 0.4), (0.005, 1.0), (0.005, 2.0)] {
         let options = GeneralSkeletonOptions {
             voxel: VoxelOptions {
                 size: skelfit::voxel::VoxelSize::Fraction(fraction),
                 ..Default::default()
             },
+            general: GeneralOptions { approximation_error: e, ..Default::default() },
             ..Default::default()
         };
+        print!("err {e} ");
         let start = Instant::now();
         let general = general_skeleton(&mesh, &options).unwrap();
         let solid = voxelize(&mesh, &options.voxel).unwrap();
