@@ -10,6 +10,8 @@
 //! mesh file ──mesh::load──▶ Mesh ──voxel::voxelize──▶ Solid (inside mask on a Grid)
 //!                                   └─distance::edt──▶ DistanceMap (exact squared EDT)
 //!                                   └─medial::dms────▶ MedialSurface
+//! Skeleton + SegmentVoxels ──skin::skin──▶ Skin (per-vertex weights) ──skin::deform──▶ posed Mesh
+//! Mesh + Skeleton + Skin ──export::write_glb / write_bvh / write_skeleton_json──▶ files
 //! ```
 //!
 //! See `ARCHITECTURE.md` in the repository for the whole map, the conventions (units, axes,
