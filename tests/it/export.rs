@@ -375,6 +375,9 @@ fn refdata_models_skin_and_export_valid_glb() {
             );
             let path = dir.path().join(format!("{name}.glb"));
             write_glb(&path, &mesh, &skeleton, &skin, &GltfOptions::default()).unwrap();
+            if let Some(keep) = std::env::var_os("SKELFIT_KEEP_EXPORTS") {
+                std::fs::copy(&path, Path::new(&keep).join(path.file_name().unwrap())).unwrap();
+            }
             files.push(path);
         }
     }
