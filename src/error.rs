@@ -35,5 +35,5 @@ pub enum Error {
     Report(#[from] crate::report::ReportError),
 }
 
-/// `Result` with the crate [`Error`].
+/// `Result` with the crate [`Error`](enum@Error).
 pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -12,6 +12,8 @@
 //!                                   └─medial::dms────▶ MedialSurface
 //!                                   └─paths::path_tree─▶ PathTree (heart, extreme points, chains)
 //!                                   └─general::control_skeleton─▶ GeneralSkeleton (Skeleton + segments)
+//! Skeleton + SegmentVoxels ──skin::skin──▶ Skin (per-vertex weights) ──skin::deform──▶ posed Mesh
+//! Mesh + Skeleton + Skin ──export::write_glb / write_bvh / write_skeleton_json──▶ files
 //! ```
 //!
 //! [`pipeline::general_skeleton`] runs the whole chain from a mesh to a general control

@@ -131,7 +131,7 @@ pub fn glb_bytes(
     }
 
     let mut bin = Binary::default();
-    let indices = bin.push(
+    let index_view = bin.push(
         mesh.triangles
             .iter()
             .flatten()
@@ -185,7 +185,7 @@ pub fn glb_bytes(
     position_accessor["min"] = json!(min.map(f64::from));
     position_accessor["max"] = json!(max.map(f64::from));
     let accessors = vec![
-        accessor(indices, UNSIGNED_INT, mesh.triangles.len() * 3, "SCALAR"),
+        accessor(index_view, UNSIGNED_INT, mesh.triangles.len() * 3, "SCALAR"),
         position_accessor,
         accessor(normal_view, FLOAT, vertices, "VEC3"),
         accessor(joints_view, UNSIGNED_SHORT, vertices, "VEC4"),

@@ -180,3 +180,40 @@ fn nearest_interior(
     }
     best.map(|(_, index)| index)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::distance::edt;
+    use crate::mesh::Mesh;
+    use crate::skeleton::Joint;
+    use crate::voxel::{voxelize, VoxelOptions, VoxelSize};
+
+    #[test]
+    fn bones_get_interior_chains_and_leaves_stop_at_the_surface() {
+        // A box 4 long in y; the chain ends 1 below the top.
+        let mesh = Mesh::cuboid(DVec3::new(-0.5, 0.0, -0.5), DVec3::new(0.5, 4.0, 0.5));
+        let options = VoxelOptions {
+            size: VoxelSize::Absolute(0.1),
+            ..Default::default()
+        };
+        let solid = voxelize(&mesh, &options).unwrap();
+        let distance = edt(&solid);
+        let skeleton = Skeleton {
+            joints: vec![
+                Joint::new("a", None, DVec3::new(0.0, 1.0, 0.0)),
+                Joint::new("b", Some(JointId(0)), DVec3::new(0.0, 3.0, 0.0)),
+            ],
+        };
+        let segments = bone_segments(&skeleton, &solid, &distance, &SkinOptions::default());
+        assert_eq!(segments.len(), 2);
+        assert_eq!(segments[0].child, Some(JointId(1)));
+        assert!(segments[0].voxels.len() >= 20);
+        assert!(segments[0].voxels.iter().all(|&v| solid.inside[v]));
+        assert!(segments[0].voxels.windows(2).all(|w| w[0] < w[1]));
+        // The leaf continues upwards by at most one bone length and stops inside the box.
+        let tip = segments[1].tip.unwrap();
+        assert!(tip.y > 3.8 && tip.y < 4.0, "tip at {tip}");
+        assert!(segments[1].voxels.iter().all(|&v| solid.inside[v]));
+    }
+}

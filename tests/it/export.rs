@@ -320,3 +320,73 @@ fn exporters_report_bad_input_and_leave_no_file() {
     assert!(err.to_string().starts_with("cannot write"));
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+/// Every refdata model with a mesh and a reference rig: skin it to its own deforming joints
+/// with the bone fallback, check the weights, and validate the GLB.
+#[test]
+fn refdata_models_skin_and_export_valid_glb() {
+    let Some(refdata) = crate::common::refdata() else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let mut files = Vec::new();
+    for kind in ["humanoid", "quadruped", "other"] {
+        let Ok(entries) = std::fs::read_dir(refdata.join(kind)) else {
+            continue;
+        };
+        let mut models: Vec<PathBuf> = entries.map(|e| e.unwrap().path()).collect();
+        models.sort();
+        for model in models {
+            let Some(rig_path) = std::fs::read_dir(&model)
+                .unwrap()
+                .map(|e| e.unwrap().path())
+                .filter(|p| {
+                    let name = p.file_name().unwrap().to_string_lossy();
+                    name.starts_with("rig_") && name.ends_with(".json")
+                })
+                .min()
+            else {
+                continue;
+            };
+            let mesh_path = model.join("mesh.obj");
+            if !mesh_path.is_file() {
+                continue;
+            }
+            let mesh = load(&mesh_path).unwrap();
+            let skeleton = load_skeleton(&rig_path).unwrap().deforming().skeleton;
+            let solid = voxelize(&mesh, &VoxelOptions::default()).unwrap();
+            let distance = edt(&solid);
+            let skin =
+                skin_from_bones(&mesh, &skeleton, &solid, &distance, &SkinOptions::default())
+                    .unwrap_or_else(|e| panic!("{}: {e}", model.display()));
+            for (v, w) in skin.weights.iter().enumerate() {
+                let sum: f64 = w.iter().map(|(_, x)| x).sum();
+                assert!(
+                    !w.is_empty() && (sum - 1.0).abs() < 1e-12,
+                    "{} vertex {v}",
+                    model.display()
+                );
+            }
+            let name = model.file_name().unwrap().to_string_lossy().into_owned();
+            eprintln!(
+                "{name}: {} vertices, {} joints, warnings {:?}",
+                mesh.positions.len(),
+                skeleton.len(),
+                skin.warnings
+            );
+            let path = dir.path().join(format!("{name}.glb"));
+            write_glb(&path, &mesh, &skeleton, &skin, &GltfOptions::default()).unwrap();
+            if let Some(keep) = std::env::var_os("SKELFIT_KEEP_EXPORTS") {
+                std::fs::copy(&path, Path::new(&keep).join(path.file_name().unwrap())).unwrap();
+            }
+            files.push(path);
+        }
+    }
+    if let Some(report) = validate(&files) {
+        assert_eq!(
+            report.matches("numErrors=0 ").count(),
+            files.len(),
+            "{report}"
+        );
+    }
+}

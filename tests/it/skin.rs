@@ -245,3 +245,70 @@ fn bending_a_humanoid_joint_moves_only_its_own_limb() {
         }
     }
 }
+
+#[test]
+fn skin_takes_chain_voxels_from_the_skeleton_builder() {
+    use skelfit::skin::{skin, SegmentVoxels, SkinError};
+    let rig = capsule_rig();
+    let grid = rig.solid.grid;
+    // Chains as the builder hands them over: the axis voxels below and above the middle joint.
+    let axis = |from: f64, to: f64| -> Vec<usize> {
+        let mut voxels: Vec<usize> = (0..=40)
+            .filter_map(|k| {
+                let y = from + (to - from) * k as f64 / 40.0;
+                grid.voxel_at(DVec3::new(0.0, y, 0.0))
+                    .map(|c| grid.index(c))
+            })
+            .collect();
+        voxels.sort_unstable();
+        voxels.dedup();
+        voxels
+    };
+    let segments = vec![
+        SegmentVoxels {
+            joint: JointId(0),
+            child: Some(JointId(1)),
+            tip: None,
+            voxels: axis(-1.5, 0.0),
+        },
+        SegmentVoxels {
+            joint: JointId(1),
+            child: None,
+            tip: Some(DVec3::new(0.0, 1.5, 0.0)),
+            voxels: axis(0.0, 1.5),
+        },
+    ];
+    let options = SkinOptions::default();
+    let bound = skin(
+        &rig.mesh,
+        &rig.skeleton,
+        &rig.solid,
+        &rig.distance,
+        &segments,
+        &options,
+    )
+    .unwrap();
+    assert_weights_are_a_partition(&bound, rig.mesh.positions.len());
+    for (p, w) in rig.mesh.positions.iter().zip(&bound.weights) {
+        if p.y > 1.0 {
+            assert_eq!(w, &vec![(JointId(1), 1.0)]);
+        }
+    }
+    let mut bad = segments.clone();
+    bad[1].joint = JointId(7);
+    assert!(matches!(
+        skin(
+            &rig.mesh,
+            &rig.skeleton,
+            &rig.solid,
+            &rig.distance,
+            &bad,
+            &options
+        ),
+        Err(SkinError::UnknownJoint {
+            segment: 1,
+            joint: 7,
+            ..
+        })
+    ));
+}
