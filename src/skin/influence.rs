@@ -10,6 +10,11 @@ use std::collections::HashMap;
 /// Marker of a voxel without an influence set.
 const NONE: u32 = u32::MAX;
 
+/// Propagation layers smaller than this run on the calling thread: the thread-pool overhead
+/// would exceed the work (layers through hands and feet are a few hundred voxels each). Both
+/// paths compute the same sets.
+const SEQUENTIAL_LAYER: usize = 4096;
+
 /// The set of segments influencing each voxel of a grid.
 ///
 /// Sets are interned: `sets` holds each distinct set once (segment indices ascending) and
@@ -78,23 +83,54 @@ pub fn influence(
             });
         }
     }
-    let mut pairs = coverage(solid, distance, segments, options.sphere_scale);
-    pairs.par_sort_unstable();
-    pairs.dedup();
-    if pairs.is_empty() {
+    let lists = coverage(solid, distance, segments, options.sphere_scale);
+    if lists.iter().all(Vec::is_empty) {
         return Err(SkinError::NoInfluence);
     }
 
-    let mut interner = Interner::default();
+    // Each voxel's set grows segment by segment (ascending), through memoised transitions
+    // (set, segment) -> set; then the sets are renumbered in order of first appearance in
+    // voxel order, so the result does not depend on how the work was split.
+    let mut scratch = Interner::default();
     let mut set_of = vec![NONE; grid.len()];
-    let mut frontier = Vec::new();
-    for group in pairs.chunk_by(|a, b| a.0 == b.0) {
-        let voxel = group[0].0 as usize;
-        let set: Vec<u32> = group.iter().map(|&(_, s)| s).collect();
-        set_of[voxel] = interner.id(set);
-        frontier.push(voxel);
+    let mut transitions: HashMap<(u32, u32), u32> = HashMap::new();
+    for (s, list) in lists.iter().enumerate() {
+        let s = s as u32;
+        let mut last: Option<(u32, u32)> = None;
+        for &v in list {
+            let old = set_of[v as usize];
+            let new = match last {
+                Some((from, to)) if from == old => to,
+                _ => {
+                    let to = *transitions.entry((old, s)).or_insert_with(|| {
+                        let mut set = if old == NONE {
+                            Vec::new()
+                        } else {
+                            scratch.sets[old as usize].clone()
+                        };
+                        set.push(s);
+                        scratch.id(&set)
+                    });
+                    last = Some((old, to));
+                    to
+                }
+            };
+            set_of[v as usize] = new;
+        }
     }
-    let covered = frontier.len();
+    drop(transitions);
+    let mut interner = Interner::default();
+    let mut renumber = vec![NONE; scratch.sets.len()];
+    let mut covered = 0;
+    for id in set_of.iter_mut() {
+        if *id != NONE {
+            if renumber[*id as usize] == NONE {
+                renumber[*id as usize] = interner.id(&scratch.sets[*id as usize]);
+            }
+            *id = renumber[*id as usize];
+            covered += 1;
+        }
+    }
 
     let mut target: Vec<bool> = (0..grid.len())
         .map(|i| solid.inside[i] || solid.surface.get(i).copied().unwrap_or(false))
@@ -106,39 +142,117 @@ pub fn influence(
     }
 
     let neighbours = options.connectivity.neighbours();
-    while !frontier.is_empty() {
-        let mut next: Vec<usize> = frontier
-            .par_iter()
-            .flat_map_iter(|&v| {
-                let c = grid.coords(v);
+    let [nx, ny, nz] = grid.dims;
+    let deltas: Vec<isize> = neighbours
+        .iter()
+        .map(|n| {
+            let [ox, oy, oz] = n.offset.map(|o| o as isize);
+            ox + nx as isize * (oy + ny as isize * oz)
+        })
+        .collect();
+    // Neighbour indices of voxel `u`: linear deltas away from the grid border, checked
+    // offsets on it (padding keeps mesh voxels off the border, so the slow path is rare).
+    let neighbours_of = |u: usize, out: &mut Vec<usize>| {
+        out.clear();
+        let [x, y, z] = grid.coords(u);
+        if x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz {
+            out.extend(deltas.iter().map(|&d| u.wrapping_add_signed(d)));
+        } else {
+            out.extend(
                 neighbours
                     .iter()
-                    .filter_map(move |n| grid.offset(c, n.offset))
-                    .filter(|&u| target[u])
-            })
-            .filter(|&u| set_of[u] == NONE)
-            .collect();
-        next.par_sort_unstable();
-        next.dedup();
-        let unions: Vec<Vec<u32>> = next
-            .par_iter()
-            .map(|&u| {
-                let c = grid.coords(u);
-                let mut set: Vec<u32> = neighbours
-                    .iter()
-                    .filter_map(|n| grid.offset(c, n.offset))
-                    .filter(|&w| set_of[w] != NONE)
-                    .flat_map(|w| interner.sets[set_of[w] as usize].iter().copied())
-                    .collect();
-                set.sort_unstable();
-                set.dedup();
-                set
-            })
-            .collect();
-        for (&u, set) in next.iter().zip(unions) {
-            set_of[u] = interner.id(set);
+                    .filter_map(|n| grid.offset([x, y, z], n.offset)),
+            );
         }
-        frontier = next;
+    };
+    // The first layer is found from the unlabelled side: the covered voxels are most of the
+    // interior, the uncovered targets a thin shell, so scanning the shell is far cheaper.
+    let mut next: Vec<usize> = (0..grid.len())
+        .into_par_iter()
+        .with_min_len(4096)
+        .filter(|&u| target[u] && set_of[u] == NONE)
+        .filter(|&u| {
+            let mut around = Vec::with_capacity(26);
+            neighbours_of(u, &mut around);
+            around.iter().any(|&w| set_of[w] != NONE)
+        })
+        .collect();
+    while !next.is_empty() {
+        // The new set of `u`: the union of its labelled neighbours' sets, as an existing set
+        // id when all of them share one (the common case), else as a new list.
+        let union = |u: usize, around: &mut Vec<usize>| -> Result<u32, Vec<u32>> {
+            neighbours_of(u, around);
+            let mut ids = [NONE; 26];
+            let mut count = 0;
+            for &w in around.iter() {
+                let id = set_of[w];
+                if id != NONE && !ids[..count].contains(&id) {
+                    ids[count] = id;
+                    count += 1;
+                }
+            }
+            if count == 1 {
+                return Ok(ids[0]);
+            }
+            let ids = &ids[..count];
+            let mut set: Vec<u32> = ids
+                .iter()
+                .flat_map(|&id| interner.sets[id as usize].iter().copied())
+                .collect();
+            set.sort_unstable();
+            set.dedup();
+            Err(set)
+        };
+        let unions: Vec<Result<u32, Vec<u32>>> = if next.len() < SEQUENTIAL_LAYER {
+            let mut around = Vec::with_capacity(26);
+            next.iter().map(|&u| union(u, &mut around)).collect()
+        } else {
+            next.par_iter()
+                .map_init(|| Vec::with_capacity(26), |around, &u| union(u, around))
+                .collect()
+        };
+        for (&u, set) in next.iter().zip(unions) {
+            set_of[u] = match set {
+                Ok(id) => id,
+                Err(set) => interner.id(&set),
+            };
+        }
+        // The next layer: unlabelled targets next to this one.
+        let grow = |v: usize, around: &mut Vec<usize>, out: &mut Vec<usize>| {
+            neighbours_of(v, around);
+            out.extend(
+                around
+                    .iter()
+                    .copied()
+                    .filter(|&u| target[u] && set_of[u] == NONE),
+            );
+        };
+        let mut grown: Vec<usize> = if next.len() < SEQUENTIAL_LAYER {
+            let (mut around, mut out) = (Vec::with_capacity(26), Vec::new());
+            for &v in &next {
+                grow(v, &mut around, &mut out);
+            }
+            out
+        } else {
+            next.par_iter()
+                .fold(
+                    || (Vec::with_capacity(26), Vec::new()),
+                    |(mut around, mut out), &v| {
+                        grow(v, &mut around, &mut out);
+                        (around, out)
+                    },
+                )
+                .map(|(_, out)| out)
+                .flatten_iter()
+                .collect()
+        };
+        if grown.len() < SEQUENTIAL_LAYER {
+            grown.sort_unstable();
+        } else {
+            grown.par_sort_unstable();
+        }
+        grown.dedup();
+        next = grown;
     }
     Ok(Influence {
         grid,
@@ -148,46 +262,85 @@ pub fn influence(
     })
 }
 
-/// `(voxel, segment)` pairs of the interior voxels inside each chain voxel's sphere.
+/// Per segment, the interior voxels inside its chain voxels' spheres, ascending.
+///
+/// The spheres of neighbouring chain voxels overlap almost entirely, so instead of visiting
+/// every voxel of every sphere (`O(r^3)` per chain voxel) each sphere contributes one x-span per
+/// grid row it crosses (`O(r^2)`); a segment's spans are sorted and merged, and the union is
+/// visited once.
 fn coverage(
     solid: &Solid,
     distance: &DistanceMap,
     segments: &[SegmentVoxels],
     sphere_scale: f64,
-) -> Vec<(u32, u32)> {
+) -> Vec<Vec<u32>> {
     let grid = solid.grid;
-    let scale = sphere_scale;
+    let [nx, ny, nz] = grid.dims.map(|d| d as i64);
     segments
         .par_iter()
-        .enumerate()
-        .flat_map_iter(|(s, segment)| {
-            let mut covered: Vec<(u32, u32)> = Vec::new();
+        .map(|segment| {
+            // (row = y + ny z, first x, last x), inclusive.
+            let mut spans: Vec<(u32, u32, u32)> = Vec::new();
             for &c in &segment.voxels {
-                let radius_sq = distance.squared[c] as f64 * scale * scale;
+                let radius_sq = distance.squared[c] as f64 * sphere_scale * sphere_scale;
                 if radius_sq <= 0.0 {
                     continue;
                 }
                 let r = radius_sq.sqrt().ceil() as i64;
-                let centre = grid.coords(c);
-                for dz in -r..=r {
-                    for dy in -r..=r {
-                        for dx in -r..=r {
-                            let d2 = (dx * dx + dy * dy + dz * dz) as f64;
-                            if d2 >= radius_sq {
-                                continue;
-                            }
-                            let offset = [dx as i32, dy as i32, dz as i32];
-                            if let Some(v) = grid.offset(centre, offset) {
-                                if solid.inside[v] {
-                                    covered.push((v as u32, s as u32));
-                                }
-                            }
+                let [cx, cy, cz] = grid.coords(c).map(|v| v as i64);
+                for z in (cz - r).max(0)..=(cz + r).min(nz - 1) {
+                    let dz = z - cz;
+                    for y in (cy - r).max(0)..=(cy + r).min(ny - 1) {
+                        let dy = y - cy;
+                        // Voxels strictly inside: dx^2 < rest.
+                        let rest = radius_sq - (dy * dy + dz * dz) as f64;
+                        if rest <= 0.0 {
+                            continue;
+                        }
+                        let mut w = rest.sqrt().floor() as i64;
+                        while (((w + 1) * (w + 1)) as f64) < rest {
+                            w += 1;
+                        }
+                        while w >= 0 && ((w * w) as f64) >= rest {
+                            w -= 1;
+                        }
+                        if w < 0 {
+                            continue;
+                        }
+                        let (x0, x1) = ((cx - w).max(0), (cx + w).min(nx - 1));
+                        if x0 <= x1 {
+                            spans.push(((y + ny * z) as u32, x0 as u32, x1 as u32));
                         }
                     }
                 }
             }
-            covered.sort_unstable();
-            covered.dedup();
+            spans.sort_unstable();
+            let mut covered: Vec<u32> = Vec::new();
+            let mut emit = |row: u32, x0: u32, x1: u32| {
+                let base = row as usize * grid.dims[0];
+                for x in x0..=x1 {
+                    let v = base + x as usize;
+                    if solid.inside[v] {
+                        covered.push(v as u32);
+                    }
+                }
+            };
+            let mut current: Option<(u32, u32, u32)> = None;
+            for &(row, x0, x1) in &spans {
+                current = match current {
+                    Some((r, a, b)) if r == row && x0 <= b.saturating_add(1) => {
+                        Some((r, a, b.max(x1)))
+                    }
+                    Some((r, a, b)) => {
+                        emit(r, a, b);
+                        Some((row, x0, x1))
+                    }
+                    None => Some((row, x0, x1)),
+                };
+            }
+            if let Some((r, a, b)) = current {
+                emit(r, a, b);
+            }
             covered
         })
         .collect()
@@ -201,13 +354,13 @@ struct Interner {
 }
 
 impl Interner {
-    fn id(&mut self, set: Vec<u32>) -> u32 {
-        if let Some(&id) = self.ids.get(&set) {
+    fn id(&mut self, set: &[u32]) -> u32 {
+        if let Some(&id) = self.ids.get(set) {
             return id;
         }
         let id = self.sets.len() as u32;
-        self.sets.push(set.clone());
-        self.ids.insert(set, id);
+        self.sets.push(set.to_vec());
+        self.ids.insert(set.to_vec(), id);
         id
     }
 }
