@@ -4,6 +4,7 @@
 use super::{Frame, LevelOptions};
 use crate::medial::MedialSurface;
 use crate::paths::{heart, DmsGraph, PathOptions};
+use crate::voxel::Solid;
 use glam::DVec3;
 use serde::Serialize;
 
@@ -51,6 +52,10 @@ pub struct LevelVertex {
     pub marks: Marks,
     /// Inscribed radius (mesh units) of the DMS voxel of the piece nearest its centroid.
     pub radius: f64,
+    /// Reach of the vertex's region of the figure (its DMS voxels and, when a solid is given,
+    /// the interior voxels nearest to them): highest and lowest projection on up, highest and
+    /// lowest on forward, mesh units.
+    pub reach: [f64; 4],
 }
 
 /// The level graph of a DMS (ch.7.3.1): a tree whose root holds the heart.
@@ -121,8 +126,14 @@ impl LevelGraph {
 /// union-find groups of already processed voxels it touches; distal fractions; insignificant
 /// vertices and major junctions; direction and cross-section marks against `extent_up` and
 /// `extent_forward` (the figure's `(min, max)` projections on `frame.up` / `frame.forward`).
+///
+/// With a `solid`, the direction marks and reaches also count the interior voxels nearest
+/// (through the interior) to each vertex's DMS voxels: thin limb ends whose voxels lie one voxel
+/// from the outside hold no DMS voxel (ch.4.4), so a leg's DMS can stop short of the ground
+/// that its interior reaches.
 pub fn level_graph(
     surface: &MedialSurface,
+    solid: Option<&Solid>,
     paths: &PathOptions,
     options: &LevelOptions,
     frame: &Frame,
@@ -245,6 +256,7 @@ pub fn level_graph(
                 major_junction: false,
                 marks: Marks::default(),
                 radius: 0.0,
+                reach: [0.0; 4],
             });
         }
     }
@@ -302,6 +314,40 @@ pub fn level_graph(
         let reach = a.distance(v.centroid).max(b.distance(v.centroid));
         marks.linear = reach > options.linear_ratio * v.radius.max(0.5 * voxel);
         v.marks = marks;
+    }
+    let mut regions: Vec<Vec<DVec3>> = vertices
+        .iter()
+        .map(|v| v.voxels.iter().map(|&p| surface.centre(p)).collect())
+        .collect();
+    if let Some(solid) = solid {
+        let interior = super::project::interior_parts(solid, surface, &vertex_of);
+        for (index, &v) in interior.iter().enumerate() {
+            if v != NO_VERTEX && surface.position(index).is_none() {
+                regions[v as usize].push(solid.grid.centre(solid.grid.coords(index)));
+            }
+        }
+    }
+    for (v, region) in vertices.iter_mut().zip(&regions) {
+        let mut reach = [
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+        ];
+        for c in region {
+            let (u, f) = (c.dot(frame.up), c.dot(frame.forward));
+            reach = [
+                reach[0].max(u),
+                reach[1].min(u),
+                reach[2].max(f),
+                reach[3].min(f),
+            ];
+        }
+        v.reach = reach;
+        v.marks.up |= reach[0] >= up_hi - e * (up_hi - up_lo);
+        v.marks.down |= reach[1] <= up_lo + e * (up_hi - up_lo);
+        v.marks.forward |= reach[2] >= fw_hi - e * (fw_hi - fw_lo);
+        v.marks.backward |= reach[3] <= fw_lo + e * (fw_hi - fw_lo);
     }
     let root = vertices.len().saturating_sub(1);
     LevelGraph {

@@ -198,7 +198,15 @@ fn label_in_frame(
             fw = (fw.0.min(f), fw.1.max(f));
         }
     }
-    let graph = level_graph(surface, &options.paths, &options.level, &frame, up, fw);
+    let graph = level_graph(
+        surface,
+        Some(solid),
+        &options.paths,
+        &options.level,
+        &frame,
+        up,
+        fw,
+    );
     let mut draft = label_graph(&graph, surface, &frame, &options.rules);
     if let Some(o) = overrides {
         let centroids: Vec<DVec3> = graph.vertices.iter().map(|v| v.centroid).collect();

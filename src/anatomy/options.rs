@@ -76,8 +76,15 @@ pub struct RuleOptions {
     /// ch.7.3.3). Default 0.5.
     pub pair_distance: f64,
     /// A tail must join the trunk within this fraction of the heart radius of the most
-    /// posterior limb pair's attachments ("at roughly the same point", ch.7.2). Default 0.75.
+    /// posterior limb pair's attachments ("at roughly the same point", ch.7.2). Default 0.4: keeps the
+    /// tail of every reference quadruped and rejects the hair behind CesiumMan's head (a
+    /// rearward bump joining 0.54 heart radii from its legs).
     pub tail_distance: f64,
+    /// A tail must reach at least this far from where it joins the trunk, as a fraction of the
+    /// heart radius. Default 0.1: the closeness of fit of the path tree (Table 5.2), the
+    /// shortest protrusion ch.5 grows a branch into; a long neck makes the heart radius large,
+    /// and the alpaca's short tail reaches 0.17 of it.
+    pub tail_length: f64,
     /// Unlabelled sections shorter than this fraction of the heart radius are merged into the
     /// trunk; longer ones are merged too but named in a warning ("brought to the attention of
     /// the user", ch.7.3.3). Default 0.3.
@@ -99,7 +106,8 @@ impl Default for RuleOptions {
             wing_fraction: 0.4,
             limb_length: 0.3,
             pair_distance: 0.5,
-            tail_distance: 0.75,
+            tail_distance: 0.4,
+            tail_length: 0.1,
             leftover_length: 0.3,
             digit_fraction: 0.05,
             digit_start: 0.6,
@@ -202,6 +210,7 @@ impl LabelOptions {
             ("rules.limb_length", r.limb_length),
             ("rules.pair_distance", r.pair_distance),
             ("rules.tail_distance", r.tail_distance),
+            ("rules.tail_length", r.tail_length),
             ("rules.leftover_length", r.leftover_length),
         ] {
             check(name, v, v >= 0.0, "non-negative")?;

@@ -233,6 +233,8 @@ pub struct Agreement {
     pub percent: f64,
     /// Per reference region: (region name, vertices, agreeing).
     pub per_region: Vec<(String, usize, usize)>,
+    /// Disagreements: (reference region, our region, vertices), most frequent first.
+    pub confusion: Vec<(String, String, usize)>,
 }
 
 /// The region a labelled part stands for (see the module documentation).
@@ -262,6 +264,7 @@ pub fn agreement(labelling: &Labelling, reference: &[Option<Region>]) -> Agreeme
         .collect();
     let mut per: std::collections::BTreeMap<Region, (usize, usize)> = Default::default();
     let (mut compared, mut agreeing) = (0, 0);
+    let mut confused: std::collections::BTreeMap<(Region, Region), usize> = Default::default();
     for (&part, r) in labelling.mesh_parts.iter().zip(reference) {
         let Some(r) = *r else { continue };
         let ours = regions.get(part as usize).copied().unwrap_or(Region::Trunk);
@@ -271,6 +274,8 @@ pub fn agreement(labelling: &Labelling, reference: &[Option<Region>]) -> Agreeme
         if ours == r {
             e.1 += 1;
             agreeing += 1;
+        } else {
+            *confused.entry((r, ours)).or_insert(0usize) += 1;
         }
     }
     Agreement {
@@ -285,6 +290,14 @@ pub fn agreement(labelling: &Labelling, reference: &[Option<Region>]) -> Agreeme
             .into_iter()
             .map(|(r, (n, a))| (r.name(), n, a))
             .collect(),
+        confusion: {
+            let mut c: Vec<(String, String, usize)> = confused
+                .into_iter()
+                .map(|((r, o), n)| (r.name(), o.name(), n))
+                .collect();
+            c.sort_by(|a, b| b.2.cmp(&a.2).then(a.cmp(b)));
+            c
+        },
     }
 }
 

@@ -46,12 +46,7 @@ pub struct Draft {
 
 /// Sections of `graph` given its trunk vertices: every non-trunk child of a trunk vertex roots
 /// one section.
-pub fn sections(
-    graph: &LevelGraph,
-    surface: &MedialSurface,
-    trunk: &[bool],
-    frame: &Frame,
-) -> Vec<Section> {
+pub fn sections(graph: &LevelGraph, surface: &MedialSurface, trunk: &[bool]) -> Vec<Section> {
     let mut out = Vec::new();
     for t in 0..graph.vertices.len() {
         if !trunk[t] {
@@ -86,17 +81,17 @@ pub fn sections(
                     significant += 1;
                     linear += usize::from(m.linear);
                 }
+                let r = lv.reach;
+                reach = [
+                    reach[0].max(r[0]),
+                    reach[1].min(r[1]),
+                    reach[2].max(r[2]),
+                    reach[3].min(r[3]),
+                ];
                 for &p in &lv.voxels {
                     let x = surface.centre(p);
                     count += 1;
                     sum += x;
-                    let (u, f) = (x.dot(frame.up), x.dot(frame.forward));
-                    reach = [
-                        reach[0].max(u),
-                        reach[1].min(u),
-                        reach[2].max(f),
-                        reach[3].min(f),
-                    ];
                     let h = graph.heart_values[p];
                     if h > best_h {
                         (best, best_h) = (x, h);
@@ -255,7 +250,7 @@ pub fn label_graph(
     } else {
         FigureClass::Unknown
     };
-    let sections = sections(graph, surface, &trunk, frame);
+    let sections = sections(graph, surface, &trunk);
     let mut assign = vec![UNLABELLED; sections.len()];
     let significant: Vec<usize> = (0..sections.len())
         .filter(|&s| !sections[s].insignificant)
@@ -347,7 +342,7 @@ pub fn label_graph(
         let attach = graph.vertices[s.attachment_vertex].centroid;
         let rearward = s.distal.dot(frame.forward) < attach.dot(frame.forward);
         let near = posterior.is_none_or(|p| p.distance(attach) <= options.tail_distance * radius);
-        let long = s.length >= options.leftover_length * radius;
+        let long = s.length >= options.tail_length * radius;
         if s.extreme[3] && rearward && near && long {
             assign[t] = Assignment {
                 label: Some(Label::Tail),
@@ -445,6 +440,12 @@ pub fn label_graph(
         warnings.push(format!(
             "found an odd number of legs ({leg_count}): {} could not be paired",
             single_legs.len()
+        ));
+    }
+    if ordered.len() > 2 {
+        warnings.push(format!(
+            "found {} leg pairs: a vertebrate-like figure has at most two limb pairs, so the figure is not vertebrate-like; the pairs behind the most anterior one are all labelled hind legs",
+            ordered.len()
         ));
     }
     if leg_count == 0 && !junctions.is_empty() {

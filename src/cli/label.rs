@@ -183,11 +183,13 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
             let mesh = load_mesh(&mesh_path)?;
             let labels = label_with_overrides(&mesh, options, None)
                 .with_context(|| format!("labelling {name}"))?;
+            let mut confusion = Vec::new();
             let (percent, regions) = match reference_rig(&model) {
                 Some(rig_path) => {
                     let rig = load_skeleton(&rig_path)
                         .with_context(|| format!("loading {}", rig_path.display()))?;
                     let a = agreement(&labels, &reference_regions(&rig, &mesh));
+                    confusion = a.confusion.clone();
                     let regions: Vec<String> = a
                         .per_region
                         .iter()
@@ -215,6 +217,7 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
                 "parts": summary(&labels),
                 "agreement_percent": percent,
                 "per_region": regions,
+                "confusion": confusion,
                 "warnings": labels.warnings,
             }));
         }
