@@ -390,3 +390,58 @@ impl UnionFind {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::paths::testing::surface;
+
+    /// A "T": a stem along y and a bar along x, one voxel thick.
+    fn t_shape() -> MedialSurface {
+        let mut coords: Vec<[usize; 3]> = (1..40).map(|x| [x, 30, 2]).collect();
+        coords.extend((1..30).map(|y| [20, y, 2]));
+        surface([41, 32, 5], &coords, 4)
+    }
+
+    #[test]
+    fn level_graph_of_a_t_is_a_tree_rooted_at_the_heart_with_one_major_junction() {
+        let s = t_shape();
+        let frame = Frame::new(DVec3::Y, DVec3::Z).unwrap();
+        let g = level_graph(
+            &s,
+            None,
+            &PathOptions::default(),
+            &LevelOptions::default(),
+            &frame,
+            (0.0, 32.0),
+            (0.0, 5.0),
+        );
+        // A tree: every vertex but the root has a parent created after it.
+        assert_eq!(g.vertices[g.root].parent, None);
+        for (i, v) in g.vertices.iter().enumerate() {
+            if i != g.root {
+                assert!(v.parent.is_some_and(|p| p > i), "vertex {i}");
+            }
+        }
+        assert_eq!(g.vertices[g.root].distal_voxels, s.len());
+        assert!((g.vertices[g.root].weight - 1.0).abs() < 1e-12);
+        assert!(g.vertices[g.root].voxels.contains(&g.heart));
+        // The three arms of the T meet at one major junction near the crossing.
+        let junctions: Vec<usize> = (0..g.vertices.len())
+            .filter(|&v| g.vertices[v].major_junction)
+            .collect();
+        assert_eq!(junctions.len(), 1, "{junctions:?}");
+        let c = g.vertices[junctions[0]].centroid;
+        assert!(c.distance(DVec3::new(20.5, 30.5, 2.5)) < 6.0, "{c}");
+        // Heart values span [0, 1]; the ends of the bar are in the top bin.
+        let max = g.heart_values.iter().copied().fold(0.0, f64::max);
+        assert_eq!(max, 1.0);
+        // Each vertex's voxels share one bin.
+        for v in &g.vertices {
+            for &p in &v.voxels {
+                let b = ((g.heart_values[p] * 20.0) as usize).min(19);
+                assert_eq!(b, v.bin);
+            }
+        }
+    }
+}
