@@ -428,8 +428,7 @@ pub fn label_graph(
             dx.total_cmp(&dy)
         });
         assign[s].limb_pair = nearest
-            .map(|&(a, _)| assign[a].limb_pair)
-            .flatten()
+            .and_then(|&(a, _)| assign[a].limb_pair)
             .or(Some(LimbPair::Hind));
     }
     let leg_count = assign
