@@ -320,7 +320,8 @@ pub fn level_graph(
         .map(|v| v.voxels.iter().map(|&p| surface.centre(p)).collect())
         .collect();
     if let Some(solid) = solid {
-        let interior = super::project::interior_parts(solid, surface, &vertex_of);
+        let interior =
+            super::project::interior_parts(solid, surface, &vertex_of, options.radius_weight);
         for (index, &v) in interior.iter().enumerate() {
             if v != NO_VERTEX && surface.position(index).is_none() {
                 regions[v as usize].push(solid.grid.centre(solid.grid.coords(index)));

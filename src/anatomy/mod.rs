@@ -233,7 +233,8 @@ fn label_in_frame(
             }
         })
         .collect();
-    let interior = project::interior_parts(solid, surface, &voxel_parts);
+    let interior =
+        project::interior_parts(solid, surface, &voxel_parts, options.level.radius_weight);
     let mut mesh_parts = project::mesh_parts(mesh, solid, &interior);
     for p in &mut mesh_parts {
         if *p == NO_PART {

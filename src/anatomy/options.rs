@@ -41,6 +41,13 @@ pub struct LevelOptions {
     /// than this multiple of the inscribed radius from its centroid. Default 1.5 ("a multiple
     /// of 1.5 seems to work fairly well", ch.7.3.2).
     pub linear_ratio: f64,
+    /// How interior voxels (and through them mesh vertices and the marks' reach) are given to
+    /// DMS voxels: the one minimising path length through the interior minus this multiple of
+    /// its inscribed radius (0: nearest centre; 1: nearest sphere surface), in `[0, 1]`.
+    /// Default 0: measured on the reference models, the mean per-vertex agreement of the six
+    /// quadrupeds was 91.8 % at 0, 91.5 % at 0.5 and 91.2 % at 1 (MakeHuman bodies 97.2 %,
+    /// 97.3 %, 97.5 %): the choice barely matters, the simplest rule is kept.
+    pub radius_weight: f64,
 }
 
 impl Default for LevelOptions {
@@ -51,6 +58,7 @@ impl Default for LevelOptions {
             junction_fraction: 0.02,
             extreme_fraction: 0.1,
             linear_ratio: 1.5,
+            radius_weight: 0.0,
         }
     }
 }
@@ -181,6 +189,7 @@ impl LabelOptions {
             ("level.insignificant_fraction", l.insignificant_fraction),
             ("level.junction_fraction", l.junction_fraction),
             ("level.extreme_fraction", l.extreme_fraction),
+            ("level.radius_weight", l.radius_weight),
             ("rules.wing_fraction", self.rules.wing_fraction),
             ("rules.digit_fraction", self.rules.digit_fraction),
             ("rules.digit_start", self.rules.digit_start),

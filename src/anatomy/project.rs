@@ -9,19 +9,40 @@ use std::collections::BinaryHeap;
 /// Marks "no part".
 pub const NO_PART: u32 = u32::MAX;
 
-/// Part of every interior voxel: the part of the DMS voxel nearest to it along paths through
-/// the interior (26-neighbour steps of length 1, sqrt 2, sqrt 3; ties go to the lower voxel
-/// index, so the result is deterministic). Exterior voxels get [`NO_PART`].
-pub fn interior_parts(solid: &Solid, surface: &MedialSurface, voxel_parts: &[u32]) -> Vec<u32> {
+/// Part of every interior voxel: the part of the DMS voxel `c` minimising the path length from
+/// `c` through the interior (26-neighbour steps of length 1, sqrt 2, sqrt 3) minus
+/// `radius_weight` times `c`'s inscribed radius (0: the nearest centre; 1: the nearest sphere
+/// surface, which keeps the trunk's skin beside a limb from going to the limb, whose thin
+/// spheres have centres near the surface). One multi-source
+/// Dijkstra, ties to the lower voxel index, so the result is deterministic. Exterior voxels
+/// get [`NO_PART`].
+pub fn interior_parts(
+    solid: &Solid,
+    surface: &MedialSurface,
+    voxel_parts: &[u32],
+    radius_weight: f64,
+) -> Vec<u32> {
     let grid = solid.grid;
     let mut part = vec![NO_PART; grid.len()];
     let mut cost = vec![f64::INFINITY; grid.len()];
     let mut heap = BinaryHeap::new();
+    // Costs are offset by the largest radius so that they stay non-negative (the heap orders
+    // non-negative floats by their bits).
+    let largest = (0..surface.len())
+        .map(|p| radius_weight * surface.distance(p))
+        .fold(0.0, f64::max);
     for (p, &index) in surface.voxels.iter().enumerate() {
         if voxel_parts[p] != NO_PART && solid.inside[index] {
-            part[index] = voxel_parts[p];
-            cost[index] = 0.0;
-            heap.push(Reverse((0u64, index)));
+            let c = largest - radius_weight * surface.distance(p);
+            if c < cost[index] {
+                part[index] = voxel_parts[p];
+                cost[index] = c;
+            }
+        }
+    }
+    for (p, &index) in surface.voxels.iter().enumerate() {
+        if voxel_parts[p] != NO_PART && solid.inside[index] {
+            heap.push(Reverse((cost[index].to_bits(), index)));
         }
     }
     while let Some(Reverse((key, index))) = heap.pop() {

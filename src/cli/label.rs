@@ -40,6 +40,10 @@ pub struct LabelArgs {
     /// Number of heart-value bins of the level graph (default 20, ch.7.3.1).
     #[arg(long, value_name = "N")]
     pub bins: Option<usize>,
+    /// Interior voxels go to the DMS voxel minimising path length minus this multiple of its
+    /// inscribed radius, in [0, 1] (default 0).
+    #[arg(long, value_name = "F")]
+    pub radius_weight: Option<f64>,
     /// Regenerate the accuracy table over the reference models below this folder
     /// (`<kind>/<model>/mesh.obj` + `rig_*.json`); writes labels.md and labels.json to -o.
     #[arg(long, value_name = "REFDATA", conflicts_with_all = ["mesh", "labels", "ply", "svg"])]
@@ -61,6 +65,9 @@ impl LabelArgs {
         } else {
             Forward::Direction(parse_direction(&self.forward).map_err(anyhow::Error::msg)?)
         };
+        if let Some(w) = self.radius_weight {
+            options.level.radius_weight = w;
+        }
         if let Some(b) = self.bins {
             options.level.bins = b;
         }
