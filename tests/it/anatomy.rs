@@ -362,3 +362,28 @@ fn an_override_relabels_a_section() {
     assert_eq!(fixed.count(Label::Leg), 4);
     assert!(fixed.parts[0].vertex_count > labels.parts[0].vertex_count);
 }
+
+#[test]
+fn flat_paired_protrusions_are_wings() {
+    // A horizontal body along Z, two legs, a head in front and two flat plates sideways.
+    let body = Mesh::capsule(DVec3::ZERO, 0.25, 0.5, 8, 16).transformed(|p| {
+        DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2) * p + DVec3::new(0.0, 1.0, 0.0)
+    });
+    let leg = |x: f64| Mesh::capsule(DVec3::new(x, 0.5, -0.2), 0.08, 0.4, 8, 16);
+    let head = Mesh::uv_sphere(DVec3::new(0.0, 1.3, 0.9), 0.22, 12, 24);
+    let left = Mesh::cuboid(DVec3::new(0.1, 0.96, -0.2), DVec3::new(1.1, 1.04, 0.3));
+    let right = Mesh::cuboid(DVec3::new(-1.1, 0.96, -0.2), DVec3::new(-0.1, 1.04, 0.3));
+    let mesh = merge(&[body, leg(0.12), leg(-0.12), head, left, right]);
+    let labels = label(&mesh, &LabelOptions::default()).unwrap();
+    assert_eq!(
+        labels.count(Label::Wing),
+        2,
+        "{:?} {:?}",
+        parts(&labels),
+        labels.warnings
+    );
+    let l = one(&labels, Label::Wing, Some(Side::L), None);
+    assert!(labels.parts[l].distal.x > 0.5);
+    assert_eq!(labels.count(Label::Leg), 2, "{:?}", parts(&labels));
+    assert_eq!(labels.count(Label::Head), 1, "{:?}", parts(&labels));
+}
