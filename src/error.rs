@@ -21,6 +21,9 @@ pub enum Error {
     /// Building the general control skeleton failed.
     #[error(transparent)]
     General(#[from] crate::general::GeneralError),
+    /// Building the level graph or labelling body parts failed.
+    #[error(transparent)]
+    Anatomy(#[from] crate::anatomy::AnatomyError),
     /// Loading or comparing skeletons failed.
     #[error(transparent)]
     Eval(#[from] crate::eval::EvalError),

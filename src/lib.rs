@@ -41,6 +41,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod anatomy;
 pub mod distance;
 pub mod error;
 pub mod eval;

@@ -7,6 +7,7 @@ mod common;
 mod demo;
 mod eval;
 mod info;
+mod label;
 mod skeleton;
 mod voxelize;
 
@@ -33,6 +34,10 @@ enum Command {
     /// Print statistics of a mesh: vertices, triangles, components, boundary and non-manifold
     /// edges, bounding box, volume.
     Info(info::InfoArgs),
+    /// Label body parts (trunk, head, tail, arms, legs, wings, digits; dissertation ch.7) and
+    /// write labels.json (plus a coloured PLY and an SVG picture on request), or regenerate the
+    /// accuracy table with --table.
+    Label(label::LabelArgs),
     /// Fit the general control skeleton of any figure (dissertation ch.5), skin the mesh to it
     /// and write a skinned .glb (plus JSON/BVH on request).
     Skeleton(skeleton::SkeletonArgs),
@@ -47,6 +52,7 @@ pub fn main() -> ExitCode {
         Command::Demo(args) => demo::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),
+        Command::Label(args) => label::run(args),
         Command::Skeleton(args) => skeleton::run(args),
         Command::Voxelize(args) => voxelize::run(args),
     };

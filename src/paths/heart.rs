@@ -22,6 +22,10 @@ pub struct Heart {
     pub sources: usize,
     /// Whether every voxel of the component was a source (the exact heart).
     pub exact: bool,
+    /// Depth sum of every DMS position over the depth labellings (voxel units; the heart has
+    /// the minimum); `f64::INFINITY` outside the heart's component. Normalised between its
+    /// minimum and maximum it is the *heart value* of the level graph (ch.7.3.1).
+    pub sums: Vec<f64>,
 }
 
 /// The heart of component `component` of `graph`: the voxel of minimum depth sum over depth
@@ -61,6 +65,15 @@ pub fn heart(graph: &DmsGraph, component: u32, options: &PathOptions) -> Heart {
         }
     }
     let depth = path_lengths(graph, &[position]);
+    let mut in_component = vec![false; graph.len()];
+    for &p in &members {
+        in_component[p] = true;
+    }
+    for (p, sum) in sums.iter_mut().enumerate() {
+        if !in_component[p] {
+            *sum = f64::INFINITY;
+        }
+    }
     let mut deepest = position;
     for &p in &members {
         if depth[p] > depth[deepest] {
@@ -74,6 +87,7 @@ pub fn heart(graph: &DmsGraph, component: u32, options: &PathOptions) -> Heart {
         deepest,
         sources: sources.len(),
         exact,
+        sums,
     }
 }
 

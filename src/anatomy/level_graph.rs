@@ -1,0 +1,448 @@
+//! The level graph: strata of the DMS by heart value, one vertex per connected piece of a
+//! stratum, built bottom-up into a tree rooted at the heart (dissertation ch.7.3.1-7.3.2).
+
+use super::{Frame, LevelOptions};
+use crate::medial::MedialSurface;
+use crate::paths::{heart, DmsGraph, PathOptions};
+use crate::voxel::Solid;
+use glam::DVec3;
+use serde::Serialize;
+
+/// Marks "no level-graph vertex" in [`LevelGraph::vertex_of`].
+pub const NO_VERTEX: u32 = u32::MAX;
+
+/// What the marking tests found for a vertex (ch.7.3.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Marks {
+    /// A DMS voxel of the vertex lies in the top `extreme_fraction` of the figure along up.
+    pub up: bool,
+    /// ... in the bottom `extreme_fraction` along up.
+    pub down: bool,
+    /// ... in the front `extreme_fraction` along forward.
+    pub forward: bool,
+    /// ... in the back `extreme_fraction` along forward.
+    pub backward: bool,
+    /// The cross-section is linear (farthest point beyond `linear_ratio` inscribed radii)
+    /// rather than rounded.
+    pub linear: bool,
+}
+
+/// One vertex of the level graph: a connected piece of one heart-value stratum.
+#[derive(Debug, Clone, Serialize)]
+pub struct LevelVertex {
+    /// Heart-value bin (0 holds the heart).
+    pub bin: usize,
+    /// DMS positions (indices into [`MedialSurface::voxels`]) of the piece, ascending.
+    pub voxels: Vec<usize>,
+    /// Centroid of the piece's voxel centres, mesh units and frame.
+    pub centroid: DVec3,
+    /// The vertex nearer the heart this piece joins (`None` for the root).
+    pub parent: Option<usize>,
+    /// Vertices distal to this one that it joined, ascending.
+    pub children: Vec<usize>,
+    /// DMS voxels of this vertex and of every vertex distal to it.
+    pub distal_voxels: usize,
+    /// `distal_voxels` over all DMS voxels of the graph (ch.7.3.2).
+    pub weight: f64,
+    /// Weight below [`LevelOptions::insignificant_fraction`].
+    pub insignificant: bool,
+    /// Merges at least two regions of weight at least [`LevelOptions::junction_fraction`].
+    pub major_junction: bool,
+    /// Direction and cross-section marks.
+    pub marks: Marks,
+    /// Inscribed radius (mesh units) of the DMS voxel of the piece nearest its centroid.
+    pub radius: f64,
+    /// Reach of the vertex's region of the figure (its DMS voxels and, when a solid is given,
+    /// the interior voxels nearest to them): highest and lowest projection on up, highest and
+    /// lowest on forward, mesh units.
+    pub reach: [f64; 4],
+}
+
+/// The level graph of a DMS (ch.7.3.1): a tree whose root holds the heart.
+#[derive(Debug, Clone, Serialize)]
+pub struct LevelGraph {
+    /// DMS position of the heart.
+    pub heart: usize,
+    /// Heart radius, mesh units (path length from the heart to the deepest DMS voxel).
+    pub heart_radius: f64,
+    /// Normalised heart value per DMS position in `[0, 1]`; `NaN` outside the heart's
+    /// connected component (those voxels have no vertex).
+    pub heart_values: Vec<f64>,
+    /// Vertex of each DMS position, [`NO_VERTEX`] outside the heart's component.
+    pub vertex_of: Vec<u32>,
+    /// The vertices, in order of creation (distal before proximal); the last is the root.
+    pub vertices: Vec<LevelVertex>,
+    /// The root (the piece holding the heart).
+    pub root: usize,
+    /// Number of DMS voxels in the graph.
+    pub voxels: usize,
+}
+
+impl LevelGraph {
+    /// Vertices of the subtree rooted at `v` (v first, then depth-first in child order).
+    pub fn subtree(&self, v: usize) -> Vec<usize> {
+        let mut out = Vec::new();
+        let mut stack = vec![v];
+        while let Some(u) = stack.pop() {
+            out.push(u);
+            stack.extend(self.vertices[u].children.iter().rev());
+        }
+        out
+    }
+
+    /// Vertices from `v` up to the root, `v` first.
+    pub fn ancestors(&self, v: usize) -> Vec<usize> {
+        let mut out = vec![v];
+        let mut at = v;
+        while let Some(p) = self.vertices[at].parent {
+            out.push(p);
+            at = p;
+        }
+        out
+    }
+
+    /// The tree path between `a` and `b` (both included).
+    pub fn path(&self, a: usize, b: usize) -> Vec<usize> {
+        let up_a = self.ancestors(a);
+        let up_b = self.ancestors(b);
+        let Some(common) = up_a.iter().copied().find(|v| up_b.contains(v)) else {
+            return Vec::new();
+        };
+        let mut path: Vec<usize> = up_a.iter().copied().take_while(|&v| v != common).collect();
+        path.push(common);
+        let tail: Vec<usize> = up_b.iter().copied().take_while(|&v| v != common).collect();
+        path.extend(tail.into_iter().rev());
+        path
+    }
+}
+
+/// Builds the level graph of `surface` (ch.7.3.1) and marks its vertices (ch.7.3.2).
+///
+/// Phases: the heart and per-voxel depth sums of the largest DMS component
+/// ([`heart`](crate::paths::heart), deterministic sources); heart values normalised to
+/// `[0, 1]` and binned into `options.bins` equal ranges; bins processed from the highest down,
+/// each split into 26-connected pieces (in order of smallest DMS position, the heart's piece
+/// last), each piece a vertex whose children are the current top vertices of the
+/// union-find groups of already processed voxels it touches; distal fractions; insignificant
+/// vertices and major junctions; direction and cross-section marks against `extent_up` and
+/// `extent_forward` (the figure's `(min, max)` projections on `frame.up` / `frame.forward`).
+///
+/// With a `solid`, the direction marks and reaches also count the interior voxels nearest
+/// (through the interior) to each vertex's DMS voxels: thin limb ends whose voxels lie one voxel
+/// from the outside hold no DMS voxel (ch.4.4), so a leg's DMS can stop short of the ground
+/// that its interior reaches.
+pub fn level_graph(
+    surface: &MedialSurface,
+    solid: Option<&Solid>,
+    paths: &PathOptions,
+    options: &LevelOptions,
+    frame: &Frame,
+    extent_up: (f64, f64),
+    extent_forward: (f64, f64),
+) -> LevelGraph {
+    let graph = DmsGraph::new(surface);
+    let n = graph.len();
+    let component = graph.largest_component().unwrap_or(0);
+    let h = heart(&graph, component, paths);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &s in h.sums.iter().filter(|s| s.is_finite()) {
+        lo = lo.min(s);
+        hi = hi.max(s);
+    }
+    let span = hi - lo;
+    let heart_values: Vec<f64> = h
+        .sums
+        .iter()
+        .map(|&s| {
+            if !s.is_finite() {
+                f64::NAN
+            } else if span > 0.0 {
+                (s - lo) / span
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let bins = options.bins;
+    let bin_of = |p: usize| -> Option<usize> {
+        let v = heart_values[p];
+        (!v.is_nan()).then(|| ((v * bins as f64) as usize).min(bins - 1))
+    };
+    let mut by_bin: Vec<Vec<usize>> = vec![Vec::new(); bins];
+    for p in 0..n {
+        if let Some(b) = bin_of(p) {
+            by_bin[b].push(p);
+        }
+    }
+    let mut uf = UnionFind::new(n);
+    let mut top = vec![NO_VERTEX; n]; // per union-find root: current top vertex
+    let mut vertex_of = vec![NO_VERTEX; n];
+    let mut processed = vec![false; n];
+    let mut vertices: Vec<LevelVertex> = Vec::new();
+    let mut piece_of = vec![u32::MAX; n];
+    for b in (0..bins).rev() {
+        // Pieces of this bin.
+        let mut pieces: Vec<Vec<usize>> = Vec::new();
+        for &start in &by_bin[b] {
+            if piece_of[start] != u32::MAX {
+                continue;
+            }
+            let id = pieces.len() as u32;
+            piece_of[start] = id;
+            let mut piece = vec![start];
+            let mut i = 0;
+            while i < piece.len() {
+                let p = piece[i];
+                i += 1;
+                for (q, _) in graph.neighbours(p) {
+                    if piece_of[q] == u32::MAX && bin_of(q) == Some(b) {
+                        piece_of[q] = id;
+                        piece.push(q);
+                    }
+                }
+            }
+            piece.sort_unstable();
+            pieces.push(piece);
+        }
+        if let Some(k) = pieces
+            .iter()
+            .position(|pc| pc.binary_search(&h.position).is_ok())
+        {
+            let heart_piece = pieces.remove(k);
+            pieces.push(heart_piece);
+        }
+        for piece in pieces {
+            let v = vertices.len();
+            let mut children = Vec::new();
+            for &p in &piece {
+                for (q, _) in graph.neighbours(p) {
+                    if processed[q] {
+                        let t = top[uf.find(q)];
+                        if t != NO_VERTEX && !children.contains(&(t as usize)) {
+                            children.push(t as usize);
+                        }
+                    }
+                }
+            }
+            children.sort_unstable();
+            let first = piece[0];
+            for &p in &piece {
+                processed[p] = true;
+                vertex_of[p] = v as u32;
+                uf.union(first, p);
+            }
+            for &c in &children {
+                let r = uf.find(vertices[c].voxels[0]);
+                uf.union(first, r);
+                vertices[c].parent = Some(v);
+            }
+            top[uf.find(first)] = v as u32;
+            let centroid =
+                piece.iter().map(|&p| surface.centre(p)).sum::<DVec3>() / piece.len() as f64;
+            let distal_voxels = piece.len()
+                + children
+                    .iter()
+                    .map(|&c| vertices[c].distal_voxels)
+                    .sum::<usize>();
+            vertices.push(LevelVertex {
+                bin: b,
+                voxels: piece,
+                centroid,
+                parent: None,
+                children,
+                distal_voxels,
+                weight: 0.0,
+                insignificant: false,
+                major_junction: false,
+                marks: Marks::default(),
+                radius: 0.0,
+                reach: [0.0; 4],
+            });
+        }
+    }
+    let total = vertices
+        .iter()
+        .map(|v| v.voxels.len())
+        .sum::<usize>()
+        .max(1);
+    let voxel = surface.grid.voxel_size;
+    let (up_lo, up_hi) = extent_up;
+    let (fw_lo, fw_hi) = extent_forward;
+    let e = options.extreme_fraction;
+    for i in 0..vertices.len() {
+        let weight = vertices[i].distal_voxels as f64 / total as f64;
+        let big = vertices[i]
+            .children
+            .iter()
+            .filter(|&&c| {
+                vertices[c].distal_voxels as f64 / total as f64 >= options.junction_fraction
+            })
+            .count();
+        let v = &mut vertices[i];
+        v.weight = weight;
+        v.insignificant = weight < options.insignificant_fraction;
+        v.major_junction = big >= 2;
+        let mut marks = Marks::default();
+        let (mut nearest, mut nearest_d) = (v.voxels[0], f64::INFINITY);
+        for &p in &v.voxels {
+            let c = surface.centre(p);
+            let u = c.dot(frame.up);
+            let f = c.dot(frame.forward);
+            marks.up |= u >= up_hi - e * (up_hi - up_lo);
+            marks.down |= u <= up_lo + e * (up_hi - up_lo);
+            marks.forward |= f >= fw_hi - e * (fw_hi - fw_lo);
+            marks.backward |= f <= fw_lo + e * (fw_hi - fw_lo);
+            let d = c.distance_squared(v.centroid);
+            if d < nearest_d {
+                (nearest, nearest_d) = (p, d);
+            }
+        }
+        v.radius = surface.distance(nearest) * voxel;
+        // Farthest point from the centroid, then the farthest from that one (ch.7.3.2).
+        let far = |from: DVec3| {
+            v.voxels
+                .iter()
+                .map(|&p| surface.centre(p))
+                .max_by(|a, b| {
+                    a.distance_squared(from)
+                        .total_cmp(&b.distance_squared(from))
+                })
+                .unwrap_or(from)
+        };
+        let a = far(v.centroid);
+        let b = far(a);
+        let reach = a.distance(v.centroid).max(b.distance(v.centroid));
+        marks.linear = reach > options.linear_ratio * v.radius.max(0.5 * voxel);
+        v.marks = marks;
+    }
+    let mut regions: Vec<Vec<DVec3>> = vertices
+        .iter()
+        .map(|v| v.voxels.iter().map(|&p| surface.centre(p)).collect())
+        .collect();
+    if let Some(solid) = solid {
+        let interior =
+            super::project::interior_parts(solid, surface, &vertex_of, options.radius_weight);
+        for (index, &v) in interior.iter().enumerate() {
+            if v != NO_VERTEX && surface.position(index).is_none() {
+                regions[v as usize].push(solid.grid.centre(solid.grid.coords(index)));
+            }
+        }
+    }
+    for (v, region) in vertices.iter_mut().zip(&regions) {
+        let mut reach = [
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+        ];
+        for c in region {
+            let (u, f) = (c.dot(frame.up), c.dot(frame.forward));
+            reach = [
+                reach[0].max(u),
+                reach[1].min(u),
+                reach[2].max(f),
+                reach[3].min(f),
+            ];
+        }
+        v.reach = reach;
+        v.marks.up |= reach[0] >= up_hi - e * (up_hi - up_lo);
+        v.marks.down |= reach[1] <= up_lo + e * (up_hi - up_lo);
+        v.marks.forward |= reach[2] >= fw_hi - e * (fw_hi - fw_lo);
+        v.marks.backward |= reach[3] <= fw_lo + e * (fw_hi - fw_lo);
+    }
+    let root = vertices.len().saturating_sub(1);
+    LevelGraph {
+        heart: h.position,
+        heart_radius: h.radius * voxel,
+        heart_values,
+        vertex_of,
+        vertices,
+        root,
+        voxels: total,
+    }
+}
+
+/// Union-find with path halving and union by index (deterministic).
+struct UnionFind {
+    parent: Vec<u32>,
+}
+
+impl UnionFind {
+    fn new(n: usize) -> Self {
+        Self {
+            parent: (0..n as u32).collect(),
+        }
+    }
+
+    fn find(&mut self, mut x: usize) -> usize {
+        while self.parent[x] as usize != x {
+            let grand = self.parent[self.parent[x] as usize];
+            self.parent[x] = grand;
+            x = grand as usize;
+        }
+        x
+    }
+
+    fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
+            self.parent[hi] = lo as u32;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::paths::testing::surface;
+
+    /// A "T": a stem along y and a bar along x, one voxel thick.
+    fn t_shape() -> MedialSurface {
+        let mut coords: Vec<[usize; 3]> = (1..40).map(|x| [x, 30, 2]).collect();
+        coords.extend((1..30).map(|y| [20, y, 2]));
+        surface([41, 32, 5], &coords, 4)
+    }
+
+    #[test]
+    fn level_graph_of_a_t_is_a_tree_rooted_at_the_heart_with_one_major_junction() {
+        let s = t_shape();
+        let frame = Frame::new(DVec3::Y, DVec3::Z).unwrap();
+        let g = level_graph(
+            &s,
+            None,
+            &PathOptions::default(),
+            &LevelOptions::default(),
+            &frame,
+            (0.0, 32.0),
+            (0.0, 5.0),
+        );
+        // A tree: every vertex but the root has a parent created after it.
+        assert_eq!(g.vertices[g.root].parent, None);
+        for (i, v) in g.vertices.iter().enumerate() {
+            if i != g.root {
+                assert!(v.parent.is_some_and(|p| p > i), "vertex {i}");
+            }
+        }
+        assert_eq!(g.vertices[g.root].distal_voxels, s.len());
+        assert!((g.vertices[g.root].weight - 1.0).abs() < 1e-12);
+        assert!(g.vertices[g.root].voxels.contains(&g.heart));
+        // The three arms of the T meet at one major junction near the crossing.
+        let junctions: Vec<usize> = (0..g.vertices.len())
+            .filter(|&v| g.vertices[v].major_junction)
+            .collect();
+        assert_eq!(junctions.len(), 1, "{junctions:?}");
+        let c = g.vertices[junctions[0]].centroid;
+        assert!(c.distance(DVec3::new(20.5, 30.5, 2.5)) < 6.0, "{c}");
+        // Heart values span [0, 1]; the ends of the bar are in the top bin.
+        let max = g.heart_values.iter().copied().fold(0.0, f64::max);
+        assert_eq!(max, 1.0);
+        // Each vertex's voxels share one bin.
+        for v in &g.vertices {
+            for &p in &v.voxels {
+                let b = ((g.heart_values[p] * 20.0) as usize).min(19);
+                assert_eq!(b, v.bin);
+            }
+        }
+    }
+}

@@ -1,0 +1,261 @@
+//! Body-part labelling (dissertation ch.7): the level graph of a figure's medial surface and
+//! the labels trunk, head, tail, arms, legs, wings and digits.
+//!
+//! - [`level_graph`] (`level_graph.rs`): normalised heart values of the DMS voxels, strata of
+//!   `bins` equal value ranges, one vertex per connected piece of a stratum, built bottom-up into
+//!   a tree rooted at the heart's piece; distal fractions, insignificant vertices, major
+//!   junctions; extreme up/down/forward/backward and linear/rounded cross-section marks
+//!   (ch.7.3.1-7.3.2);
+//! - [`label_graph`] (`rules.rs`): the trunk from the major junctions and its slope
+//!   (human-like/animal-like), legs, wings, tail, head, arms, leftovers (ch.7.3.3);
+//! - [`Overrides`] (`overrides.rs`): a JSON file of user corrections;
+//! - `build.rs`: parts with girdles and digits; `project.rs`: labels per interior voxel and
+//!   per mesh vertex; [`reference_regions`] (`reference.rs`): the body region of each mesh
+//!   vertex from a reference rig, for the accuracy table; `output.rs`: labels.json, PLY, SVG.
+//!
+//! Determinism: the heart comes from deterministic sources and every step is sequential or
+//! ordered by a total key, so labels are identical on any number of threads.
+//!
+//! ```
+//! use skelfit::anatomy::{label, Label, LabelOptions};
+//! use skelfit::mesh::Mesh;
+//!
+//! // A sphere has no trunk: a best effort with a warning, not an error.
+//! let mesh = Mesh::uv_sphere(glam::DVec3::ZERO, 1.0, 16, 32);
+//! let labels = label(&mesh, &LabelOptions::default()).unwrap();
+//! assert_eq!(labels.parts[0].label, Label::Trunk);
+//! assert!(!labels.warnings.is_empty());
+//! ```
+
+mod build;
+mod error;
+mod frame;
+mod level_graph;
+mod options;
+mod output;
+mod overrides;
+mod parts;
+mod project;
+mod reference;
+mod rules;
+
+pub use error::AnatomyError;
+pub use frame::{parse_direction, Frame};
+pub use level_graph::{level_graph, LevelGraph, LevelVertex, Marks, NO_VERTEX};
+pub use options::{Forward, LabelOptions, LevelOptions, RuleOptions};
+pub use output::{labels_json, labels_ply, labels_svg, part_colour};
+pub use overrides::{Overrides, SectionOverride};
+pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
+pub use project::NO_PART;
+pub use reference::{agreement, reference_regions, Agreement, Region};
+pub use rules::{label_graph, Assignment, Draft};
+
+use crate::distance::edt;
+use crate::medial::{dms, MedialSurface};
+use crate::mesh::Mesh;
+use crate::voxel::{voxelize, Solid};
+use glam::DVec3;
+
+/// Labels the body parts of `mesh` (dissertation ch.7): voxelize, distance map, medial
+/// surface, then [`label_pieces`].
+///
+/// # Errors
+/// Invalid options of any stage, a mesh that does not voxelize, an empty medial surface.
+pub fn label(mesh: &Mesh, options: &LabelOptions) -> crate::Result<Labelling> {
+    label_with_overrides(mesh, options, None)
+}
+
+/// [`label`] with a user's corrections applied before parts are built.
+///
+/// # Errors
+/// As [`label`], plus [`AnatomyError::Override`] for an override naming a missing section.
+pub fn label_with_overrides(
+    mesh: &Mesh,
+    options: &LabelOptions,
+    overrides: Option<&Overrides>,
+) -> crate::Result<Labelling> {
+    options.validate()?;
+    options.medial.validate()?;
+    options.paths.validate()?;
+    let solid = voxelize(mesh, &options.voxel)?;
+    let surface = dms(&edt(&solid), &options.medial)?;
+    Ok(label_pieces(mesh, &solid, &surface, options, overrides)?)
+}
+
+/// Labels from already computed pipeline pieces (so that a caller running the voxel stages
+/// anyway does not repeat them): the `solid` `mesh` was voxelized into and its medial
+/// `surface`. Phases: body frame; level graph and marks ([`level_graph`]); labelling rules
+/// ([`label_graph`]); overrides; parts, girdles and digits; labels per DMS voxel, interior
+/// voxel and mesh vertex. With [`Forward::Auto`] the whole labelling runs twice, the second
+/// time facing the guessed forward direction.
+///
+/// # Errors
+/// [`AnatomyError`] for invalid options, pieces on different grids, an empty surface or a bad
+/// override.
+pub fn label_pieces(
+    mesh: &Mesh,
+    solid: &Solid,
+    surface: &MedialSurface,
+    options: &LabelOptions,
+    overrides: Option<&Overrides>,
+) -> Result<Labelling, AnatomyError> {
+    options.validate()?;
+    if surface.grid != solid.grid || solid.inside.len() != solid.grid.len() {
+        return Err(AnatomyError::GridMismatch);
+    }
+    if surface.is_empty() {
+        return Err(AnatomyError::EmptySurface);
+    }
+    match options.forward {
+        Forward::Direction(f) => {
+            let frame = Frame::new(options.up, f)?;
+            label_in_frame(mesh, solid, surface, options, overrides, frame, false)
+        }
+        Forward::Auto => {
+            let up = options.up;
+            let first_guess = if up.normalize_or_zero().dot(DVec3::Z).abs() < 0.9 {
+                DVec3::Z
+            } else {
+                DVec3::Y
+            };
+            let frame = Frame::new(up, first_guess)?;
+            let first = label_in_frame(mesh, solid, surface, options, overrides, frame, true)?;
+            let (guess, note) = guess_forward(&first);
+            let frame = Frame::new(up, guess).unwrap_or(first.frame);
+            let mut second = label_in_frame(mesh, solid, surface, options, overrides, frame, true)?;
+            let f = second.frame.forward;
+            second.warnings.push(format!(
+                "forward guessed as ({:.3}, {:.3}, {:.3}) {note}",
+                f.x, f.y, f.z
+            ));
+            Ok(second)
+        }
+    }
+}
+
+/// Forward from a first labelling: animal-like figures face from the tail (or the hind legs)
+/// to the head; human-like ones face where the feet point (the lowest leg voxels lie in front
+/// of the legs' mean).
+fn guess_forward(l: &Labelling) -> (DVec3, &'static str) {
+    let up = l.frame.up;
+    let flat = |v: DVec3| v - up * v.dot(up);
+    let head = l.part(Label::Head, None).map(|p| p.distal);
+    let trunk_centre = l.parts[0].attachment;
+    match l.figure {
+        FigureClass::HumanLike => {
+            let legs = l.find(Label::Leg);
+            let mut feet = DVec3::ZERO;
+            let mut mean = DVec3::ZERO;
+            for &i in &legs {
+                feet += flat(l.parts[i].distal);
+                let voxels = &l.parts[i].voxels;
+                let c = voxels
+                    .iter()
+                    .map(|&p| l.grid.centre(l.grid.coords(l.dms_voxels[p])))
+                    .sum::<DVec3>()
+                    / voxels.len().max(1) as f64;
+                mean += flat(c);
+            }
+            if let Some(f) = (feet - mean).try_normalize().filter(|_| !legs.is_empty()) {
+                return (f, "from where the feet point");
+            }
+        }
+        _ => {
+            let back = l
+                .part(Label::Tail, None)
+                .map(|p| p.distal)
+                .unwrap_or(trunk_centre);
+            if let Some(f) = head.and_then(|h| flat(h - back).try_normalize()) {
+                return (f, "from the tail (or trunk) towards the head");
+            }
+        }
+    }
+    (
+        l.frame.forward,
+        "(kept the initial direction: no head, tail or feet to go by)",
+    )
+}
+
+#[allow(clippy::too_many_arguments)]
+fn label_in_frame(
+    mesh: &Mesh,
+    solid: &Solid,
+    surface: &MedialSurface,
+    options: &LabelOptions,
+    overrides: Option<&Overrides>,
+    frame: Frame,
+    forward_guessed: bool,
+) -> Result<Labelling, AnatomyError> {
+    let (mut up, mut fw) = (
+        (f64::INFINITY, f64::NEG_INFINITY),
+        (f64::INFINITY, f64::NEG_INFINITY),
+    );
+    for (index, &inside) in solid.inside.iter().enumerate() {
+        if inside {
+            let c = solid.grid.centre(solid.grid.coords(index));
+            let (u, f) = (c.dot(frame.up), c.dot(frame.forward));
+            up = (up.0.min(u), up.1.max(u));
+            fw = (fw.0.min(f), fw.1.max(f));
+        }
+    }
+    let graph = level_graph(
+        surface,
+        Some(solid),
+        &options.paths,
+        &options.level,
+        &frame,
+        up,
+        fw,
+    );
+    let mut draft = label_graph(&graph, surface, &frame, &options.rules);
+    if let Some(o) = overrides {
+        let centroids: Vec<DVec3> = graph.vertices.iter().map(|v| v.centroid).collect();
+        o.apply(&mut draft, &centroids)?;
+    }
+    let mut warnings = surface.warnings.clone();
+    let graph_voxels = graph.voxels;
+    if graph_voxels < surface.len() {
+        warnings.push(format!(
+            "the medial surface has several parts: only the largest ({graph_voxels} of {} voxels) is labelled, the rest takes the labels of the nearest labelled voxels",
+            surface.len()
+        ));
+    }
+    warnings.append(&mut draft.warnings);
+    let (mut parts, vertex_parts) = build::build_parts(&draft, &graph, surface, &options.rules);
+    let voxel_parts: Vec<u32> = graph
+        .vertex_of
+        .iter()
+        .map(|&v| {
+            if v == NO_VERTEX {
+                NO_PART
+            } else {
+                vertex_parts[v as usize]
+            }
+        })
+        .collect();
+    let interior =
+        project::interior_parts(solid, surface, &voxel_parts, options.level.radius_weight);
+    let mut mesh_parts = project::mesh_parts(mesh, solid, &interior);
+    for p in &mut mesh_parts {
+        if *p == NO_PART {
+            *p = 0;
+        }
+        parts[*p as usize].vertex_count += 1;
+    }
+    Ok(Labelling {
+        figure: draft.figure,
+        frame,
+        forward_guessed,
+        trunk_axis: draft.trunk_axis,
+        trunk_angle: draft.trunk_angle,
+        parts,
+        sections: draft.sections,
+        level_graph: graph,
+        vertex_parts,
+        grid: surface.grid,
+        dms_voxels: surface.voxels.clone(),
+        voxel_parts,
+        mesh_parts,
+        warnings,
+    })
+}

@@ -1,0 +1,115 @@
+//! Per-voxel and per-mesh-vertex labels from the labelled DMS voxels.
+
+use crate::medial::MedialSurface;
+use crate::mesh::Mesh;
+use crate::voxel::{Solid, NEIGHBOURS_26};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// Marks "no part".
+pub const NO_PART: u32 = u32::MAX;
+
+/// Part of every interior voxel: the part of the DMS voxel `c` minimising the path length from
+/// `c` through the interior (26-neighbour steps of length 1, sqrt 2, sqrt 3) minus
+/// `radius_weight` times `c`'s inscribed radius (0: the nearest centre; 1: the nearest sphere
+/// surface, which keeps the trunk's skin beside a limb from going to the limb, whose thin
+/// spheres have centres near the surface). One multi-source
+/// Dijkstra, ties to the lower voxel index, so the result is deterministic. Exterior voxels
+/// get [`NO_PART`].
+pub fn interior_parts(
+    solid: &Solid,
+    surface: &MedialSurface,
+    voxel_parts: &[u32],
+    radius_weight: f64,
+) -> Vec<u32> {
+    let grid = solid.grid;
+    let mut part = vec![NO_PART; grid.len()];
+    let mut cost = vec![f64::INFINITY; grid.len()];
+    let mut heap = BinaryHeap::new();
+    // Costs are offset by the largest radius so that they stay non-negative (the heap orders
+    // non-negative floats by their bits).
+    let largest = (0..surface.len())
+        .map(|p| radius_weight * surface.distance(p))
+        .fold(0.0, f64::max);
+    for (p, &index) in surface.voxels.iter().enumerate() {
+        if voxel_parts[p] != NO_PART && solid.inside[index] {
+            let c = largest - radius_weight * surface.distance(p);
+            if c < cost[index] {
+                part[index] = voxel_parts[p];
+                cost[index] = c;
+            }
+        }
+    }
+    for (p, &index) in surface.voxels.iter().enumerate() {
+        if voxel_parts[p] != NO_PART && solid.inside[index] {
+            heap.push(Reverse((cost[index].to_bits(), index)));
+        }
+    }
+    while let Some(Reverse((key, index))) = heap.pop() {
+        if cost[index].to_bits() != key {
+            continue;
+        }
+        let coords = grid.coords(index);
+        for n in NEIGHBOURS_26.iter() {
+            let Some(q) = grid.offset(coords, n.offset) else {
+                continue;
+            };
+            if !solid.inside[q] {
+                continue;
+            }
+            let c = cost[index] + n.distance;
+            if c < cost[q] {
+                cost[q] = c;
+                part[q] = part[index];
+                heap.push(Reverse((c.to_bits(), q)));
+            }
+        }
+    }
+    part
+}
+
+/// Part of every mesh vertex: the part of the labelled voxel whose centre is nearest, searched
+/// in growing cubes around the vertex's voxel (vertices lie on the surface, often in exterior
+/// voxels). [`NO_PART`] only when no voxel of the grid is labelled.
+pub fn mesh_parts(mesh: &Mesh, solid: &Solid, parts: &[u32]) -> Vec<u32> {
+    let grid = solid.grid;
+    let max_radius = grid.dims.iter().copied().max().unwrap_or(0) as i64;
+    mesh.positions
+        .iter()
+        .map(|&x| {
+            let v = grid.to_voxel(x) - glam::DVec3::splat(0.5);
+            let c = [v.x.round() as i64, v.y.round() as i64, v.z.round() as i64];
+            let mut radius = 1i64;
+            while radius <= max_radius {
+                let mut best: Option<(f64, usize)> = None;
+                for dz in -radius..=radius {
+                    for dy in -radius..=radius {
+                        for dx in -radius..=radius {
+                            let q = [c[0] + dx, c[1] + dy, c[2] + dz];
+                            if q.iter()
+                                .zip(grid.dims)
+                                .any(|(&a, d)| a < 0 || a >= d as i64)
+                            {
+                                continue;
+                            }
+                            let coords = [q[0] as usize, q[1] as usize, q[2] as usize];
+                            let index = grid.index(coords);
+                            if parts[index] == NO_PART {
+                                continue;
+                            }
+                            let d = grid.centre(coords).distance_squared(x);
+                            if best.is_none_or(|(bd, bi)| d < bd || (d == bd && index < bi)) {
+                                best = Some((d, index));
+                            }
+                        }
+                    }
+                }
+                if let Some((_, index)) = best {
+                    return parts[index];
+                }
+                radius *= 2;
+            }
+            NO_PART
+        })
+        .collect()
+}

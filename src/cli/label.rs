@@ -1,0 +1,248 @@
+//! `skelfit label MESH -o labels.json [--up +Y] [--forward +Z|auto] [--labels OVERRIDE.json]
+//! [--ply OUT.ply] [--svg OUT.svg]`: body-part labels (dissertation ch.7); and
+//! `skelfit label --table REFDATA -o DIR`: the labelling accuracy table over reference models.
+
+use super::common::{load_mesh, write_file, VoxelArgs};
+use anyhow::{bail, Context};
+use clap::Args;
+use skelfit::anatomy::{
+    agreement, label_with_overrides, labels_json, labels_ply, labels_svg, parse_direction,
+    reference_regions, Forward, Label, LabelOptions, Labelling, LimbPair, Overrides, Side,
+};
+use skelfit::eval::load_skeleton;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `skelfit label`.
+#[derive(Debug, Args)]
+pub struct LabelArgs {
+    /// Mesh file (.obj, .gltf, .glb, .stl, .ply); not with --table.
+    #[arg(required_unless_present = "table")]
+    pub mesh: Option<PathBuf>,
+    /// labels.json to write (with --table: the folder for the table).
+    #[arg(short, long, value_name = "OUT")]
+    pub output: PathBuf,
+    /// Up direction: an axis (+Y, -Z, ...) or a vector x,y,z.
+    #[arg(long, value_name = "DIR", default_value = "+Y")]
+    pub up: String,
+    /// Forward direction: an axis, a vector x,y,z, or `auto` (guessed from head/tail or feet).
+    #[arg(long, value_name = "DIR", default_value = "+Z")]
+    pub forward: String,
+    /// A labels override file (JSON) correcting sections (see ARCHITECTURE.md).
+    #[arg(long, value_name = "OVERRIDE.json")]
+    pub labels: Option<PathBuf>,
+    /// Also write the mesh as PLY with a colour per vertex by body part.
+    #[arg(long, value_name = "OUT.ply")]
+    pub ply: Option<PathBuf>,
+    /// Also write an SVG picture (front, side, top) with the level graph by label.
+    #[arg(long, value_name = "OUT.svg")]
+    pub svg: Option<PathBuf>,
+    /// Number of heart-value bins of the level graph (default 20, ch.7.3.1).
+    #[arg(long, value_name = "N")]
+    pub bins: Option<usize>,
+    /// Major junctions merge regions each holding at least this fraction of the DMS voxels
+    /// (default 0.02, ch.7.3.2).
+    #[arg(long, value_name = "F")]
+    pub junction_fraction: Option<f64>,
+    /// Interior voxels go to the DMS voxel minimising path length minus this multiple of its
+    /// inscribed radius, in [0, 1] (default 0).
+    #[arg(long, value_name = "F")]
+    pub radius_weight: Option<f64>,
+    /// Regenerate the accuracy table over the reference models below this folder
+    /// (`<kind>/<model>/mesh.obj` + `rig_*.json`); writes labels.md and labels.json to -o.
+    #[arg(long, value_name = "REFDATA", conflicts_with_all = ["mesh", "labels", "ply", "svg"])]
+    pub table: Option<PathBuf>,
+    #[command(flatten)]
+    pub voxel: VoxelArgs,
+}
+
+impl LabelArgs {
+    /// Validated options.
+    pub fn options(&self) -> anyhow::Result<LabelOptions> {
+        let mut options = LabelOptions {
+            voxel: self.voxel.options()?,
+            up: parse_direction(&self.up).map_err(anyhow::Error::msg)?,
+            ..Default::default()
+        };
+        options.forward = if self.forward.eq_ignore_ascii_case("auto") {
+            Forward::Auto
+        } else {
+            Forward::Direction(parse_direction(&self.forward).map_err(anyhow::Error::msg)?)
+        };
+        if let Some(j) = self.junction_fraction {
+            options.level.junction_fraction = j;
+        }
+        if let Some(w) = self.radius_weight {
+            options.level.radius_weight = w;
+        }
+        if let Some(b) = self.bins {
+            options.level.bins = b;
+        }
+        options.validate()?;
+        Ok(options)
+    }
+}
+
+/// Runs the command.
+pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
+    let options = args.options()?;
+    if let Some(dir) = &args.table {
+        return table(dir, &args.output, &options);
+    }
+    let Some(mesh_path) = &args.mesh else {
+        bail!("give a MESH or --table REFDATA");
+    };
+    let mesh = load_mesh(mesh_path)?;
+    let overrides = match &args.labels {
+        Some(p) => Some(Overrides::load(p)?),
+        None => None,
+    };
+    let labels = label_with_overrides(&mesh, &options, overrides.as_ref())
+        .with_context(|| format!("labelling {}", mesh_path.display()))?;
+    let json = serde_json::to_string_pretty(&labels_json(&labels))?;
+    write_file(&args.output, json.as_bytes())?;
+    if let Some(p) = &args.ply {
+        write_file(p, labels_ply(&mesh, &labels).as_bytes())?;
+    }
+    if let Some(p) = &args.svg {
+        write_file(p, labels_svg(&mesh, &labels, 320.0).as_bytes())?;
+    }
+    println!("figure          {}", labels.figure.name());
+    println!("parts           {}", summary(&labels));
+    println!("wrote           {}", args.output.display());
+    for p in [&args.ply, &args.svg].into_iter().flatten() {
+        println!("wrote           {}", p.display());
+    }
+    for w in &labels.warnings {
+        eprintln!("skelfit: warning: {w}");
+    }
+    Ok(())
+}
+
+/// Parts as `head, trunk, arm L, arm R, leg L fore, ...`.
+pub fn summary(l: &Labelling) -> String {
+    l.parts
+        .iter()
+        .map(|p| {
+            let mut s = p.label.name().to_string();
+            match p.side {
+                Some(Side::L) => s.push_str(" L"),
+                Some(Side::R) => s.push_str(" R"),
+                None => {}
+            }
+            if p.label == Label::Leg {
+                match p.limb_pair {
+                    Some(LimbPair::Fore) => s.push_str(" fore"),
+                    Some(LimbPair::Hind) => s.push_str(" hind"),
+                    None => {}
+                }
+            }
+            s
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The reference rig of a refdata model: `rig_game_engine.json`, else `rig_gltf.json`, else the
+/// first `rig_*.json` by name.
+fn reference_rig(dir: &Path) -> Option<PathBuf> {
+    for name in ["rig_game_engine.json", "rig_gltf.json"] {
+        if dir.join(name).is_file() {
+            return Some(dir.join(name));
+        }
+    }
+    let mut rigs: Vec<PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("rig_") && n.ends_with(".json"))
+        })
+        .collect();
+    rigs.sort();
+    rigs.into_iter().next()
+}
+
+/// Labels every `<kind>/<model>/mesh.obj` below `refdata`
+/// (kinds humanoid, quadruped, other, robustness) and writes the table of figure class, parts
+/// found and per-vertex agreement.
+fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<()> {
+    let mut rows = Vec::new();
+    let mut md = String::from(
+        "# Body-part labelling accuracy\n\nGenerated by `skelfit label --table ../shared/refdata -o reports/labels` \
+         (default options: voxel size 0.01 of the longest side, 20 bins, +Y up, +Z forward; kinds humanoid, quadruped, other, robustness).\n\n\
+         Agreement: share of mesh vertices whose label maps to the body region of the nearest reference bone \
+         (region rule in `src/anatomy/reference.rs`: trunk, head+neck, tail, fore limb L/R, hind limb L/R, wing; \
+         arms and front legs are fore limbs). Reference rig: `rig_game_engine.json`, else `rig_gltf.json`.\n\n\
+         | model | figure | parts found | heads | arms | legs | tails | agreement % | per region (agreeing/vertices) |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+    );
+    for kind in ["humanoid", "quadruped", "other", "robustness"] {
+        let dir = refdata.join(kind);
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        let mut models: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        models.sort();
+        for model in models {
+            let mesh_path = model.join("mesh.obj");
+            if !mesh_path.is_file() {
+                continue;
+            }
+            let name = format!(
+                "{kind}/{}",
+                model.file_name().unwrap_or_default().to_string_lossy()
+            );
+            eprintln!("labelling {name}");
+            let mesh = load_mesh(&mesh_path)?;
+            let labels = label_with_overrides(&mesh, options, None)
+                .with_context(|| format!("labelling {name}"))?;
+            let mut confusion = Vec::new();
+            let (percent, regions) = match reference_rig(&model) {
+                Some(rig_path) => {
+                    let rig = load_skeleton(&rig_path)
+                        .with_context(|| format!("loading {}", rig_path.display()))?;
+                    let a = agreement(&labels, &reference_regions(&rig, &mesh));
+                    confusion = a.confusion.clone();
+                    let regions: Vec<String> = a
+                        .per_region
+                        .iter()
+                        .map(|(r, n, k)| format!("{r} {k}/{n}"))
+                        .collect();
+                    (Some(a.percent), regions.join(", "))
+                }
+                None => (None, String::new()),
+            };
+            let _ = writeln!(
+                md,
+                "| {name} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                labels.figure.name(),
+                summary(&labels),
+                labels.count(Label::Head),
+                labels.count(Label::Arm),
+                labels.count(Label::Leg),
+                labels.count(Label::Tail),
+                percent.map(|p| format!("{p:.1}")).unwrap_or_default(),
+                regions
+            );
+            rows.push(serde_json::json!({
+                "model": name,
+                "figure": labels.figure.name(),
+                "parts": summary(&labels),
+                "agreement_percent": percent,
+                "per_region": regions,
+                "confusion": confusion,
+                "warnings": labels.warnings,
+            }));
+        }
+    }
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    write_file(&out.join("labels.md"), md.as_bytes())?;
+    write_file(
+        &out.join("labels.json"),
+        serde_json::to_string_pretty(&rows)?.as_bytes(),
+    )?;
+    print!("{md}");
+    Ok(())
+}
