@@ -45,6 +45,7 @@ pub mod distance;
 pub mod error;
 pub mod eval;
 pub mod export;
+pub mod fit;
 pub mod general;
 pub mod medial;
 pub mod mesh;
@@ -54,6 +55,7 @@ pub mod pipeline;
 pub mod report;
 pub mod skeleton;
 pub mod skin;
+pub mod template;
 pub mod voxel;
 
 pub use error::{Error, Result};
