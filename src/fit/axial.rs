@@ -51,9 +51,17 @@ impl AxialFit {
     }
 }
 
-/// Unit component of `v` perpendicular to unit `t` (zero when parallel).
+/// Smallest perpendicular part (relative to `|v|`) that still defines a direction.
+const MIN_PERPENDICULAR: f64 = 1e-6;
+
+/// Unit component of `v` perpendicular to unit `t`; zero when (nearly) parallel.
 pub(crate) fn perpendicular(v: DVec3, t: DVec3) -> DVec3 {
-    (v - t * v.dot(t)).normalize_or_zero()
+    let p = v - t * v.dot(t);
+    if p.length() > MIN_PERPENDICULAR * v.length() {
+        p.normalize()
+    } else {
+        DVec3::ZERO
+    }
 }
 
 #[allow(clippy::too_many_arguments)]

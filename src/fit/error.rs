@@ -120,7 +120,10 @@ impl fmt::Display for FitWarning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::MissingLimb { group, side: None } => {
-                write!(f, "missing limb pair: no {group} found, its joints are left out")
+                write!(
+                    f,
+                    "missing limb pair: no {group} found, its joints are left out"
+                )
             }
             Self::MissingLimb {
                 group,
@@ -142,19 +145,27 @@ impl fmt::Display for FitWarning {
                 "the {} {group} never leaves its girdle sphere: its root is at the path start",
                 side.as_str()
             ),
-            Self::NoLimbs => write!(f, "no limbs found: trunk and root placed by fixed fractions"),
+            Self::NoLimbs => write!(
+                f,
+                "no limbs found: trunk and root placed by fixed fractions"
+            ),
             Self::NoFrontPair => write!(
                 f,
                 "no front limb pair found: the neck/trunk boundary is placed by a fixed fraction"
             ),
-            Self::JawNotInTemplate => write!(f, "a jaw was found but the template has no jaw joint"),
+            Self::JawNotInTemplate => {
+                write!(f, "a jaw was found but the template has no jaw joint")
+            }
             Self::MissingTail => write!(f, "missing tail: the template expects one"),
             Self::ExtraDigits { group, found } => write!(
                 f,
                 "{found} digits on a {group}: more than the template names"
             ),
             Self::MissingCanonical { key } => {
-                write!(f, "canonical joint {key} is missing (its body part was not found)")
+                write!(
+                    f,
+                    "canonical joint {key} is missing (its body part was not found)"
+                )
             }
         }
     }

@@ -62,7 +62,11 @@ pub(crate) fn limb(
     let lateral = frame.left * side.sign();
     let path = smoothed(&input.path, options.limb_smoothing);
     let length = path.length();
-    let ratios = template.ratios.get(&group.ratios).cloned().unwrap_or_default();
+    let ratios = template
+        .ratios
+        .get(&group.ratios)
+        .cloned()
+        .unwrap_or_default();
     let rows = ratios.len();
     let mut chain: Vec<Option<DVec3>> = vec![None; group.chain.len()];
     let mut chain_s: Vec<Option<f64>> = vec![None; group.chain.len()];
@@ -75,9 +79,10 @@ pub(crate) fn limb(
             });
             0.0
         });
-    let girdle = group.girdle_joint.as_ref().map(|_| {
-        sphere.spine + lateral * options.girdle_lateral * sphere.radius
-    });
+    let girdle = group
+        .girdle_joint
+        .as_ref()
+        .map(|_| sphere.spine + lateral * options.girdle_lateral * sphere.radius);
     // Rows segmented along the path outside the sphere (8.2): all rows for human-like
     // placement, all but the humerus/femur for animal-like (that segment comes from the girdle).
     let first_row = match group.placement {
@@ -118,7 +123,14 @@ pub(crate) fn limb(
     if group.placement == Placement::Animal {
         if let Some(elbow) = chain.get(1).copied().flatten() {
             let pivot = girdle.unwrap_or(sphere.spine);
-            chain[0] = Some(interior_root(pivot, elbow, lateral, sphere, group.girdle, options));
+            chain[0] = Some(interior_root(
+                pivot,
+                elbow,
+                lateral,
+                sphere,
+                group.girdle,
+                options,
+            ));
         }
     }
     if group.wing {

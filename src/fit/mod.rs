@@ -142,7 +142,11 @@ pub fn fit_with_probe(
             }
         }
     };
-    let root_t = pairs.iter().map(|p| p.t).reduce(f64::max).unwrap_or(bounds.trunk);
+    let root_t = pairs
+        .iter()
+        .map(|p| p.t)
+        .reduce(f64::max)
+        .unwrap_or(bounds.trunk);
     let axial = axial::axial(
         &original,
         radii,
@@ -248,7 +252,12 @@ fn check(input: &FitInput) -> Result<(), FitError> {
         }
     }
     for l in &input.limbs {
-        let what = format!("the {} {} (pair {})", l.side.as_str(), l.kind.as_str(), l.pair);
+        let what = format!(
+            "the {} {} (pair {})",
+            l.side.as_str(),
+            l.kind.as_str(),
+            l.pair
+        );
         if l.radii.len() != l.path.len() {
             return Err(FitError::RadiiMismatch {
                 what,
@@ -328,8 +337,8 @@ fn pairs<'a>(
     let mut used = vec![false; template.limbs.len()];
     let mut assigned: Vec<Option<usize>> = vec![None; found.len()];
     for (i, (kind, ..)) in found.iter().enumerate() {
-        if let Some(g) = (0..template.limbs.len())
-            .find(|&g| !used[g] && template.limbs[g].kinds.contains(kind))
+        if let Some(g) =
+            (0..template.limbs.len()).find(|&g| !used[g] && template.limbs[g].kinds.contains(kind))
         {
             used[g] = true;
             assigned[i] = Some(g);
@@ -563,7 +572,11 @@ fn assemble(
                 };
                 let mut joint = Joint::new(name, parent, inst.position);
                 joint.deform = tj.deform;
-                joint.dofs = if tj.deform { tj.dofs.clone() } else { Vec::new() };
+                joint.dofs = if tj.deform {
+                    tj.dofs.clone()
+                } else {
+                    Vec::new()
+                };
                 skeleton.joints.push(joint);
                 next.push(inst.next);
                 kind.push(kinds.get(&key).copied().unwrap_or(FrameKind::Limb));
@@ -654,7 +667,10 @@ fn assemble(
         }
     }
     if let Some(trunk) = template.placed("trunk") {
-        let trunk_ids = ids.get(&(trunk.name.clone(), None)).cloned().unwrap_or_default();
+        let trunk_ids = ids
+            .get(&(trunk.name.clone(), None))
+            .cloned()
+            .unwrap_or_default();
         let nearest = |at: f64, skip: Option<usize>| {
             (0..trunk_ids.len())
                 .filter(|&k| Some(k) != skip)

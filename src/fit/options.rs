@@ -103,7 +103,12 @@ impl FitOptions {
         fraction("girdle_inside", self.girdle_inside, 0.0, 1.0)?;
         fraction("wing_shift", self.wing_shift, 0.0, 2.0)?;
         fraction("min_tail", self.min_tail, 0.0, 10.0)?;
-        fraction("fallback_trunk_start", self.fallback_trunk_start, 0.05, 0.95)?;
+        fraction(
+            "fallback_trunk_start",
+            self.fallback_trunk_start,
+            0.05,
+            0.95,
+        )?;
         Ok(())
     }
 }

@@ -237,10 +237,7 @@ fn dofs(p: &mut Problems, path: &str, raw: &[Spanned<RawDof>]) -> Vec<Dof> {
             p.push(
                 &here,
                 &span,
-                format!(
-                    "limits [{}, {}] exceed [-180, 180] degrees",
-                    d.min, d.max
-                ),
+                format!("limits [{}, {}] exceed [-180, 180] degrees", d.min, d.max),
             );
         }
         if let Some(axis) = axis {
@@ -356,7 +353,11 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
                     p.push(&path, &v.span(), format!("min {min} is below {least}"));
                 }
                 if min > max {
-                    p.push(&path, &v.span(), format!("min {min} > max {max}: swap them"));
+                    p.push(
+                        &path,
+                        &v.span(),
+                        format!("min {min} > max {max}: swap them"),
+                    );
                 }
                 CountRange {
                     min: min.max(0) as usize,
@@ -410,6 +411,7 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
         }
         if names.insert(j.name.clone(), k).is_some() {
             p.push(&path, &span, format!("duplicate joint name {:?}", j.name));
+            continue;
         }
         let full: Vec<String> = if j.side {
             vec![format!("{}_L", j.name), format!("{}_R", j.name)]
@@ -430,7 +432,10 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
                 p.push(
                     format!("{path}.place"),
                     &span,
-                    format!("unknown place {place:?}: use one of {}", AXIAL_PLACES.join(", ")),
+                    format!(
+                        "unknown place {place:?}: use one of {}",
+                        AXIAL_PLACES.join(", ")
+                    ),
                 );
             } else if !places.insert(place.clone()) {
                 p.push(
@@ -525,25 +530,25 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
         p.push(
             "joint",
             &(0..0),
-            format!("need exactly one root joint with place = \"root\" and no parent, found {roots}"),
+            format!(
+                "need exactly one root joint with place = \"root\" and no parent, found {roots}"
+            ),
         );
     }
+    // A joint is in a cycle when its own parent chain leads back to it.
     for (k, j) in joints.iter().enumerate() {
-        let mut seen = BTreeSet::new();
-        let mut cur = j;
-        while let Some(parent) = &cur.parent {
-            if !seen.insert(cur.name.as_str()) {
+        let mut current = j.parent.as_deref();
+        for _ in 0..joints.len() {
+            let Some(parent) = current else { break };
+            if parent == j.name {
                 p.push(
                     format!("joint[{k}] ({}).parent", j.name),
                     &spans[&j.name],
-                    "the parent chain forms a cycle",
+                    "the parent chain forms a cycle back to this joint",
                 );
                 break;
             }
-            match by_name.get(parent.as_str()) {
-                Some(next) => cur = next,
-                None => break,
-            }
+            current = by_name.get(parent).and_then(|q| q.parent.as_deref());
         }
     }
     for place in ["root", "trunk", "neck", "head", "head_end"] {
@@ -575,7 +580,11 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
             }
         }
         if l.kinds.is_empty() {
-            p.push(format!("{path}.kinds"), &span, "give at least one limb kind");
+            p.push(
+                format!("{path}.kinds"),
+                &span,
+                "give at least one limb kind",
+            );
         }
         let girdle = match l.girdle.as_str() {
             "pectoral" => Girdle::Pectoral,
@@ -624,7 +633,11 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
                     p.push(
                         format!("{path}.ratios"),
                         &span,
-                        format!("ratio list {:?} has {} rows, Table 8.1 has {RATIO_ROWS}", l.ratios, r.len()),
+                        format!(
+                            "ratio list {:?} has {} rows, Table 8.1 has {RATIO_ROWS}",
+                            l.ratios,
+                            r.len()
+                        ),
                     );
                 }
                 if l.chain.len() != r.len() + 1 {
@@ -708,7 +721,11 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
                 }
             }
         }
-        let first_digit_base_dofs = dofs(p, &format!("{path}.first_digit_base_dofs"), &l.first_digit_base_dofs);
+        let first_digit_base_dofs = dofs(
+            p,
+            &format!("{path}.first_digit_base_dofs"),
+            &l.first_digit_base_dofs,
+        );
         let digit_base_dofs = dofs(p, &format!("{path}.digit_base_dofs"), &l.digit_base_dofs);
         let phalanx_dofs = dofs(p, &format!("{path}.phalanx_dofs"), &l.phalanx_dofs);
         limbs.push(LimbGroup {

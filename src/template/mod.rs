@@ -20,3 +20,6 @@ pub use model::{
     Template, TemplateJoint, VertebraRules, AXIAL_PLACES, BUILTIN_TEMPLATES,
 };
 pub use preset::{apply_preset, Preset, PresetNames};
+
+#[cfg(test)]
+mod tests;

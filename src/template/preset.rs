@@ -64,7 +64,8 @@ impl Preset {
             name: self.file_stem().into(),
             message,
         };
-        let names: PresetNames = serde_json::from_str(self.text()).map_err(|e| bad(e.to_string()))?;
+        let names: PresetNames =
+            serde_json::from_str(self.text()).map_err(|e| bad(e.to_string()))?;
         if let Some((key, _)) = names.joints.iter().find(|(_, v)| v.is_empty()) {
             return Err(bad(format!("canonical key {key:?} lists no names")));
         }

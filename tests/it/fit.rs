@@ -1,0 +1,625 @@
+//! Anatomical fit (dissertation 8.1-8.2) on synthetic geometry: straight and bent polylines
+//! standing in for labelled humanoids and quadrupeds.
+
+use glam::{DMat3, DVec3};
+use skelfit::eval::{detect_preset, CANONICAL_KEYS};
+use skelfit::fit::{
+    fit, fit_with_probe, AxialPath, DigitInput, Fit, FitError, FitInput, FitOptions, FitWarning,
+    LimbInput, Side,
+};
+use skelfit::skeleton::JointId;
+use skelfit::template::{LimbKind, Preset, Template};
+
+/// Points every `step` along the polyline through `corners`.
+fn dense(corners: &[DVec3], step: f64) -> Vec<DVec3> {
+    let mut out = vec![corners[0]];
+    for w in corners.windows(2) {
+        let n = ((w[1] - w[0]).length() / step).ceil().max(1.0) as usize;
+        out.extend((1..=n).map(|k| w[0].lerp(w[1], k as f64 / n as f64)));
+    }
+    out
+}
+
+fn limb(kind: LimbKind, side: Side, pair: usize, attach: DVec3, corners: &[DVec3]) -> LimbInput {
+    let path = dense(corners, 0.01);
+    LimbInput {
+        kind,
+        side,
+        pair,
+        attach,
+        radii: vec![0.04; path.len()],
+        path,
+        digits: Vec::new(),
+    }
+}
+
+/// A 1.75 m humanoid in a T-pose: +Y up, +Z forward, left +X; bent legs with feet forward.
+fn humanoid() -> FitInput {
+    let points = dense(
+        &[DVec3::new(0.0, 1.75, 0.0), DVec3::new(0.0, 0.9, 0.0)],
+        0.01,
+    );
+    let radii = points
+        .iter()
+        .map(|p| {
+            if p.y > 1.5 {
+                0.08
+            } else if p.y > 1.42 {
+                0.05
+            } else {
+                0.13
+            }
+        })
+        .collect();
+    let mut limbs = Vec::new();
+    for side in [Side::Left, Side::Right] {
+        let s = side.sign();
+        let shoulder = DVec3::new(0.0, 1.4, 0.0);
+        limbs.push(limb(
+            LimbKind::Arm,
+            side,
+            0,
+            shoulder,
+            &[shoulder, DVec3::new(s * 0.85, 1.4, 0.0)],
+        ));
+        let hip = DVec3::new(0.0, 0.9, 0.0);
+        limbs.push(limb(
+            LimbKind::Leg,
+            side,
+            0,
+            hip,
+            &[
+                hip,
+                DVec3::new(s * 0.1, 0.9, 0.0),
+                DVec3::new(s * 0.1, 0.06, 0.0),
+                DVec3::new(s * 0.1, 0.02, 0.2),
+            ],
+        ));
+    }
+    FitInput {
+        up: DVec3::Y,
+        forward: DVec3::Z,
+        axial: AxialPath {
+            points,
+            radii,
+            sections: None,
+        },
+        limbs,
+        jaw: None,
+    }
+}
+
+/// A horse-like quadruped facing +Z with a tail.
+fn quadruped() -> FitInput {
+    let points = dense(
+        &[
+            DVec3::new(0.0, 1.0, 1.3),
+            DVec3::new(0.0, 1.1, 0.9),
+            DVec3::new(0.0, 0.85, 0.55),
+            DVec3::new(0.0, 0.85, -0.45),
+            DVec3::new(0.0, 0.5, -1.0),
+        ],
+        0.01,
+    );
+    let radii = points
+        .iter()
+        .map(|p| if p.z > 0.55 || p.z < -0.45 { 0.08 } else { 0.2 })
+        .collect();
+    let mut limbs = Vec::new();
+    for side in [Side::Left, Side::Right] {
+        let s = side.sign();
+        for (kind, z) in [(LimbKind::ForeLeg, 0.45), (LimbKind::HindLeg, -0.35)] {
+            let attach = DVec3::new(0.0, 0.85, z);
+            limbs.push(limb(
+                kind,
+                side,
+                0,
+                attach,
+                &[
+                    attach,
+                    DVec3::new(s * 0.15, 0.8, z),
+                    DVec3::new(s * 0.15, 0.0, z),
+                ],
+            ));
+        }
+    }
+    FitInput {
+        up: DVec3::Y,
+        forward: DVec3::Z,
+        axial: AxialPath {
+            points,
+            radii,
+            sections: None,
+        },
+        limbs,
+        jaw: None,
+    }
+}
+
+fn run(input: &FitInput, template: &str) -> Fit {
+    let t = Template::builtin(template).unwrap();
+    fit(input, &t, &FitOptions::default()).unwrap()
+}
+
+fn pos(f: &Fit, key: &str) -> DVec3 {
+    f.skeleton.joint(f.canonical[key]).position
+}
+
+fn named(f: &Fit, name: &str) -> DVec3 {
+    f.skeleton
+        .joint(
+            f.skeleton
+                .find(name)
+                .unwrap_or_else(|| panic!("no joint {name}")),
+        )
+        .position
+}
+
+/// Arc length along a polyline of the point nearest `p`.
+fn arc(path: &[DVec3], p: DVec3) -> f64 {
+    let mut best = (f64::INFINITY, 0.0);
+    let mut s = 0.0;
+    for w in path.windows(2) {
+        let d = w[1] - w[0];
+        let t = ((p - w[0]).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+        let dist = (w[0] + d * t).distance(p);
+        if dist < best.0 {
+            best = (dist, s + t * d.length());
+        }
+        s += d.length();
+    }
+    best.1
+}
+
+fn length(path: &[DVec3]) -> f64 {
+    path.windows(2).map(|w| w[0].distance(w[1])).sum()
+}
+
+/// Checks that `names` sit at the cumulative fractions of `ratios` along `path` from the first.
+fn assert_table_fractions(f: &Fit, path: &[DVec3], names: &[&str], ratios: &[f64]) {
+    let total: f64 = ratios.iter().sum();
+    let s0 = arc(path, named(f, names[0]));
+    let span = length(path) - s0;
+    let mut acc = 0.0;
+    for (k, name) in names.iter().enumerate().skip(1) {
+        acc += ratios[k - 1];
+        let expected = s0 + span * acc / total;
+        let got = arc(path, named(f, name));
+        assert!(
+            (got - expected).abs() < 0.01 * length(path),
+            "{name}: {got:.4} along the limb, Table 8.1 gives {expected:.4}"
+        );
+    }
+}
+
+fn assert_frames_orthonormal(f: &Fit) {
+    for (k, j) in f.skeleton.joints.iter().enumerate() {
+        let m = DMat3::from_quat(j.frame);
+        let id = m.transpose() * m;
+        assert!(id.abs_diff_eq(DMat3::IDENTITY, 1e-9), "{}", j.name);
+        assert!((m.determinant() - 1.0).abs() < 1e-9, "{}", j.name);
+        // Local z points at a child along the chain when the joint has one away from it.
+        let children = f.skeleton.children(JointId(k));
+        if let Some(c) = children.first() {
+            let d = f.skeleton.joint(*c).position - j.position;
+            if d.length() > 1e-9 && children.len() == 1 {
+                assert!(
+                    m.z_axis.dot(d.normalize()) > 0.999,
+                    "{} z not towards its child",
+                    j.name
+                );
+            }
+        }
+    }
+}
+
+fn assert_left_right(f: &Fit) {
+    for (key, id) in &f.canonical {
+        if let Some(stem) = key.strip_suffix("_L") {
+            let right = f.canonical[&format!("{stem}_R")];
+            assert!(
+                f.skeleton.joint(*id).position.x > f.skeleton.joint(right).position.x,
+                "{key} is not left of its twin"
+            );
+        }
+    }
+}
+
+#[test]
+fn humanoid_has_every_canonical_joint_at_table_8_1_fractions() {
+    let input = humanoid();
+    let f = run(&input, "humanoid");
+    assert!(f.skeleton.validate().is_ok());
+    for key in CANONICAL_KEYS {
+        assert!(
+            f.canonical.contains_key(*key),
+            "missing {key}: {:?}",
+            f.warnings
+        );
+    }
+    assert!(f.warnings.is_empty(), "{:?}", f.warnings);
+    assert_left_right(&f);
+    assert_frames_orthonormal(&f);
+    let arm = &input.limbs[0].path;
+    let t = Template::builtin("humanoid").unwrap();
+    assert_table_fractions(
+        &f,
+        arm,
+        &[
+            "shoulder_L",
+            "elbow_L",
+            "wrist_L",
+            "hand_L",
+            "finger_01_L",
+            "finger_02_L",
+            "finger_03_L",
+            "finger_end_L",
+        ],
+        &t.ratios["human_arm"],
+    );
+    let leg = &input.limbs[1].path;
+    assert_table_fractions(
+        &f,
+        leg,
+        &[
+            "hip_L",
+            "knee_L",
+            "ankle_L",
+            "foot_L",
+            "toe_L",
+            "toe_02_L",
+            "toe_03_L",
+            "toe_end_L",
+        ],
+        &t.ratios["human_leg"],
+    );
+    // Human-like: the shoulder just outside the girdle sphere (radius 0.13 at y = 1.4).
+    assert!(
+        (pos(&f, "shoulder_L").x - 0.13).abs() < 0.01,
+        "{}",
+        pos(&f, "shoulder_L")
+    );
+    // The spine runs behind the centre line (dorsal = -Z) by up to 70 % of the radius.
+    let chest = pos(&f, "chest");
+    assert!(chest.z < -0.05 && chest.z > -0.7 * 0.13 - 1e-9, "{chest}");
+    // Order along the body.
+    let y = |k: &str| pos(&f, k).y;
+    assert!(y("head") > y("neck") && y("neck") > y("chest") && y("chest") > y("spine"));
+    assert!(y("spine") > y("pelvis"));
+    // The root is the pelvis, near the hips.
+    assert_eq!(f.canonical["pelvis"], JointId(0));
+    assert!(f.skeleton.joints[0].parent.is_none());
+    assert!((y("pelvis") - 0.9).abs() < 0.1);
+    // Hinges for knees and elbows.
+    assert_eq!(f.skeleton.joint(f.canonical["knee_L"]).dofs.len(), 1);
+    assert_eq!(f.skeleton.joint(f.canonical["shoulder_L"]).dofs.len(), 3);
+    // Vertebral segments about a third of the head (0.425 m of path ahead of the arms, half head).
+    let spine_count = f
+        .skeleton
+        .joints
+        .iter()
+        .filter(|j| j.name.starts_with("spine_"))
+        .count();
+    assert!((2..=5).contains(&spine_count), "{spine_count}");
+}
+
+#[test]
+fn quadruped_places_elbows_outside_and_shoulders_inside_the_girdle() {
+    let input = quadruped();
+    let f = run(&input, "quadruped");
+    assert!(f.skeleton.validate().is_ok());
+    for key in CANONICAL_KEYS
+        .iter()
+        .copied()
+        .chain(["tail_base", "tail_end"])
+    {
+        assert!(
+            f.canonical.contains_key(key),
+            "missing {key}: {:?}",
+            f.warnings
+        );
+    }
+    assert_left_right(&f);
+    assert_frames_orthonormal(&f);
+    let t = Template::builtin("quadruped").unwrap();
+    // Girdle sphere of the fore pair: the path point at z = 0.45, radius 0.2.
+    let centre = DVec3::new(0.0, 0.85, 0.45);
+    let elbow = pos(&f, "elbow_L");
+    assert!((elbow.distance(centre) - 0.2).abs() < 0.01, "{elbow}");
+    let shoulder = pos(&f, "shoulder_L");
+    assert!(shoulder.distance(centre) < 0.2, "{shoulder}");
+    assert!(
+        shoulder.z > 0.45,
+        "pectoral interior joints shift anteriorly: {shoulder}"
+    );
+    assert!(
+        (shoulder.x - elbow.x).abs() < 0.02,
+        "width preserved: {shoulder} {elbow}"
+    );
+    let hip = pos(&f, "hip_L");
+    assert!(
+        hip.z < -0.35,
+        "pelvic interior joints shift posteriorly: {hip}"
+    );
+    // Table 8.1 animal columns from the elbow/knee, without the humerus/femur row.
+    let fore = &input.limbs[0].path;
+    assert_table_fractions(
+        &f,
+        fore,
+        &[
+            "elbow_L",
+            "wrist_L",
+            "hand_L",
+            "finger_01_L",
+            "finger_02_L",
+            "finger_03_L",
+            "finger_end_L",
+        ],
+        &t.ratios["animal_forelimb"][1..],
+    );
+    let hind = &input.limbs[1].path;
+    assert_table_fractions(
+        &f,
+        hind,
+        &[
+            "knee_L",
+            "ankle_L",
+            "foot_L",
+            "toe_L",
+            "toe_02_L",
+            "toe_03_L",
+            "toe_end_L",
+        ],
+        &t.ratios["animal_hind_limb"][1..],
+    );
+    // Root at the hindmost pair, tail behind it, head in front.
+    let root = pos(&f, "pelvis");
+    assert!((root.z + 0.35).abs() < 0.15, "{root}");
+    assert!(pos(&f, "tail_base").z < root.z && pos(&f, "tail_end").z < -0.9);
+    assert!(pos(&f, "head").z > pos(&f, "neck").z);
+    // The trunk spine sits dorsally: above the path by 70 % of its radius (0.85 + 0.14).
+    assert!(
+        (pos(&f, "chest").y - 0.99).abs() < 0.02,
+        "{}",
+        pos(&f, "chest")
+    );
+    // Scapulae hang from the trunk vertebra nearest them.
+    let scapula = f.skeleton.find("scapula_L").unwrap();
+    let parent = f.skeleton.joint(scapula).parent.unwrap();
+    assert!(f.skeleton.joint(parent).name.starts_with("spine_"));
+}
+
+#[test]
+fn a_missing_limb_gives_a_warning_and_a_skeleton_without_it() {
+    let mut input = humanoid();
+    input
+        .limbs
+        .retain(|l| !(l.kind == LimbKind::Arm && l.side == Side::Left));
+    let f = run(&input, "humanoid");
+    assert!(f.skeleton.validate().is_ok());
+    assert!(f.warnings.contains(&FitWarning::MissingLimb {
+        group: "arm".into(),
+        side: Some(Side::Left),
+    }));
+    let text: Vec<String> = f.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(text.iter().any(|t| t.contains("left arm")), "{text:?}");
+    assert!(f.skeleton.find("shoulder_L").is_none() && f.skeleton.find("clavicle_L").is_none());
+    assert!(!f.canonical.contains_key("elbow_L"));
+    assert!(f.canonical.contains_key("elbow_R"));
+    // No legs at all: still a skeleton, warnings name both legs.
+    input.limbs.retain(|l| l.kind != LimbKind::Leg);
+    let f = run(&input, "humanoid");
+    assert!(f.skeleton.validate().is_ok());
+    assert!(f.warnings.contains(&FitWarning::MissingLimb {
+        group: "leg".into(),
+        side: None,
+    }));
+    // Nothing but the spine.
+    input.limbs.clear();
+    let f = run(&input, "quadruped");
+    assert!(f.warnings.contains(&FitWarning::NoLimbs));
+    assert!(f.canonical.contains_key("head") && f.canonical.contains_key("pelvis"));
+}
+
+#[test]
+fn wrong_template_gives_warnings_not_panics() {
+    let f = run(&quadruped(), "humanoid");
+    assert!(f.skeleton.validate().is_ok());
+    assert!(f
+        .warnings
+        .iter()
+        .any(|w| matches!(w, FitWarning::KindMismatch { .. })));
+    let f = run(&humanoid(), "quadruped");
+    assert!(f.skeleton.validate().is_ok());
+    assert!(f
+        .warnings
+        .iter()
+        .any(|w| matches!(w, FitWarning::KindMismatch { .. })));
+    let f = run(&humanoid(), "winged");
+    assert!(f.skeleton.validate().is_ok());
+    assert!(!f.warnings.is_empty());
+}
+
+#[test]
+fn digits_follow_the_digit_ratios_with_the_thumb_nearest_the_centre() {
+    let mut input = humanoid();
+    for l in input.limbs.iter_mut().filter(|l| l.kind == LimbKind::Arm) {
+        let s = l.side.sign();
+        // The arm path ends at the wrist voxel; five digits spread in z, the thumb ahead and
+        // closer to the body.
+        l.path = dense(
+            &[DVec3::new(0.0, 1.4, 0.0), DVec3::new(s * 0.72, 1.4, 0.0)],
+            0.01,
+        );
+        l.radii = vec![0.04; l.path.len()];
+        let wrist = DVec3::new(s * 0.72, 1.4, 0.0);
+        l.digits = (0..5)
+            .map(|k| {
+                let z = 0.04 - 0.02 * k as f64;
+                let tip = if k == 0 {
+                    DVec3::new(s * 0.78, 1.4, 0.08)
+                } else {
+                    DVec3::new(s * 0.92, 1.4, z)
+                };
+                DigitInput {
+                    path: dense(&[wrist, tip], 0.005),
+                }
+            })
+            .collect();
+        l.digits.rotate_left(2); // input order must not matter
+    }
+    let f = run(&input, "humanoid");
+    assert!(f.skeleton.validate().is_ok());
+    let thumb: Vec<&str> = f
+        .skeleton
+        .joints
+        .iter()
+        .map(|j| j.name.as_str())
+        .filter(|n| n.starts_with("thumb_") && n.ends_with("_L"))
+        .collect();
+    assert_eq!(
+        thumb,
+        ["thumb_01_L", "thumb_02_L", "thumb_03_L", "thumb_end_L"]
+    );
+    assert!(named(&f, "thumb_end_L").z > 0.07);
+    let index = [DVec3::new(0.72, 1.4, 0.0), named(&f, "index_end_L")];
+    assert_table_fractions(
+        &f,
+        &index,
+        &[
+            "index_01_L",
+            "index_02_L",
+            "index_03_L",
+            "index_04_L",
+            "index_end_L",
+        ],
+        &[36.0, 25.0, 15.0, 10.0],
+    );
+    let thumb_path = [DVec3::new(0.72, 1.4, 0.0), DVec3::new(0.78, 1.4, 0.08)];
+    assert_table_fractions(
+        &f,
+        &thumb_path,
+        &["thumb_01_L", "thumb_02_L", "thumb_03_L", "thumb_end_L"],
+        &[36.0, 25.0, 15.0],
+    );
+    // Two DOFs at the thumb's base, a hinge at the others.
+    assert_eq!(
+        f.skeleton
+            .joint(f.skeleton.find("thumb_01_L").unwrap())
+            .dofs
+            .len(),
+        2
+    );
+    assert_eq!(
+        f.skeleton
+            .joint(f.skeleton.find("ring_01_L").unwrap())
+            .dofs
+            .len(),
+        1
+    );
+    // Digit bases hang from the wrist; no separate hand joint.
+    let wrist = f.canonical["wrist_L"];
+    assert_eq!(
+        f.skeleton
+            .joint(f.skeleton.find("index_01_L").unwrap())
+            .parent,
+        Some(wrist)
+    );
+    assert!(f.skeleton.find("hand_L").is_none());
+}
+
+#[test]
+fn naming_presets_rename_and_stay_detectable() {
+    let t = Template::builtin("humanoid").unwrap();
+    for (preset, expected, detected) in [
+        (Preset::Mixamo, "mixamorig:LeftArm", "mixamo"),
+        (Preset::Unity, "LeftUpperArm", "unity_humanoid"),
+        (Preset::MakeHuman, "upperarm_l", "makehuman_game_engine"),
+        (Preset::Anatomical, "shoulder_L", "skelfit"),
+    ] {
+        let options = FitOptions {
+            preset,
+            ..Default::default()
+        };
+        let f = fit(&humanoid(), &t, &options).unwrap();
+        assert_eq!(f.canonical_names()["shoulder_L"], expected);
+        assert!(f.skeleton.validate().is_ok(), "{preset:?}");
+        if preset != Preset::Anatomical {
+            let (p, map) = detect_preset(&f.skeleton).unwrap();
+            assert_eq!(p.preset, detected);
+            assert_eq!(map["elbow_L"], f.canonical["elbow_L"]);
+        }
+    }
+}
+
+#[test]
+fn jaw_wings_and_probe() {
+    let mut input = quadruped();
+    input.jaw = Some(vec![DVec3::new(0.0, 0.95, 1.0), DVec3::new(0.0, 0.9, 1.25)]);
+    let f = run(&input, "quadruped");
+    let jaw = f.skeleton.find("jaw").unwrap();
+    assert_eq!(f.skeleton.joint(jaw).dofs.len(), 1);
+    assert_eq!(
+        f.skeleton.joint(f.skeleton.joint(jaw).parent.unwrap()).name,
+        "head"
+    );
+    // The S-shaped neck: a deeper dorsal ray lifts the head/neck junction.
+    let t = Template::builtin("quadruped").unwrap();
+    let shallow = fit(&input, &t, &FitOptions::default()).unwrap();
+    let probe = |_: DVec3, _: DVec3| Some(0.3);
+    let deep = fit_with_probe(&input, &t, &FitOptions::default(), Some(&probe)).unwrap();
+    assert!(pos(&deep, "head").y > pos(&shallow, "head").y + 0.05);
+    // Wings: joints shifted towards the leading (anterior) edge.
+    let mut bird = quadruped();
+    for l in bird
+        .limbs
+        .iter_mut()
+        .filter(|l| l.kind == LimbKind::ForeLeg)
+    {
+        l.kind = LimbKind::Wing;
+        let s = l.side.sign();
+        l.path = dense(&[l.attach, DVec3::new(s * 1.2, 0.85, 0.45)], 0.01);
+        l.radii = vec![0.05; l.path.len()];
+    }
+    let f = run(&bird, "winged");
+    assert!(f.skeleton.validate().is_ok());
+    let elbow = named(&f, "wing_elbow_L");
+    assert!((elbow.z - (0.45 + 0.8 * 0.05)).abs() < 1e-6, "{elbow}");
+    assert!(!f
+        .warnings
+        .iter()
+        .any(|w| matches!(w, FitWarning::MissingLimb { group, .. } if group == "wing")));
+}
+
+#[test]
+fn bad_input_is_an_error_and_output_is_deterministic() {
+    let t = Template::builtin("humanoid").unwrap();
+    let mut input = humanoid();
+    input.axial.points.truncate(1);
+    input.axial.radii.truncate(1);
+    assert!(matches!(
+        fit(&input, &t, &FitOptions::default()),
+        Err(FitError::ShortAxialPath { points: 1 })
+    ));
+    let mut input = humanoid();
+    input.limbs[0].radii.pop();
+    assert!(matches!(
+        fit(&input, &t, &FitOptions::default()),
+        Err(FitError::RadiiMismatch { .. })
+    ));
+    let mut input = humanoid();
+    input.forward = DVec3::Y;
+    assert!(matches!(
+        fit(&input, &t, &FitOptions::default()),
+        Err(FitError::BadOrientation { .. })
+    ));
+    let mut input = humanoid();
+    input.axial.points[3].x = f64::NAN;
+    assert!(matches!(
+        fit(&input, &t, &FitOptions::default()),
+        Err(FitError::NonFinite { .. })
+    ));
+    let a = run(&quadruped(), "quadruped");
+    let b = run(&quadruped(), "quadruped");
+    assert_eq!(a, b);
+}
