@@ -623,3 +623,36 @@ fn bad_input_is_an_error_and_output_is_deterministic() {
     let b = run(&quadruped(), "quadruped");
     assert_eq!(a, b);
 }
+
+#[test]
+fn given_sections_and_a_one_segment_manus() {
+    let mut input = humanoid();
+    // Head = first 20 cm, neck to 35 cm, trunk to the end.
+    let n = input.axial.points.len();
+    input.axial.sections = Some(skelfit::fit::AxialSections {
+        head_end: 20,
+        neck_end: 35,
+        trunk_end: n - 1,
+    });
+    let text = skelfit::template::BUILTIN_TEMPLATES[0]
+        .1
+        .replace("manus = \"digit\"", "manus = \"segment\"");
+    let t = Template::parse(&text, "segment.toml").unwrap();
+    let f = fit(&input, &t, &FitOptions::default()).unwrap();
+    assert!((pos(&f, "head").y - 1.55).abs() < 0.01, "{}", pos(&f, "head"));
+    // Everything distal to the metatarsal start is one segment: foot, then the tip.
+    assert!(f.skeleton.find("foot_L").is_some() && f.skeleton.find("toe_end_L").is_some());
+    assert!(f.skeleton.find("toe_02_L").is_none());
+    let foot = f.skeleton.find("foot_L").unwrap();
+    let end = f.skeleton.find("toe_end_L").unwrap();
+    assert_eq!(f.skeleton.joint(end).parent, Some(foot));
+    let leg = &input.limbs[1].path;
+    let hip = arc(leg, pos(&f, "hip_L"));
+    let r = &t.ratios["human_leg"];
+    let total: f64 = r.iter().sum();
+    let expected = hip + (length(leg) - hip) * (r[0] + r[1] + r[2]) / total;
+    assert!((arc(leg, named(&f, "foot_L")) - expected).abs() < 0.01 * length(leg));
+    assert!(f
+        .warnings
+        .contains(&FitWarning::MissingCanonical { key: "toe_L".into() }));
+}
