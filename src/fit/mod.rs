@@ -333,6 +333,23 @@ fn pairs<'a>(
         })
         .collect();
     found.sort_by(|a, b| a.2.total_cmp(&b.2).then(a.0.cmp(&b.0)).then(a.1.cmp(&b.1)));
+    // 8.2: with two or more leg pairs the foremost is a fore (pectoral) pair and the others
+    // hind (pelvic) pairs; a single leg pair stays pelvic.
+    let legs = |k: LimbKind| matches!(k, LimbKind::Leg | LimbKind::ForeLeg | LimbKind::HindLeg);
+    let leg_pairs = found.iter().filter(|f| legs(f.0)).count();
+    if leg_pairs >= 2 && !found.iter().any(|f| f.0 == LimbKind::ForeLeg) {
+        let mut first = true;
+        for f in found.iter_mut().filter(|f| legs(f.0)) {
+            if f.0 == LimbKind::Leg {
+                f.0 = if first {
+                    LimbKind::ForeLeg
+                } else {
+                    LimbKind::HindLeg
+                };
+            }
+            first = false;
+        }
+    }
     // Exact kinds first (head → tail), then any free group with the kind's natural girdle.
     let mut used = vec![false; template.limbs.len()];
     let mut assigned: Vec<Option<usize>> = vec![None; found.len()];

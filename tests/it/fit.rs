@@ -639,7 +639,11 @@ fn given_sections_and_a_one_segment_manus() {
         .replace("manus = \"digit\"", "manus = \"segment\"");
     let t = Template::parse(&text, "segment.toml").unwrap();
     let f = fit(&input, &t, &FitOptions::default()).unwrap();
-    assert!((pos(&f, "head").y - 1.55).abs() < 0.01, "{}", pos(&f, "head"));
+    assert!(
+        (pos(&f, "head").y - 1.55).abs() < 0.01,
+        "{}",
+        pos(&f, "head")
+    );
     // Everything distal to the metatarsal start is one segment: foot, then the tip.
     assert!(f.skeleton.find("foot_L").is_some() && f.skeleton.find("toe_end_L").is_some());
     assert!(f.skeleton.find("toe_02_L").is_none());
@@ -652,7 +656,20 @@ fn given_sections_and_a_one_segment_manus() {
     let total: f64 = r.iter().sum();
     let expected = hip + (length(leg) - hip) * (r[0] + r[1] + r[2]) / total;
     assert!((arc(leg, named(&f, "foot_L")) - expected).abs() < 0.01 * length(leg));
-    assert!(f
-        .warnings
-        .contains(&FitWarning::MissingCanonical { key: "toe_L".into() }));
+    assert!(f.warnings.contains(&FitWarning::MissingCanonical {
+        key: "toe_L".into()
+    }));
+}
+
+#[test]
+fn two_unlabelled_leg_pairs_become_fore_and_hind() {
+    let mut input = quadruped();
+    for l in &mut input.limbs {
+        l.kind = LimbKind::Leg;
+        l.pair = usize::from(l.attach.z < 0.0);
+    }
+    let f = run(&input, "quadruped");
+    assert!(f.warnings.is_empty(), "{:?}", f.warnings);
+    assert!(pos(&f, "elbow_L").z > 0.0 && pos(&f, "knee_L").z < 0.0);
+    assert!(f.skeleton.find("scapula_L").is_some());
 }
