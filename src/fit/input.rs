@@ -110,7 +110,9 @@ pub struct FitInput {
 }
 
 /// Casts a ray from inside the figure and returns the distance to the surface along it: used
-/// for the S-shaped cervical replacement of animal-like figures (8.1).
+/// for the S-shaped cervical replacement of animal-like figures (8.1). [`crate::voxel::Solid`]
+/// implements it by marching through its inside mask; closures `Fn(origin, direction) ->
+/// Option<f64>` do too.
 pub trait DorsalProbe {
     /// Distance (mesh units) from `origin` along the unit `direction` to the figure's surface,
     /// `None` when unknown.

@@ -25,6 +25,7 @@ mod input;
 mod limbs;
 mod options;
 mod polyline;
+mod probe;
 
 pub use error::{FitError, FitWarning};
 pub use input::{AxialPath, AxialSections, DigitInput, DorsalProbe, FitInput, LimbInput, Side};

@@ -673,3 +673,35 @@ fn two_unlabelled_leg_pairs_become_fore_and_hind() {
     assert!(pos(&f, "elbow_L").z > 0.0 && pos(&f, "knee_L").z < 0.0);
     assert!(f.skeleton.find("scapula_L").is_some());
 }
+
+#[test]
+fn degenerate_geometry_never_panics() {
+    for template in ["humanoid", "quadruped", "winged"] {
+        // Every point of the spine in one place, limbs of zero length, one-point digits.
+        let mut input = quadruped();
+        let p = input.axial.points[0];
+        input.axial.points.iter_mut().for_each(|q| *q = p);
+        for l in &mut input.limbs {
+            let a = l.path[0];
+            l.path.iter_mut().for_each(|q| *q = a);
+            l.digits = vec![DigitInput { path: vec![a] }, DigitInput { path: vec![] }];
+        }
+        input.jaw = Some(vec![p]);
+        let f = run(&input, template);
+        assert!(f.skeleton.validate().is_ok(), "{template}");
+        assert!(!f.skeleton.is_empty());
+        // Limbs of a single point, radii zero.
+        let mut input = humanoid();
+        input.axial.radii.iter_mut().for_each(|r| *r = 0.0);
+        for l in &mut input.limbs {
+            l.path.truncate(1);
+            l.radii.truncate(1);
+        }
+        let f = run(&input, template);
+        assert!(f.skeleton.validate().is_ok(), "{template}");
+        assert!(f
+            .warnings
+            .iter()
+            .any(|w| matches!(w, FitWarning::MissingLimb { side: Some(_), .. })));
+    }
+}
