@@ -12,6 +12,7 @@
 //!                                   └─medial::dms────▶ MedialSurface
 //!                                   └─paths::path_tree─▶ PathTree (heart, extreme points, chains)
 //!                                   └─general::control_skeleton─▶ GeneralSkeleton (Skeleton + segments)
+//! FitInput (labelled paths) + template::Template ──fit::fit──▶ Fit (anatomical Skeleton + canonical map)
 //! Skeleton + SegmentVoxels ──skin::skin──▶ Skin (per-vertex weights) ──skin::deform──▶ posed Mesh
 //! Mesh + Skeleton + Skin ──export::write_glb / write_bvh / write_skeleton_json──▶ files
 //! ```

@@ -705,3 +705,26 @@ fn degenerate_geometry_never_panics() {
             .any(|w| matches!(w, FitWarning::MissingLimb { side: Some(_), .. })));
     }
 }
+
+#[test]
+fn fitted_skeleton_round_trips_through_json_with_its_canonical_map() {
+    let t = Template::builtin("quadruped").unwrap();
+    let options = FitOptions {
+        preset: Preset::Mixamo,
+        ..Default::default()
+    };
+    let f = fit(&quadruped(), &t, &options).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("fit.json");
+    let json = skelfit::export::JsonOptions {
+        canonical: f.canonical_names(),
+        ..Default::default()
+    };
+    skelfit::export::write_skeleton_json(&path, &f.skeleton, &json).unwrap();
+    let back = skelfit::eval::load_skeleton(&path).unwrap();
+    assert_eq!(back.skeleton.len(), f.skeleton.len());
+    for (key, id) in &f.canonical {
+        assert_eq!(back.canonical[key], *id, "{key}");
+    }
+    assert!(f.canonical_names()["tail_base"].starts_with("mixamorig:"));
+}
