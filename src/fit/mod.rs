@@ -122,7 +122,11 @@ pub fn fit_with_probe(
                 .iter()
                 .filter(|p| template.limbs[p.group].girdle == Girdle::Pectoral)
                 .map(|p| p.t)
-                .reduce(f64::min);
+                .reduce(f64::min)
+                .map(|t| {
+                    let r = original.value_at(radii, t);
+                    (t - options.neck_at_girdle_edge * r).max(0.0)
+                });
             let hind = pairs.iter().map(|p| p.t).reduce(f64::max);
             let (neck, trunk) = match (front, hind) {
                 (Some(f), Some(h)) if h > f => (f, h),

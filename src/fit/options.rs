@@ -44,6 +44,12 @@ pub struct FitOptions {
     /// A tail is built when the path extends past the hindmost pair by at least this many
     /// vertebral segment lengths. Default 0.5.
     pub min_tail: f64,
+    /// The neck/trunk boundary is moved this many girdle-sphere radii anteriorly from the
+    /// foremost pair's midpoint (0 = dissertation 8.1). Beyond the seed: the pectoral girdle
+    /// fills its sphere and the cervical vertebrae start at its anterior edge. Default 1.0
+    /// (measured with reference-joint paths on the six MakeHuman humanoids: neck error mean
+    /// 97 mm at 0, see tests/it/fit.rs `oracle_paths_on_makehuman`).
+    pub neck_at_girdle_edge: f64,
     /// Without a pectoral limb pair, the neck/trunk boundary is put at this fraction of the way
     /// from the head tip to the hindmost pair. Default 0.35 (chosen: a human's head and neck
     /// take about a third of the head-to-crotch path).
@@ -65,6 +71,7 @@ impl Default for FitOptions {
             wing_shift: 0.8,
             limb_smoothing: 2,
             min_tail: 0.5,
+            neck_at_girdle_edge: 1.0,
             fallback_trunk_start: 0.35,
         }
     }
@@ -103,6 +110,7 @@ impl FitOptions {
         fraction("girdle_inside", self.girdle_inside, 0.0, 1.0)?;
         fraction("wing_shift", self.wing_shift, 0.0, 2.0)?;
         fraction("min_tail", self.min_tail, 0.0, 10.0)?;
+        fraction("neck_at_girdle_edge", self.neck_at_girdle_edge, 0.0, 3.0)?;
         fraction(
             "fallback_trunk_start",
             self.fallback_trunk_start,

@@ -728,3 +728,188 @@ fn fitted_skeleton_round_trips_through_json_with_its_canonical_map() {
     }
     assert!(f.canonical_names()["tail_base"].starts_with("mixamorig:"));
 }
+
+/// Oracle measurement (ignored; prints a table): FitInput built from the MakeHuman reference
+/// joints (paths through them, radii from the mesh's distance map), so the errors measure only
+/// the template rules of 8.1-8.2 (girdle sphere, Table 8.1, vertebrae), not labelling.
+/// `SKELFIT_REFDATA=/work/shared/refdata cargo test --release --test it oracle -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn oracle_paths_on_makehuman() {
+    use skelfit::distance::edt;
+    use skelfit::voxel::{voxelize, VoxelOptions};
+    let Some(root) = crate::common::refdata() else {
+        return;
+    };
+    let set = [
+        "pelvis",
+        "neck",
+        "head",
+        "shoulder_L",
+        "shoulder_R",
+        "elbow_L",
+        "elbow_R",
+        "wrist_L",
+        "wrist_R",
+        "hip_L",
+        "hip_R",
+        "knee_L",
+        "knee_R",
+        "ankle_L",
+        "ankle_R",
+    ];
+    let mut all = Vec::new();
+    for model in [
+        "mh_child_10y",
+        "mh_female_thin_short",
+        "mh_female_young_average",
+        "mh_male_heavy_short",
+        "mh_male_young_average",
+        "mh_neutral_default",
+    ] {
+        let dir = root.join("humanoid").join(model);
+        let mesh = skelfit::mesh::load(&dir.join("mesh.obj")).unwrap();
+        let solid = voxelize(&mesh, &VoxelOptions::default()).unwrap();
+        let dist = edt(&solid);
+        let radius = |p: DVec3| {
+            dist.grid.voxel_at(p).map_or(0.0, |c| {
+                dist.distance(dist.grid.index(c)) * dist.grid.voxel_size
+            })
+        };
+        let rig = skelfit::eval::load_skeleton(&dir.join("rig_game_engine.json")).unwrap();
+        let j = |n: &str| rig.skeleton.joint(rig.skeleton.find(n).unwrap()).position;
+        let top = mesh
+            .positions
+            .iter()
+            .copied()
+            .max_by(|a, b| a.y.total_cmp(&b.y))
+            .unwrap();
+        let crotch = (j("thigh_l") + j("thigh_r")) * 0.5;
+        let axial = dense(
+            &[
+                DVec3::new(0.0, top.y, j("head").z),
+                j("head"),
+                j("neck_01"),
+                j("spine_03"),
+                j("spine_02"),
+                j("spine_01"),
+                j("pelvis"),
+                crotch,
+            ],
+            0.005,
+        );
+        let radii = axial.iter().map(|p| radius(*p)).collect();
+        let mut limbs = Vec::new();
+        for (side, s) in [(Side::Left, "l"), (Side::Right, "r")] {
+            let attach = (j("upperarm_l") + j("upperarm_r")) * 0.5;
+            let m3 = j(&format!("middle_03_{s}"));
+            let tip = m3 + (m3 - j(&format!("middle_02_{s}")));
+            let path = dense(
+                &[
+                    attach,
+                    j(&format!("upperarm_{s}")),
+                    j(&format!("lowerarm_{s}")),
+                    j(&format!("hand_{s}")),
+                    j(&format!("middle_01_{s}")),
+                    j(&format!("middle_02_{s}")),
+                    m3,
+                    tip,
+                ],
+                0.005,
+            );
+            let r = path.iter().map(|p| radius(*p)).collect();
+            limbs.push(LimbInput {
+                kind: LimbKind::Arm,
+                side,
+                pair: 0,
+                attach,
+                path,
+                radii: r,
+                digits: Vec::new(),
+            });
+            let ball = j(&format!("ball_{s}"));
+            let toe = mesh
+                .positions
+                .iter()
+                .copied()
+                .filter(|v| (v.x - ball.x).abs() < 0.05 && v.y < 0.04)
+                .max_by(|a, b| a.z.total_cmp(&b.z))
+                .unwrap();
+            let path = dense(
+                &[
+                    crotch,
+                    j(&format!("thigh_{s}")),
+                    j(&format!("calf_{s}")),
+                    j(&format!("foot_{s}")),
+                    ball,
+                    toe,
+                ],
+                0.005,
+            );
+            let r = path.iter().map(|p| radius(*p)).collect();
+            limbs.push(LimbInput {
+                kind: LimbKind::Leg,
+                side,
+                pair: 0,
+                attach: crotch,
+                path,
+                radii: r,
+                digits: Vec::new(),
+            });
+        }
+        let input = FitInput {
+            up: DVec3::Y,
+            forward: DVec3::Z,
+            axial: AxialPath {
+                points: axial,
+                radii,
+                sections: None,
+            },
+            limbs,
+            jaw: None,
+        };
+        let f = run(&input, "humanoid");
+        let mut line = format!("{model:26}");
+        let mut errors = Vec::new();
+        for key in set {
+            let e = pos(&f, key).distance(rig.skeleton.joint(rig.canonical[key]).position) * 1000.0;
+            errors.push(e);
+            line += &format!(
+                " {}={e:.0}",
+                key.trim_end_matches("_L").trim_end_matches("_R")
+            );
+        }
+        let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+        println!("{line}  mean {mean:.1} mm");
+        all.extend(errors);
+    }
+    println!(
+        "overall mean {:.1} mm",
+        all.iter().sum::<f64>() / all.len() as f64
+    );
+}
+
+#[test]
+fn neck_starts_at_the_front_girdle_edge_or_at_the_pair() {
+    let t = Template::builtin("humanoid").unwrap();
+    let input = humanoid();
+    // Default: one girdle radius (0.13) above the arm pair at y = 1.4.
+    let edge = fit(&input, &t, &FitOptions::default()).unwrap();
+    assert!(
+        (pos(&edge, "neck").y - 1.53).abs() < 0.02,
+        "{}",
+        pos(&edge, "neck")
+    );
+    // 0: dissertation 8.1, the trunk ends at the point nearest the pair's midpoint.
+    let options = FitOptions {
+        neck_at_girdle_edge: 0.0,
+        ..Default::default()
+    };
+    let pair = fit(&input, &t, &options).unwrap();
+    assert!(
+        (pos(&pair, "neck").y - 1.4).abs() < 0.02,
+        "{}",
+        pos(&pair, "neck")
+    );
+    assert!(pos(&pair, "head").y < pos(&edge, "head").y);
+}
