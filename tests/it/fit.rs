@@ -913,3 +913,123 @@ fn neck_starts_at_the_front_girdle_edge_or_at_the_pair() {
     );
     assert!(pos(&pair, "head").y < pos(&edge, "head").y);
 }
+
+/// Oracle measurement on the Khronos fox (ignored; prints errors in % of body length): paths
+/// through the reference joints, radii from the mesh's distance map.
+/// `SKELFIT_REFDATA=/work/shared/refdata cargo test --release --test it oracle -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn oracle_paths_on_the_fox() {
+    use skelfit::distance::edt;
+    use skelfit::voxel::{voxelize, VoxelOptions};
+    let Some(dir) = crate::common::model("quadruped/khronos_fox") else {
+        return;
+    };
+    let mesh = skelfit::mesh::load(&dir.join("mesh.obj")).unwrap();
+    let solid = voxelize(&mesh, &VoxelOptions::default()).unwrap();
+    let dist = edt(&solid);
+    let radius = |p: DVec3| {
+        dist.grid.voxel_at(p).map_or(0.0, |c| {
+            dist.distance(dist.grid.index(c)) * dist.grid.voxel_size
+        })
+    };
+    let rig = skelfit::eval::load_skeleton(&dir.join("rig_gltf.json")).unwrap();
+    let key = |k: &str| rig.skeleton.joint(rig.canonical[k]).position;
+    let (zmin, zmax) = mesh
+        .positions
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.z), b.max(p.z))
+        });
+    let nose = mesh
+        .positions
+        .iter()
+        .copied()
+        .max_by(|a, b| a.z.total_cmp(&b.z))
+        .unwrap();
+    let tail_tip = mesh
+        .positions
+        .iter()
+        .copied()
+        .min_by(|a, b| a.z.total_cmp(&b.z))
+        .unwrap();
+    let axial = dense(
+        &[
+            nose,
+            key("head"),
+            key("neck"),
+            key("chest"),
+            key("spine"),
+            key("pelvis"),
+            key("tail_base"),
+            key("tail_mid"),
+            key("tail_end"),
+            tail_tip,
+        ],
+        0.005,
+    );
+    let radii = axial.iter().map(|p| radius(*p)).collect();
+    let mut limbs = Vec::new();
+    for (side, s) in [(Side::Left, "L"), (Side::Right, "R")] {
+        for (kind, a, b, c, d) in [
+            (LimbKind::ForeLeg, "shoulder", "elbow", "wrist", None),
+            (LimbKind::HindLeg, "hip", "knee", "ankle", Some("toe")),
+        ] {
+            let attach = (key(&format!("{a}_L")) + key(&format!("{a}_R"))) * 0.5;
+            let mut corners = vec![
+                attach,
+                key(&format!("{a}_{s}")),
+                key(&format!("{b}_{s}")),
+                key(&format!("{c}_{s}")),
+            ];
+            if let Some(d) = d {
+                corners.push(key(&format!("{d}_{s}")));
+            }
+            let last = *corners.last().unwrap();
+            corners.push(DVec3::new(last.x, 0.0, last.z + 0.03));
+            let path = dense(&corners, 0.005);
+            let r = path.iter().map(|p| radius(*p)).collect();
+            limbs.push(LimbInput {
+                kind,
+                side,
+                pair: 0,
+                attach,
+                path,
+                radii: r,
+                digits: Vec::new(),
+            });
+        }
+    }
+    let input = FitInput {
+        up: DVec3::Y,
+        forward: DVec3::Z,
+        axial: AxialPath {
+            points: axial,
+            radii,
+            sections: None,
+        },
+        limbs,
+        jaw: None,
+    };
+    let f = run(&input, "quadruped");
+    let length = zmax - zmin;
+    let mut errors = Vec::new();
+    let mut line = String::new();
+    for (k, id) in &rig.canonical {
+        if let Some(mine) = f.canonical.get(k) {
+            let e = f
+                .skeleton
+                .joint(*mine)
+                .position
+                .distance(rig.skeleton.joint(*id).position);
+            errors.push(e / length * 100.0);
+            line += &format!(" {k}={:.1}%", e / length * 100.0);
+        }
+    }
+    println!("fox:{line}");
+    println!(
+        "fox mean {:.1}% of body length {length:.3}, warnings {:?}",
+        errors.iter().sum::<f64>() / errors.len() as f64,
+        f.warnings
+    );
+}
