@@ -58,6 +58,16 @@ pub enum FitError {
         /// Allowed range.
         range: String,
     },
+    /// A voxel index is outside the distance map's grid.
+    #[error(
+        "voxel index {index} is outside the grid of {voxels} voxels: use indices of the same grid"
+    )]
+    VoxelOutOfRange {
+        /// The index.
+        index: usize,
+        /// Voxels in the grid.
+        voxels: usize,
+    },
     /// Renaming to the naming preset failed.
     #[error("{0}")]
     Preset(String),

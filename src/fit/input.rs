@@ -124,3 +124,29 @@ impl<F: Fn(DVec3, DVec3) -> Option<f64>> DorsalProbe for F {
         self(origin, direction)
     }
 }
+
+/// Points and distance-map radii of a voxel path (linear grid indices, e.g. a centralised DMS
+/// path from `crate::paths`), in mesh units: the form [`AxialPath`], [`LimbInput`] and
+/// [`DigitInput`] take.
+///
+/// # Errors
+/// [`super::FitError::VoxelOutOfRange`] for an index outside the grid.
+pub fn voxel_path(
+    distance: &crate::distance::DistanceMap,
+    voxels: &[usize],
+) -> Result<(Vec<DVec3>, Vec<f64>), super::FitError> {
+    let grid = &distance.grid;
+    let mut points = Vec::with_capacity(voxels.len());
+    let mut radii = Vec::with_capacity(voxels.len());
+    for &v in voxels {
+        if v >= grid.len() {
+            return Err(super::FitError::VoxelOutOfRange {
+                index: v,
+                voxels: grid.len(),
+            });
+        }
+        points.push(grid.centre(grid.coords(v)));
+        radii.push(distance.distance(v) * grid.voxel_size);
+    }
+    Ok((points, radii))
+}

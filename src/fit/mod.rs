@@ -28,7 +28,9 @@ mod polyline;
 mod probe;
 
 pub use error::{FitError, FitWarning};
-pub use input::{AxialPath, AxialSections, DigitInput, DorsalProbe, FitInput, LimbInput, Side};
+pub use input::{
+    voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, FitInput, LimbInput, Side,
+};
 pub use options::FitOptions;
 
 use crate::skeleton::{Joint, JointId, Skeleton};

@@ -56,4 +56,16 @@ mod tests {
         assert_eq!(solid.depth(DVec3::new(5.0, 5.0, 5.0), DVec3::X), None);
         assert_eq!(solid.depth(centre, DVec3::ZERO), None);
     }
+
+    #[test]
+    fn voxel_paths_carry_radii_in_mesh_units() {
+        let mesh = Mesh::cuboid(DVec3::ZERO, DVec3::new(1.0, 2.0, 1.0));
+        let solid = voxelize(&mesh, &VoxelOptions::default()).unwrap();
+        let dist = crate::distance::edt(&solid);
+        let deepest = dist.deepest();
+        let (points, radii) = super::super::voxel_path(&dist, &[deepest]).unwrap();
+        assert!((radii[0] - 0.5).abs() < 0.03, "{}", radii[0]);
+        assert!((points[0] - DVec3::new(0.5, 1.0, 0.5)).length() < 1.0);
+        assert!(super::super::voxel_path(&dist, &[usize::MAX]).is_err());
+    }
 }
