@@ -33,6 +33,12 @@ pub enum Error {
     /// Writing a rig (glTF, BVH, JSON, OBJ) failed.
     #[error(transparent)]
     Export(#[from] crate::export::ExportError),
+    /// Loading or validating a template, or applying a naming preset, failed.
+    #[error(transparent)]
+    Template(#[from] crate::template::TemplateError),
+    /// Fitting an anatomical skeleton failed.
+    #[error(transparent)]
+    Fit(#[from] crate::fit::FitError),
     /// Writing a report or picture failed.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),

@@ -12,6 +12,7 @@
 //!                                   └─medial::dms────▶ MedialSurface
 //!                                   └─paths::path_tree─▶ PathTree (heart, extreme points, chains)
 //!                                   └─general::control_skeleton─▶ GeneralSkeleton (Skeleton + segments)
+//! FitInput (labelled paths) + template::Template ──fit::fit──▶ Fit (anatomical Skeleton + canonical map)
 //! Skeleton + SegmentVoxels ──skin::skin──▶ Skin (per-vertex weights) ──skin::deform──▶ posed Mesh
 //! Mesh + Skeleton + Skin ──export::write_glb / write_bvh / write_skeleton_json──▶ files
 //! ```
@@ -46,6 +47,7 @@ pub mod distance;
 pub mod error;
 pub mod eval;
 pub mod export;
+pub mod fit;
 pub mod general;
 pub mod medial;
 pub mod mesh;
@@ -55,6 +57,7 @@ pub mod pipeline;
 pub mod report;
 pub mod skeleton;
 pub mod skin;
+pub mod template;
 pub mod voxel;
 
 pub use error::{Error, Result};

@@ -6,6 +6,7 @@ mod common;
 mod distance;
 mod eval;
 mod export;
+mod fit;
 mod general;
 mod medial;
 mod mesh;

@@ -1,0 +1,191 @@
+//! The axial skeleton (dissertation 8.1): dorsal offset of the trunk, the S-shaped cervical
+//! replacement, smoothing, the rigid head segment, vertebral segments and the root joint.
+
+use super::polyline::{smooth, Polyline};
+use super::{BodyFrame, DorsalProbe, FitOptions, FitWarning};
+use crate::template::Template;
+use glam::DVec3;
+
+/// Section boundaries as arc lengths on the original head-to-tail path (head tip = 0).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Bounds {
+    /// Head/neck boundary.
+    pub head: f64,
+    /// Neck/trunk boundary (foremost limb pair).
+    pub neck: f64,
+    /// Trunk/tail boundary (hindmost limb pair).
+    pub trunk: f64,
+}
+
+/// The placed axial joints.
+pub(crate) struct AxialFit {
+    pub root: DVec3,
+    /// Trunk joints from the root towards the neck (exclusive), with their fraction of the way
+    /// root → neck base.
+    pub trunk: Vec<(DVec3, f64)>,
+    /// Neck joints from the neck base towards the head (exclusive).
+    pub neck: Vec<DVec3>,
+    pub head: DVec3,
+    pub head_end: DVec3,
+    /// Tail joints from the root's posterior side to the tip (exclusive).
+    pub tail: Vec<DVec3>,
+    pub tail_end: Option<DVec3>,
+    /// The adjusted, smoothed path (head tip first).
+    pub spine: Polyline,
+    /// Original path parameter (arc length) of each spine sample.
+    pub samples_t: Vec<f64>,
+}
+
+impl AxialFit {
+    /// The point of the adjusted spine at original arc length `t`.
+    pub fn spine_at(&self, t: f64) -> DVec3 {
+        let n = self.samples_t.len();
+        let total = self.samples_t.last().copied().unwrap_or(0.0);
+        if n < 2 || total <= 0.0 {
+            return self.spine.at(0.0);
+        }
+        let x = (t / total).clamp(0.0, 1.0) * (n - 1) as f64;
+        let k = (x.floor() as usize).min(n - 2);
+        let f = x - k as f64;
+        self.spine.points[k].lerp(self.spine.points[k + 1], f)
+    }
+}
+
+/// Smallest perpendicular part (relative to `|v|`) that still defines a direction.
+const MIN_PERPENDICULAR: f64 = 1e-6;
+
+/// Unit component of `v` perpendicular to unit `t`; zero when (nearly) parallel.
+pub(crate) fn perpendicular(v: DVec3, t: DVec3) -> DVec3 {
+    let p = v - t * v.dot(t);
+    if p.length() > MIN_PERPENDICULAR * v.length() {
+        p.normalize()
+    } else {
+        DVec3::ZERO
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn axial(
+    original: &Polyline,
+    radii: &[f64],
+    bounds: Bounds,
+    root_t: f64,
+    template: &Template,
+    options: &FitOptions,
+    frame: &BodyFrame,
+    probe: Option<&dyn DorsalProbe>,
+    warnings: &mut Vec<FitWarning>,
+) -> AxialFit {
+    let length = original.length();
+    let n = options.axial_samples;
+    let step = length / (n - 1) as f64;
+    let rules = &template.axial;
+    // Vertebral segment length from the head on the original path (8.1: about a third).
+    let head_len = bounds.head.max(0.0);
+    let mut seg = rules.vertebra_to_head * head_len;
+    if seg <= 1e-12 * length.max(1.0) {
+        seg = length / 12.0;
+    }
+    let samples_t: Vec<f64> = (0..n).map(|k| length * k as f64 / (n - 1) as f64).collect();
+    let blend = options.offset_blend * seg;
+    let neck_len = (bounds.neck - bounds.head).max(0.0);
+    let window = options.cervical_window * neck_len;
+    let adjusted: Vec<DVec3> = samples_t
+        .iter()
+        .map(|&t| {
+            let o = original.at(t);
+            let r = original.value_at(radii, t);
+            let dorsal = perpendicular(frame.dorsal, original.tangent(t));
+            // Trunk: 70 % of the sphere radius dorsally, fading out over `blend` beyond it.
+            let outside = (bounds.neck - t).max(t - bounds.trunk).max(0.0);
+            let w = if outside <= 0.0 {
+                1.0
+            } else if blend > 0.0 {
+                (1.0 - outside / blend).max(0.0)
+            } else {
+                0.0
+            };
+            let mut offset = w * rules.dorsal_offset * r;
+            // S-shaped neck: offset along a dorsal ray, peaking at the head/neck junction.
+            if rules.cervical_s_curve && window > 0.0 {
+                let c = (1.0 - (t - bounds.head).abs() / window).max(0.0);
+                if c > 0.0 {
+                    let depth = probe.and_then(|p| p.depth(o, dorsal)).unwrap_or(r);
+                    offset = offset.max(c * options.cervical_depth * depth.max(0.0));
+                }
+            }
+            o + dorsal * offset
+        })
+        .collect();
+    let half = if step > 0.0 {
+        (options.axial_smoothing * seg / step).round() as usize
+    } else {
+        0
+    };
+    let spine = Polyline::new(smooth(&adjusted, half));
+    let arc = |t: f64| -> f64 {
+        if length <= 0.0 {
+            return 0.0;
+        }
+        let x = (t / length).clamp(0.0, 1.0) * (n - 1) as f64;
+        let k = (x.floor() as usize).min(n - 2);
+        let f = x - k as f64;
+        spine.cum[k] * (1.0 - f) + spine.cum[k + 1] * f
+    };
+    let h = arc(bounds.head);
+    let nk = arc(bounds.neck);
+    let te = arc(bounds.trunk);
+    let end = spine.length();
+    let mut seg_s = rules.vertebra_to_head * h;
+    if seg_s <= 1e-12 * end.max(1.0) {
+        seg_s = end / 12.0;
+    }
+    let count = |len: f64| (len / seg_s).round().max(0.0) as usize;
+
+    // Neck: n equal segments between the head joint and the neck base.
+    let n_neck = template.vertebrae.neck.clamp(count(nk - h));
+    let neck: Vec<DVec3> = (0..n_neck)
+        .map(|j| spine.at(nk - j as f64 * (nk - h) / n_neck as f64))
+        .collect();
+
+    // Trunk: n equal segments; the root at the middle of the one nearest the hindmost pair.
+    let n_trunk = template.vertebrae.trunk.clamp(count(te - nk)).max(1);
+    let b = |i: usize| nk + i as f64 * (te - nk) / n_trunk as f64;
+    let target = arc(root_t);
+    let r = (0..n_trunk)
+        .min_by(|&i, &j| {
+            let mi = (0.5 * (b(i) + b(i + 1)) - target).abs();
+            let mj = (0.5 * (b(j) + b(j + 1)) - target).abs();
+            mi.total_cmp(&mj).then(j.cmp(&i))
+        })
+        .unwrap_or(n_trunk - 1);
+    let root_arc = 0.5 * (b(r) + b(r + 1));
+    let root = spine.at(root_arc);
+    let span = (root_arc - nk).max(1e-300);
+    let trunk: Vec<(DVec3, f64)> = (1..=r)
+        .rev()
+        .map(|i| (spine.at(b(i)), (root_arc - b(i)) / span))
+        .collect();
+    // Trunk joints behind the root continue into the tail chain.
+    let mut tail: Vec<DVec3> = (r + 1..n_trunk).map(|i| spine.at(b(i))).collect();
+    let tail_len = end - te;
+    let mut tail_end = None;
+    if tail_len >= options.min_tail * seg_s && template.vertebrae.tail.max > 0 {
+        let n_tail = template.vertebrae.tail.clamp(count(tail_len)).max(1);
+        tail.extend((0..n_tail).map(|j| spine.at(te + j as f64 * tail_len / n_tail as f64)));
+        tail_end = Some(spine.at(end));
+    } else if template.vertebrae.tail.min > 0 {
+        warnings.push(FitWarning::MissingTail);
+    }
+    AxialFit {
+        root,
+        trunk,
+        neck,
+        head: spine.at(h),
+        head_end: spine.at(0.0),
+        tail,
+        tail_end,
+        spine,
+        samples_t,
+    }
+}

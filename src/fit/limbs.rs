@@ -1,0 +1,251 @@
+//! The appendicular skeleton (dissertation 8.2): girdle spheres, human-like and animal-like
+//! limb roots, Table 8.1 segmentation, digits, wing shift.
+
+use super::axial::perpendicular;
+use super::polyline::{boundaries, smooth, Polyline};
+use super::{BodyFrame, FitOptions, FitWarning, LimbInput, Side};
+use crate::template::{Girdle, LimbGroup, Manus, Placement, Template};
+use glam::DVec3;
+
+/// A limb pair's girdle sphere and attachment on the spine.
+pub(crate) struct GirdleSphere {
+    /// Centre: the original head-to-tail path point nearest the pair's attach midpoint.
+    pub centre: DVec3,
+    /// Its distance-map radius.
+    pub radius: f64,
+    /// The adjusted (dorsal) spine point there.
+    pub spine: DVec3,
+    /// Unit direction towards the head along the path there.
+    pub anterior: DVec3,
+}
+
+/// One fitted limb.
+pub(crate) struct LimbFit {
+    pub side: Side,
+    /// The pectoral girdle joint (scapula/clavicle), if the group has one.
+    pub girdle: Option<DVec3>,
+    /// One position per template chain joint, `None` where not built.
+    pub chain: Vec<Option<DVec3>>,
+    /// Digits, first digit first: joint positions base → tip (the last is the end marker).
+    pub digits: Vec<Vec<DVec3>>,
+}
+
+impl LimbFit {
+    /// Index of the digit that stands in for chain joints at and beyond the digit row: the
+    /// middle one of the digits after the first (the first when it is alone).
+    pub fn central_digit(&self) -> Option<usize> {
+        match self.digits.len() {
+            0 => None,
+            1 => Some(0),
+            n => Some(1 + (n - 1) / 2),
+        }
+    }
+}
+
+fn smoothed(points: &[DVec3], half: usize) -> Polyline {
+    Polyline::new(smooth(points, half))
+}
+
+/// Fits one side of a limb pair.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn limb(
+    input: &LimbInput,
+    group: &LimbGroup,
+    template: &Template,
+    sphere: &GirdleSphere,
+    frame: &BodyFrame,
+    options: &FitOptions,
+    centre_distance: &dyn Fn(DVec3) -> f64,
+    warnings: &mut Vec<FitWarning>,
+) -> LimbFit {
+    let side = input.side;
+    let lateral = frame.left * side.sign();
+    let path = smoothed(&input.path, options.limb_smoothing);
+    let length = path.length();
+    let ratios = template
+        .ratios
+        .get(&group.ratios)
+        .cloned()
+        .unwrap_or_default();
+    let rows = ratios.len();
+    let mut chain: Vec<Option<DVec3>> = vec![None; group.chain.len()];
+    let mut chain_s: Vec<Option<f64>> = vec![None; group.chain.len()];
+    let s0 = path
+        .sphere_exit(sphere.centre, sphere.radius)
+        .unwrap_or_else(|| {
+            warnings.push(FitWarning::InsideGirdle {
+                group: group.name.clone(),
+                side,
+            });
+            0.0
+        });
+    let girdle = group
+        .girdle_joint
+        .as_ref()
+        .map(|_| sphere.spine + lateral * options.girdle_lateral * sphere.radius);
+    // Rows segmented along the path outside the sphere (8.2): all rows for human-like
+    // placement, all but the humerus/femur for animal-like (that segment comes from the girdle).
+    let first_row = match group.placement {
+        Placement::Human => 0,
+        Placement::Animal => 1,
+    };
+    let has_digits = !input.digits.is_empty();
+    let mut weights: Vec<f64> = match (has_digits, group.manus) {
+        (true, _) => ratios[first_row..group.digit_row.min(rows)].to_vec(),
+        (false, Manus::Digit) => ratios[first_row..].to_vec(),
+        (false, Manus::Segment) => {
+            let mut w = ratios[first_row..group.digit_row.min(rows)].to_vec();
+            w.push(ratios[group.digit_row.min(rows)..].iter().sum());
+            w
+        }
+    };
+    if weights.is_empty() {
+        weights.push(1.0);
+    }
+    let cuts = boundaries(&weights);
+    let span = (length - s0).max(0.0);
+    for (k, c) in cuts.iter().enumerate() {
+        let index = if !has_digits && group.manus == Manus::Segment && k + 1 == cuts.len() {
+            group.chain.len() - 1
+        } else {
+            first_row + k
+        };
+        if index < chain.len() {
+            let s = s0 + c * span;
+            chain[index] = Some(path.at(s));
+            chain_s[index] = Some(s);
+        }
+    }
+    if has_digits && group.digit_row < chain.len() {
+        // The path ends at the wrist/ankle voxel: the digit bases take this joint's place.
+        chain[group.digit_row] = None;
+    }
+    if group.placement == Placement::Animal {
+        if let Some(elbow) = chain.get(1).copied().flatten() {
+            let pivot = girdle.unwrap_or(sphere.spine);
+            chain[0] = Some(interior_root(
+                pivot,
+                elbow,
+                lateral,
+                sphere,
+                group.girdle,
+                options,
+            ));
+        }
+    }
+    if group.wing {
+        for (k, p) in chain.iter_mut().enumerate() {
+            if let (Some(p), Some(s)) = (p.as_mut(), chain_s[k]) {
+                let forward = perpendicular(sphere.anterior, path.tangent(s));
+                let r = path.value_at(&input.radii, s);
+                *p += forward * options.wing_shift * r;
+            }
+        }
+    }
+    let digits = digits(input, group, template, options, centre_distance, warnings);
+    LimbFit {
+        side,
+        girdle,
+        chain,
+        digits,
+    }
+}
+
+/// An animal-like shoulder/hip inside the girdle sphere (8.2): at the elbow's/knee's lateral
+/// distance (preserving the width between the outside joints), equidistant from the girdle
+/// pivot and the elbow/knee (scapula/coxa and humerus/femur of about the same length), shifted
+/// anteriorly for pectoral and posteriorly for pelvic girdles, and kept inside the sphere.
+fn interior_root(
+    pivot: DVec3,
+    elbow: DVec3,
+    lateral: DVec3,
+    sphere: &GirdleSphere,
+    girdle: Girdle,
+    options: &FitOptions,
+) -> DVec3 {
+    let dx = (elbow - pivot).dot(lateral);
+    let base = pivot + lateral * dx; // pivot moved into the elbow's sagittal plane
+    let along = elbow - base;
+    let d = along.length();
+    let (u, a) = if d > 1e-12 {
+        let a = ((d * d - dx * dx) / (2.0 * d)).clamp(0.1 * d, 0.9 * d);
+        (along / d, a)
+    } else {
+        (DVec3::ZERO, 0.0)
+    };
+    let sign = match girdle {
+        Girdle::Pectoral => 1.0,
+        Girdle::Pelvic => -1.0,
+    };
+    let w = perpendicular(sphere.anterior, if u == DVec3::ZERO { lateral } else { u });
+    let w = perpendicular(w, lateral);
+    let mut p = base + u * a + w * sign * options.girdle_offset * sphere.radius;
+    let reach = options.girdle_inside * sphere.radius;
+    let off = p - sphere.centre;
+    if off.length() > reach && off.length() > 0.0 {
+        p = sphere.centre + off * (reach / off.length());
+    }
+    p
+}
+
+/// Digits (8.2): first digit = the one nearest the body's centre line, divided 36:25:15
+/// proximal to distal; the others ordered by distance from it, divided 36:25:15:10.
+fn digits(
+    input: &LimbInput,
+    group: &LimbGroup,
+    template: &Template,
+    options: &FitOptions,
+    centre_distance: &dyn Fn(DVec3) -> f64,
+    warnings: &mut Vec<FitWarning>,
+) -> Vec<Vec<DVec3>> {
+    let paths: Vec<Polyline> = input
+        .digits
+        .iter()
+        .filter(|d| !d.path.is_empty())
+        .map(|d| smoothed(&d.path, options.limb_smoothing))
+        .collect();
+    if paths.is_empty() {
+        return Vec::new();
+    }
+    if paths.len() > group.digits.len() {
+        warnings.push(FitWarning::ExtraDigits {
+            group: group.name.clone(),
+            found: paths.len(),
+        });
+    }
+    let first = (0..paths.len())
+        .min_by(|&i, &j| {
+            let di = centre_distance(paths[i].at(0.5 * paths[i].length()));
+            let dj = centre_distance(paths[j].at(0.5 * paths[j].length()));
+            di.total_cmp(&dj).then(i.cmp(&j))
+        })
+        .unwrap_or(0);
+    let tip = |i: usize| paths[i].at(paths[i].length());
+    let mut order: Vec<usize> = (0..paths.len()).filter(|&i| i != first).collect();
+    order.sort_by(|&i, &j| {
+        tip(i)
+            .distance(tip(first))
+            .total_cmp(&tip(j).distance(tip(first)))
+            .then(i.cmp(&j))
+    });
+    order.insert(0, first);
+    let digit = template.ratios.get("digit").cloned().unwrap_or_default();
+    let first_digit = template
+        .ratios
+        .get("first_digit")
+        .cloned()
+        .unwrap_or_default();
+    order
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| {
+            let w = if k == 0 { &first_digit } else { &digit };
+            let w = if w.is_empty() { vec![1.0] } else { w.clone() };
+            let len = paths[i].length();
+            boundaries(&w)
+                .iter()
+                .map(|c| paths[i].at(c * len))
+                .collect()
+        })
+        .collect()
+}

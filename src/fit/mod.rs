@@ -1,0 +1,764 @@
+//! Anatomical control skeleton from a template (dissertation ch.8, 8.1-8.2) fitted to measured
+//! geometry.
+//!
+//! The fit takes geometry, not labels: a [`FitInput`] holds the centralised head-to-tail path
+//! with its distance-map radii, each limb's path from the body's centre line outwards with its
+//! attach point (the midpoint of the pair's limb-to-limb path), separated digits, and a jaw
+//! branch. Labelling (ch.7) produces it; tests build it from polylines.
+//!
+//! ```text
+//! FitInput ─▶ limb pairs ordered head→tail, matched to template limb groups
+//!          ─▶ sections head / neck / trunk / tail (8.1, from the pairs' midpoints)
+//!          ─▶ axial: dorsal trunk offset, S-shaped neck, smoothing, head segment,
+//!             vertebrae ≈ 1/3 head, root at the hindmost pair
+//!          ─▶ limbs: girdle sphere, human/animal placement, Table 8.1, digits, wings
+//!          ─▶ joints in template order, frames (z distal, y dorsal/normal, x lateral/hinge),
+//!             DOFs and limits, canonical map, naming preset
+//! ```
+//!
+//! Missing parts never panic: a missing limb leaves its joints out with a [`FitWarning`].
+
+mod axial;
+mod error;
+mod frames;
+mod input;
+mod limbs;
+mod options;
+mod polyline;
+mod probe;
+
+pub use error::{FitError, FitWarning};
+pub use input::{
+    voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, FitInput, LimbInput, Side,
+};
+pub use options::FitOptions;
+
+use crate::skeleton::{Joint, JointId, Skeleton};
+use crate::template::{apply_preset, Girdle, LimbKind, Template};
+use axial::{AxialFit, Bounds};
+use frames::FrameKind;
+use glam::DVec3;
+use limbs::{GirdleSphere, LimbFit};
+use polyline::Polyline;
+use std::collections::BTreeMap;
+
+/// The figure's orthonormal body directions.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BodyFrame {
+    pub up: DVec3,
+    pub forward: DVec3,
+    /// The figure's left: `up × forward`.
+    pub left: DVec3,
+    /// The back: −forward for upright figures, up for horizontal ones.
+    pub dorsal: DVec3,
+}
+
+/// A fitted anatomical skeleton.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fit {
+    /// Joints named by the chosen preset, parents first, frames and DOFs set.
+    pub skeleton: Skeleton,
+    /// Canonical anatomical key (`pelvis`, `shoulder_L`, `tail_base`...) → joint.
+    pub canonical: BTreeMap<String, JointId>,
+    /// What could not be built as the template asks.
+    pub warnings: Vec<FitWarning>,
+    /// Name of the template used.
+    pub template: String,
+}
+
+impl Fit {
+    /// Canonical key → joint name (for the JSON skeleton's `canonical` map).
+    pub fn canonical_names(&self) -> BTreeMap<String, String> {
+        self.canonical
+            .iter()
+            .map(|(k, id)| (k.clone(), self.skeleton.joint(*id).name.clone()))
+            .collect()
+    }
+}
+
+/// Fits `template` to `input` without a dorsal ray probe (the S-shaped neck uses the
+/// distance-map radii). See [`fit_with_probe`].
+///
+/// # Errors
+/// As [`fit_with_probe`].
+pub fn fit(input: &FitInput, template: &Template, options: &FitOptions) -> Result<Fit, FitError> {
+    fit_with_probe(input, template, options, None)
+}
+
+/// Fits `template` to `input` (dissertation 8.1-8.2). `probe`, when given, measures dorsal ray
+/// depths for the S-shaped cervical replacement of animal-like figures.
+///
+/// Output positions are in the input's units and frame; joint names follow
+/// [`FitOptions::preset`]; [`Fit::canonical`] maps canonical keys to joints.
+///
+/// # Errors
+/// [`FitError`] for malformed input: fewer than two axial points, radii not matching their
+/// paths, non-finite values, zero or parallel up/forward, bad section indices, options out of
+/// range. Missing body parts are warnings, not errors.
+pub fn fit_with_probe(
+    input: &FitInput,
+    template: &Template,
+    options: &FitOptions,
+    probe: Option<&dyn DorsalProbe>,
+) -> Result<Fit, FitError> {
+    options.validate()?;
+    check(input)?;
+    let frame = body_frame(input, template)?;
+    let mut warnings = Vec::new();
+    let original = Polyline::new(input.axial.points.clone());
+    let radii = &input.axial.radii;
+
+    // Limb pairs, ordered head → tail, matched to template groups.
+    let pairs = pairs(input, template, &original, &mut warnings);
+
+    // Sections (8.1).
+    let length = original.length();
+    let bounds = match input.axial.sections {
+        Some(s) => Bounds {
+            head: original.cum[s.head_end],
+            neck: original.cum[s.neck_end],
+            trunk: original.cum[s.trunk_end],
+        },
+        None => {
+            let front = pairs
+                .iter()
+                .filter(|p| template.limbs[p.group].girdle == Girdle::Pectoral)
+                .map(|p| p.t)
+                .reduce(f64::min)
+                .map(|t| {
+                    let r = original.value_at(radii, t);
+                    (t - options.neck_at_girdle_edge * r).max(0.0)
+                });
+            let hind = pairs.iter().map(|p| p.t).reduce(f64::max);
+            let (neck, trunk) = match (front, hind) {
+                (Some(f), Some(h)) if h > f => (f, h),
+                (Some(f), _) => (f, length),
+                (None, Some(h)) => {
+                    warnings.push(FitWarning::NoFrontPair);
+                    (options.fallback_trunk_start * h, h)
+                }
+                (None, None) => {
+                    warnings.push(FitWarning::NoLimbs);
+                    (options.fallback_trunk_start * length, length)
+                }
+            };
+            Bounds {
+                head: template.sections.head * neck,
+                neck,
+                trunk,
+            }
+        }
+    };
+    let root_t = pairs
+        .iter()
+        .map(|p| p.t)
+        .reduce(f64::max)
+        .unwrap_or(bounds.trunk);
+    let axial = axial::axial(
+        &original,
+        radii,
+        bounds,
+        root_t,
+        template,
+        options,
+        &frame,
+        probe,
+        &mut warnings,
+    );
+
+    // Limbs (8.2).
+    let centre_distance = |p: DVec3| original.at(original.project(p)).distance(p);
+    let mut fitted: Vec<(usize, LimbFit)> = Vec::new();
+    for pair in &pairs {
+        let group = &template.limbs[pair.group];
+        let sphere = GirdleSphere {
+            centre: original.at(pair.t),
+            radius: original.value_at(radii, pair.t),
+            spine: axial.spine_at(pair.t),
+            anterior: -original.tangent(pair.t),
+        };
+        for side in [Side::Left, Side::Right] {
+            match pair.limbs.iter().find(|l| l.side == side) {
+                Some(l) if l.path.len() >= 2 => fitted.push((
+                    pair.group,
+                    limbs::limb(
+                        l,
+                        group,
+                        template,
+                        &sphere,
+                        &frame,
+                        options,
+                        &centre_distance,
+                        &mut warnings,
+                    ),
+                )),
+                _ => warnings.push(FitWarning::MissingLimb {
+                    group: group.name.clone(),
+                    side: Some(side),
+                }),
+            }
+        }
+    }
+    for (g, group) in template.limbs.iter().enumerate() {
+        if !group.optional && !pairs.iter().any(|p| p.group == g) {
+            warnings.push(FitWarning::MissingLimb {
+                group: group.name.clone(),
+                side: None,
+            });
+        }
+    }
+    if input.jaw.is_some() && template.placed("jaw").is_none() {
+        warnings.push(FitWarning::JawNotInTemplate);
+    }
+
+    let (mut skeleton, canonical) =
+        assemble(template, &axial, input, &fitted, &frame, &mut warnings);
+    apply_preset(&mut skeleton, &canonical, options.preset)
+        .map_err(|e| FitError::Preset(e.to_string()))?;
+    Ok(Fit {
+        skeleton,
+        canonical,
+        warnings,
+        template: template.name.clone(),
+    })
+}
+
+fn finite(points: &[DVec3]) -> bool {
+    points.iter().all(|p| p.is_finite())
+}
+
+fn check(input: &FitInput) -> Result<(), FitError> {
+    let a = &input.axial;
+    if a.points.len() < 2 {
+        return Err(FitError::ShortAxialPath {
+            points: a.points.len(),
+        });
+    }
+    let radii_ok = |r: &[f64]| r.iter().all(|x| x.is_finite() && *x >= 0.0);
+    if a.radii.len() != a.points.len() {
+        return Err(FitError::RadiiMismatch {
+            what: "the head-to-tail path".into(),
+            points: a.points.len(),
+            radii: a.radii.len(),
+        });
+    }
+    if !finite(&a.points) || !radii_ok(&a.radii) {
+        return Err(FitError::NonFinite {
+            what: "the head-to-tail path".into(),
+        });
+    }
+    if let Some(s) = a.sections {
+        if !(s.head_end <= s.neck_end && s.neck_end <= s.trunk_end && s.trunk_end < a.points.len())
+        {
+            return Err(FitError::BadSections {
+                head_end: s.head_end,
+                neck_end: s.neck_end,
+                trunk_end: s.trunk_end,
+                points: a.points.len(),
+            });
+        }
+    }
+    for l in &input.limbs {
+        let what = format!(
+            "the {} {} (pair {})",
+            l.side.as_str(),
+            l.kind.as_str(),
+            l.pair
+        );
+        if l.radii.len() != l.path.len() {
+            return Err(FitError::RadiiMismatch {
+                what,
+                points: l.path.len(),
+                radii: l.radii.len(),
+            });
+        }
+        if !finite(&l.path)
+            || !radii_ok(&l.radii)
+            || !l.attach.is_finite()
+            || l.digits.iter().any(|d| !finite(&d.path))
+        {
+            return Err(FitError::NonFinite { what });
+        }
+    }
+    if input.jaw.as_ref().is_some_and(|j| !finite(j)) {
+        return Err(FitError::NonFinite {
+            what: "the jaw path".into(),
+        });
+    }
+    Ok(())
+}
+
+fn body_frame(input: &FitInput, template: &Template) -> Result<BodyFrame, FitError> {
+    let bad = || FitError::BadOrientation {
+        up: input.up.to_array(),
+        forward: input.forward.to_array(),
+    };
+    let up = input.up.try_normalize().ok_or_else(bad)?;
+    let forward = (input.forward - up * input.forward.dot(up))
+        .try_normalize()
+        .ok_or_else(bad)?;
+    let left = up.cross(forward);
+    let dorsal = match template.posture {
+        crate::template::Posture::Upright => -forward,
+        crate::template::Posture::Horizontal => up,
+    };
+    Ok(BodyFrame {
+        up,
+        forward,
+        left,
+        dorsal,
+    })
+}
+
+/// A limb pair matched to a template group.
+struct Pair<'a> {
+    group: usize,
+    /// Arc length on the original path nearest the pair's attach midpoint.
+    t: f64,
+    limbs: Vec<&'a LimbInput>,
+}
+
+fn pairs<'a>(
+    input: &'a FitInput,
+    template: &Template,
+    original: &Polyline,
+    warnings: &mut Vec<FitWarning>,
+) -> Vec<Pair<'a>> {
+    // Group by (kind, pair); keep the first limb per side.
+    let mut groups: BTreeMap<(LimbKind, usize), Vec<&LimbInput>> = BTreeMap::new();
+    for l in &input.limbs {
+        let entry = groups.entry((l.kind, l.pair)).or_default();
+        if !entry.iter().any(|x| x.side == l.side) {
+            entry.push(l);
+        }
+    }
+    let mut found: Vec<(LimbKind, usize, f64, Vec<&LimbInput>)> = groups
+        .into_iter()
+        .map(|((kind, pair), limbs)| {
+            let mid = limbs.iter().map(|l| l.attach).sum::<DVec3>() / limbs.len() as f64;
+            (kind, pair, original.project(mid), limbs)
+        })
+        .collect();
+    found.sort_by(|a, b| a.2.total_cmp(&b.2).then(a.0.cmp(&b.0)).then(a.1.cmp(&b.1)));
+    // 8.2: with two or more leg pairs the foremost is a fore (pectoral) pair and the others
+    // hind (pelvic) pairs; a single leg pair stays pelvic.
+    let legs = |k: LimbKind| matches!(k, LimbKind::Leg | LimbKind::ForeLeg | LimbKind::HindLeg);
+    let leg_pairs = found.iter().filter(|f| legs(f.0)).count();
+    if leg_pairs >= 2 && !found.iter().any(|f| f.0 == LimbKind::ForeLeg) {
+        let mut first = true;
+        for f in found.iter_mut().filter(|f| legs(f.0)) {
+            if f.0 == LimbKind::Leg {
+                f.0 = if first {
+                    LimbKind::ForeLeg
+                } else {
+                    LimbKind::HindLeg
+                };
+            }
+            first = false;
+        }
+    }
+    // Exact kinds first (head → tail), then any free group with the kind's natural girdle.
+    let mut used = vec![false; template.limbs.len()];
+    let mut assigned: Vec<Option<usize>> = vec![None; found.len()];
+    for (i, (kind, ..)) in found.iter().enumerate() {
+        if let Some(g) =
+            (0..template.limbs.len()).find(|&g| !used[g] && template.limbs[g].kinds.contains(kind))
+        {
+            used[g] = true;
+            assigned[i] = Some(g);
+        }
+    }
+    for (i, (kind, ..)) in found.iter().enumerate() {
+        if assigned[i].is_some() {
+            continue;
+        }
+        if let Some(g) = (0..template.limbs.len())
+            .find(|&g| !used[g] && template.limbs[g].girdle == kind.natural_girdle())
+        {
+            used[g] = true;
+            assigned[i] = Some(g);
+            warnings.push(FitWarning::KindMismatch {
+                kind: kind.as_str().into(),
+                group: template.limbs[g].name.clone(),
+            });
+        }
+    }
+    found
+        .into_iter()
+        .zip(assigned)
+        .filter_map(|((kind, pair, t, limbs), g)| match g {
+            Some(group) => Some(Pair { group, t, limbs }),
+            None => {
+                warnings.push(FitWarning::UnusedLimb {
+                    kind: kind.as_str().into(),
+                    pair,
+                });
+                None
+            }
+        })
+        .collect()
+}
+
+/// A joint instance waiting to be added.
+struct Instance {
+    position: DVec3,
+    next: Option<DVec3>,
+}
+
+/// Builds the skeleton in template order and the canonical map.
+fn assemble(
+    template: &Template,
+    axial: &AxialFit,
+    input: &FitInput,
+    limbs: &[(usize, LimbFit)],
+    frame: &BodyFrame,
+    warnings: &mut Vec<FitWarning>,
+) -> (Skeleton, BTreeMap<String, JointId>) {
+    type Key = (String, Option<Side>);
+    let mut instances: BTreeMap<Key, Vec<Instance>> = BTreeMap::new();
+    let mut kinds: BTreeMap<Key, FrameKind> = BTreeMap::new();
+    let mut put = |place: &str, list: Vec<Instance>| {
+        if let Some(j) = template.placed(place) {
+            if !list.is_empty() {
+                instances.insert((j.name.clone(), None), list);
+            }
+        }
+    };
+    // Axial chain order away from the root: root, trunk, neck, head, head_end; tail, tail_end.
+    let mut forward_chain: Vec<DVec3> = vec![axial.root];
+    forward_chain.extend(axial.trunk.iter().map(|(p, _)| *p));
+    forward_chain.extend(axial.neck.iter().copied());
+    forward_chain.push(axial.head);
+    forward_chain.push(axial.head_end);
+    let next_of = |chain: &[DVec3], k: usize| chain.get(k + 1).copied();
+    let nt = axial.trunk.len();
+    let nn = axial.neck.len();
+    put(
+        "root",
+        vec![Instance {
+            position: axial.root,
+            next: next_of(&forward_chain, 0),
+        }],
+    );
+    put(
+        "trunk",
+        (0..nt)
+            .map(|k| Instance {
+                position: forward_chain[1 + k],
+                next: next_of(&forward_chain, 1 + k),
+            })
+            .collect(),
+    );
+    put(
+        "neck",
+        (0..nn)
+            .map(|k| Instance {
+                position: forward_chain[1 + nt + k],
+                next: next_of(&forward_chain, 1 + nt + k),
+            })
+            .collect(),
+    );
+    put(
+        "head",
+        vec![Instance {
+            position: axial.head,
+            next: Some(axial.head_end),
+        }],
+    );
+    put(
+        "head_end",
+        vec![Instance {
+            position: axial.head_end,
+            next: None,
+        }],
+    );
+    let mut tail_chain = axial.tail.clone();
+    tail_chain.extend(axial.tail_end);
+    put(
+        "tail",
+        (0..axial.tail.len())
+            .map(|k| Instance {
+                position: tail_chain[k],
+                next: tail_chain.get(k + 1).copied(),
+            })
+            .collect(),
+    );
+    if let Some(end) = axial.tail_end {
+        put(
+            "tail_end",
+            vec![Instance {
+                position: end,
+                next: None,
+            }],
+        );
+    }
+    if let Some(jaw) = input.jaw.as_ref().filter(|j| j.len() >= 2) {
+        let (a, b) = (jaw[0], jaw[jaw.len() - 1]);
+        put(
+            "jaw",
+            vec![Instance {
+                position: a,
+                next: Some(b),
+            }],
+        );
+        put(
+            "jaw_end",
+            vec![Instance {
+                position: b,
+                next: None,
+            }],
+        );
+    }
+    for j in &template.joints {
+        if j.place.is_some() {
+            kinds.insert((j.name.clone(), None), FrameKind::Axial);
+        }
+    }
+    // Limbs.
+    for (g, fit) in limbs {
+        let group = &template.limbs[*g];
+        let side = Some(fit.side);
+        let emitted: Vec<(usize, DVec3)> = fit
+            .chain
+            .iter()
+            .enumerate()
+            .filter_map(|(k, p)| p.map(|p| (k, p)))
+            .collect();
+        let digit_base = fit.digits.first().and_then(|d| d.first().copied());
+        for (e, &(k, p)) in emitted.iter().enumerate() {
+            let next = emitted.get(e + 1).map(|x| x.1).or(digit_base);
+            instances.insert(
+                (group.chain[k].clone(), side),
+                vec![Instance { position: p, next }],
+            );
+            kinds.insert((group.chain[k].clone(), side), FrameKind::Limb);
+        }
+        if let (Some(name), Some(p)) = (&group.girdle_joint, fit.girdle) {
+            instances.insert(
+                (name.clone(), side),
+                vec![Instance {
+                    position: p,
+                    next: emitted.first().map(|x| x.1),
+                }],
+            );
+            kinds.insert((name.clone(), side), FrameKind::Limb);
+        }
+    }
+
+    // Joints in template order.
+    let repeated = |name: &str| {
+        template
+            .joint(name)
+            .and_then(|j| j.place.as_deref())
+            .is_some_and(|p| matches!(p, "trunk" | "neck" | "tail"))
+    };
+    let girdle_joints: Vec<&str> = template
+        .limbs
+        .iter()
+        .filter_map(|l| l.girdle_joint.as_deref())
+        .collect();
+    let mut skeleton = Skeleton::default();
+    let mut next: Vec<Option<DVec3>> = Vec::new();
+    let mut kind: Vec<FrameKind> = Vec::new();
+    let mut ids: BTreeMap<Key, Vec<JointId>> = BTreeMap::new();
+    for tj in &template.joints {
+        let sides: Vec<Option<Side>> = if tj.side {
+            vec![Some(Side::Left), Some(Side::Right)]
+        } else {
+            vec![None]
+        };
+        for side in sides {
+            let key = (tj.name.clone(), side);
+            let Some(list) = instances.get(&key) else {
+                continue;
+            };
+            let suffix = side.map_or("", |s| s.suffix());
+            let mut built = Vec::new();
+            for (k, inst) in list.iter().enumerate() {
+                let name = if repeated(&tj.name) {
+                    format!("{}_{:02}{suffix}", tj.name, k + 1)
+                } else {
+                    format!("{}{suffix}", tj.name)
+                };
+                let parent = if k > 0 {
+                    built.last().copied()
+                } else {
+                    resolve_parent(
+                        template,
+                        &tj.name,
+                        side,
+                        inst.position,
+                        &ids,
+                        &skeleton,
+                        girdle_joints.contains(&tj.name.as_str()),
+                        &repeated,
+                    )
+                };
+                let mut joint = Joint::new(name, parent, inst.position);
+                joint.deform = tj.deform;
+                joint.dofs = if tj.deform {
+                    tj.dofs.clone()
+                } else {
+                    Vec::new()
+                };
+                skeleton.joints.push(joint);
+                next.push(inst.next);
+                kind.push(kinds.get(&key).copied().unwrap_or(FrameKind::Limb));
+                built.push(JointId(skeleton.joints.len() - 1));
+            }
+            ids.insert(key, built);
+        }
+    }
+    // Digits, after everything else (their parents exist).
+    let mut digit_ids: BTreeMap<(usize, Side), Vec<Vec<JointId>>> = BTreeMap::new();
+    for (g, fit) in limbs {
+        let group = &template.limbs[*g];
+        let parent = (0..group.digit_row.min(group.chain.len()))
+            .rev()
+            .find_map(|k| ids.get(&(group.chain[k].clone(), Some(fit.side))))
+            .and_then(|v| v.first().copied());
+        let mut per_digit = Vec::new();
+        for (d, positions) in fit.digits.iter().enumerate() {
+            let base_name = group
+                .digits
+                .get(d)
+                .cloned()
+                .unwrap_or_else(|| format!("{}_digit_{}", group.name, d + 1));
+            let mut prev = parent;
+            let mut list = Vec::new();
+            for (k, &p) in positions.iter().enumerate() {
+                let last = k + 1 == positions.len();
+                let name = if last {
+                    format!("{base_name}_end{}", fit.side.suffix())
+                } else {
+                    format!("{base_name}_{:02}{}", k + 1, fit.side.suffix())
+                };
+                let mut joint = Joint::new(name, prev, p);
+                joint.deform = !last;
+                joint.dofs = match (last, k, d) {
+                    (true, ..) => Vec::new(),
+                    (false, 0, 0) => group.first_digit_base_dofs.clone(),
+                    (false, 0, _) => group.digit_base_dofs.clone(),
+                    _ => group.phalanx_dofs.clone(),
+                };
+                skeleton.joints.push(joint);
+                next.push(positions.get(k + 1).copied());
+                kind.push(FrameKind::Limb);
+                let id = JointId(skeleton.joints.len() - 1);
+                list.push(id);
+                prev = Some(id);
+            }
+            per_digit.push(list);
+        }
+        digit_ids.insert((*g, fit.side), per_digit);
+    }
+    frames::set_frames(&mut skeleton, &next, &kind, frame);
+
+    // Canonical map.
+    let mut canonical = BTreeMap::new();
+    let mut wanted = Vec::new();
+    for tj in &template.joints {
+        let Some(c) = &tj.canonical else { continue };
+        let sides: Vec<Option<Side>> = if tj.side {
+            vec![Some(Side::Left), Some(Side::Right)]
+        } else {
+            vec![None]
+        };
+        for side in sides {
+            let key = format!("{c}{}", side.map_or("", |s| s.suffix()));
+            wanted.push(key.clone());
+            let id = ids
+                .get(&(tj.name.clone(), side))
+                .and_then(|v| v.first().copied())
+                .or_else(|| {
+                    // A chain joint replaced by digits: the central digit's joint at that row.
+                    let side = side?;
+                    let (g, group) = template
+                        .limbs
+                        .iter()
+                        .enumerate()
+                        .find(|(_, l)| l.chain.contains(&tj.name))?;
+                    let row = group.chain.iter().position(|n| n == &tj.name)?;
+                    let fit = limbs.iter().find(|(lg, f)| *lg == g && f.side == side)?;
+                    let digits = digit_ids.get(&(g, side))?;
+                    let digit = digits.get(fit.1.central_digit()?)?;
+                    let k = row.checked_sub(group.digit_row)?;
+                    digit.get(k.min(digit.len().saturating_sub(2))).copied()
+                });
+            if let Some(id) = id {
+                canonical.insert(key, id);
+            }
+        }
+    }
+    if let Some(trunk) = template.placed("trunk") {
+        let trunk_ids = ids
+            .get(&(trunk.name.clone(), None))
+            .cloned()
+            .unwrap_or_default();
+        let nearest = |at: f64, skip: Option<usize>| {
+            (0..trunk_ids.len())
+                .filter(|&k| Some(k) != skip)
+                .min_by(|&a, &b| {
+                    (axial.trunk[a].1 - at)
+                        .abs()
+                        .total_cmp(&(axial.trunk[b].1 - at).abs())
+                        .then(a.cmp(&b))
+                })
+        };
+        let spine = nearest(template.axial.spine_at, None);
+        let chest = nearest(template.axial.chest_at, spine);
+        wanted.push("spine".into());
+        wanted.push("chest".into());
+        // With two joints left the nearer to each fraction wins; keep spine below chest.
+        let (spine, chest) = match (spine, chest) {
+            (Some(s), Some(c)) if s > c => (Some(c), Some(s)),
+            other => other,
+        };
+        if let Some(s) = spine {
+            canonical.insert("spine".into(), trunk_ids[s]);
+        }
+        if let Some(c) = chest {
+            canonical.insert("chest".into(), trunk_ids[c]);
+        }
+    }
+    for key in wanted {
+        if !canonical.contains_key(&key) {
+            warnings.push(FitWarning::MissingCanonical { key });
+        }
+    }
+    (skeleton, canonical)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn resolve_parent(
+    template: &Template,
+    name: &str,
+    side: Option<Side>,
+    position: DVec3,
+    ids: &BTreeMap<(String, Option<Side>), Vec<JointId>>,
+    skeleton: &Skeleton,
+    girdle: bool,
+    repeated: &dyn Fn(&str) -> bool,
+) -> Option<JointId> {
+    let mut current = template.joint(name)?.parent.clone();
+    while let Some(parent) = current {
+        let pj = template.joint(&parent)?;
+        let pside = if pj.side { side } else { None };
+        if let Some(list) = ids.get(&(parent.clone(), pside)).filter(|l| !l.is_empty()) {
+            if girdle && repeated(&parent) {
+                return list.iter().copied().min_by(|a, b| {
+                    skeleton
+                        .joint(*a)
+                        .position
+                        .distance(position)
+                        .total_cmp(&skeleton.joint(*b).position.distance(position))
+                        .then(a.cmp(b))
+                });
+            }
+            return list.last().copied();
+        }
+        current = pj.parent.clone();
+    }
+    // The root always exists; anything else hangs from it.
+    (!skeleton.is_empty()).then_some(JointId(0))
+}

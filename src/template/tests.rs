@@ -1,0 +1,296 @@
+use super::*;
+use crate::eval::{is_canonical_key, CANONICAL_KEYS};
+use crate::skeleton::{Joint, JointId, LocalAxis, Skeleton};
+use glam::DVec3;
+use std::collections::BTreeMap;
+
+#[test]
+fn every_bundled_template_loads() {
+    for (name, _) in BUILTIN_TEMPLATES {
+        let t = Template::builtin(name).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(&t.name, name);
+        assert!(t.placed("root").is_some());
+        // Parents come first.
+        for (k, j) in t.joints.iter().enumerate() {
+            if let Some(p) = &j.parent {
+                assert!(
+                    t.joints[..k].iter().any(|q| &q.name == p),
+                    "{name}: {}",
+                    j.name
+                );
+            }
+        }
+        for l in &t.limbs {
+            assert_eq!(l.chain.len(), t.ratios[&l.ratios].len() + 1);
+        }
+    }
+    assert!(matches!(
+        Template::builtin("centaur"),
+        Err(TemplateError::UnknownTemplate { .. })
+    ));
+}
+
+#[test]
+fn table_8_1_and_digit_ratios() {
+    let t = Template::builtin("humanoid").unwrap();
+    assert_eq!(
+        t.ratios["animal_forelimb"],
+        [149.0, 154.0, 22.0, 78.0, 29.0, 19.0, 16.0]
+    );
+    assert_eq!(
+        t.ratios["animal_hind_limb"],
+        [175.0, 174.0, 35.0, 89.0, 29.0, 19.0, 17.0]
+    );
+    assert_eq!(
+        t.ratios["human_arm"],
+        [190.0, 150.0, 20.0, 36.0, 25.0, 15.0, 10.0]
+    );
+    assert_eq!(
+        t.ratios["human_leg"],
+        [180.0, 160.0, 30.0, 30.0, 12.0, 5.0, 5.0]
+    );
+    assert_eq!(t.ratios["digit"], [36.0, 25.0, 15.0, 10.0]);
+    assert_eq!(t.ratios["first_digit"], [36.0, 25.0, 15.0]);
+    let f = t.fractions("human_arm").unwrap();
+    assert!((f.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn dofs_follow_the_anatomy() {
+    let t = Template::builtin("quadruped").unwrap();
+    let axes =
+        |n: &str| -> Vec<LocalAxis> { t.joint(n).unwrap().dofs.iter().map(|d| d.axis).collect() };
+    assert_eq!(axes("elbow"), [LocalAxis::X]);
+    assert_eq!(axes("knee"), [LocalAxis::X]);
+    assert_eq!(axes("shoulder").len(), 3);
+    assert_eq!(axes("ankle").len(), 3);
+    let fore = &t.limbs[0];
+    assert_eq!(fore.first_digit_base_dofs.len(), 2);
+    assert_eq!(fore.digit_base_dofs.len(), 1);
+    assert!(t.joint("toe_end").unwrap().dofs.is_empty());
+    for j in &t.joints {
+        for d in &j.dofs {
+            assert!(d.min <= d.max && d.max <= std::f64::consts::PI);
+        }
+    }
+}
+
+#[test]
+fn canonical_keys_cover_the_reference_set() {
+    for name in ["humanoid", "quadruped"] {
+        let t = Template::builtin(name).unwrap();
+        let mut keys: Vec<String> = vec!["spine".into(), "chest".into()];
+        for j in &t.joints {
+            if let Some(c) = &j.canonical {
+                if j.side {
+                    keys.push(format!("{c}_L"));
+                    keys.push(format!("{c}_R"));
+                } else {
+                    keys.push(c.clone());
+                }
+            }
+        }
+        assert!(keys.iter().all(|k| is_canonical_key(k)));
+        for key in CANONICAL_KEYS {
+            assert!(keys.iter().any(|k| k == key), "{name} lacks {key}");
+        }
+    }
+    let q = Template::builtin("quadruped").unwrap();
+    assert_eq!(
+        q.joint("tail").unwrap().canonical.as_deref(),
+        Some("tail_base")
+    );
+}
+
+/// The humanoid template with several deliberate mistakes.
+fn broken() -> String {
+    let (_, text) = BUILTIN_TEMPLATES[0];
+    text.replacen("head = 0.5\nneck = 0.5", "head = 0.5\nneck = 0.6", 1)
+        .replacen(
+            "name = \"elbow\"\ncanonical = \"elbow\"\nparent = \"shoulder\"",
+            "name = \"elbow\"\ncanonical = \"elbows\"\nparent = \"shouldr\"",
+            1,
+        )
+        .replacen(
+            "name = \"hand\"\nparent = \"wrist\"",
+            "name = \"hand\"\nparent = \"finger_01\"",
+            1,
+        )
+        .replacen(
+            "name = \"finger_01\"\nparent = \"hand\"",
+            "name = \"finger_01\"\nparent = \"hand\"\n",
+            1,
+        )
+        .replacen("name = \"toe_03\"", "name = \"toe_02\"", 1)
+        .replacen(
+            "{ axis = \"x\", min = 0, max = 150 }",
+            "{ axis = \"x\", min = 150, max = 0 }",
+            1,
+        )
+        .replacen("trunk = [3, 6]", "trunk = [6, 3]", 1)
+}
+
+#[test]
+fn a_broken_template_reports_every_problem_with_its_location() {
+    let text = broken();
+    let err = Template::parse(&text, "broken.toml").unwrap_err();
+    let TemplateError::Invalid { problems, .. } = &err else {
+        panic!("{err}");
+    };
+    let message = err.to_string();
+    let find = |needle: &str| -> &TemplateProblem {
+        problems
+            .iter()
+            .find(|p| p.message.contains(needle) || p.path.contains(needle))
+            .unwrap_or_else(|| panic!("no problem mentions {needle}:\n{message}"))
+    };
+    let line_of = |needle: &str| text.lines().position(|l| l.contains(needle)).unwrap() + 1;
+    assert!(find("does not sum to 1").path == "sections");
+    let parent = find("unknown parent \"shouldr\"");
+    assert!(parent.path.contains("(elbow).parent"));
+    assert_eq!(parent.line, Some(line_of("name = \"elbow\"") - 1));
+    assert!(find("unknown canonical key \"elbows_L\"")
+        .path
+        .contains("elbow"));
+    assert!(find("cycle").path.contains("hand") || find("cycle").path.contains("finger"));
+    assert!(find("duplicate joint name \"toe_02\"").line.is_some());
+    let limits = find("min 150 > max 0");
+    assert!(limits.path.contains("(elbow).dofs[0]"));
+    assert_eq!(
+        find("vertebrae.trunk").line,
+        Some(line_of("trunk = [6, 3]"))
+    );
+    assert!(problems.len() >= 7, "{message}");
+    // Every problem names the file.
+    assert!(problems
+        .iter()
+        .all(|p| p.to_string().starts_with("broken.toml")));
+}
+
+#[test]
+fn limb_problems_are_located() {
+    let (_, text) = BUILTIN_TEMPLATES[1];
+    let text = text
+        .replacen("kinds = [\"fore_leg\"]", "kinds = [\"flipper\"]", 1)
+        .replacen(
+            "ratios = \"animal_hind_limb\"",
+            "ratios = \"animal_hindlimb\"",
+            1,
+        )
+        .replacen("girdle = \"pectoral\"", "girdle = \"shoulder\"", 1);
+    let err = Template::parse(&text, "q.toml").unwrap_err().to_string();
+    assert!(err.contains("unknown limb kind \"flipper\""), "{err}");
+    assert!(
+        err.contains("unknown ratio list \"animal_hindlimb\""),
+        "{err}"
+    );
+    assert!(err.contains("unknown girdle \"shoulder\""), "{err}");
+    assert!(err.contains("limb[0] (fore_leg)"), "{err}");
+}
+
+#[test]
+fn syntax_errors_carry_a_line() {
+    let text = "[template]\nname = \"x\"\nposture = \n";
+    match Template::parse(text, "bad.toml") {
+        Err(TemplateError::Parse { line, .. }) => assert_eq!(line, Some(3)),
+        other => panic!("{other:?}"),
+    }
+    let unknown = BUILTIN_TEMPLATES[0]
+        .1
+        .replacen("[axial]\n", "[axial]\nspline = 3\n", 1);
+    let err = Template::parse(&unknown, "u.toml").unwrap_err().to_string();
+    assert!(err.contains("spline"), "{err}");
+}
+
+#[test]
+fn template_files_on_disk_load() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates");
+    for (name, _) in BUILTIN_TEMPLATES {
+        let t = Template::load(&dir.join(format!("{name}.toml"))).unwrap();
+        assert_eq!(t.name, *name);
+    }
+    assert!(matches!(
+        Template::load(&dir.join("missing.toml")),
+        Err(TemplateError::Io { .. })
+    ));
+}
+
+fn little() -> (Skeleton, BTreeMap<String, JointId>) {
+    let mut s = Skeleton::default();
+    for (k, n) in [
+        "pelvis",
+        "spine_01",
+        "spine_02",
+        "shoulder_L",
+        "thumb_01_L",
+        "index_02_L",
+    ]
+    .iter()
+    .enumerate()
+    {
+        s.joints.push(Joint::new(
+            *n,
+            (k > 0).then(|| JointId(k - 1)),
+            DVec3::Y * k as f64,
+        ));
+    }
+    let canonical = BTreeMap::from([
+        ("pelvis".to_string(), JointId(0)),
+        ("spine".to_string(), JointId(2)),
+        ("shoulder_L".to_string(), JointId(3)),
+    ]);
+    (s, canonical)
+}
+
+#[test]
+fn presets_rename_canonical_and_listed_joints() {
+    let (mut s, c) = little();
+    apply_preset(&mut s, &c, Preset::Mixamo).unwrap();
+    let names: Vec<&str> = s.joints.iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "mixamorig:Hips",
+            "mixamorig:Spine",
+            "mixamorig:Spine1",
+            "mixamorig:LeftArm",
+            "mixamorig:LeftHandThumb1",
+            "mixamorig:LeftHandIndex1"
+        ]
+    );
+    let (mut s, c) = little();
+    apply_preset(&mut s, &c, Preset::MakeHuman).unwrap();
+    // spine_01 is not canonical and keeps its name; canonical spine is spine_02 in game_engine.
+    assert_eq!(s.joints[1].name, "spine_01");
+    assert_eq!(s.joints[2].name, "spine_02");
+    assert_eq!(s.joints[5].name, "index_01_l");
+    let (mut s, c) = little();
+    apply_preset(&mut s, &c, Preset::Unity).unwrap();
+    assert_eq!(s.joints[4].name, "LeftThumbProximal");
+    assert!(s.validate().is_ok());
+    let (mut s, c) = little();
+    apply_preset(&mut s, &c, Preset::Anatomical).unwrap();
+    assert_eq!(s.joints[3].name, "shoulder_L");
+    assert!(matches!(
+        Preset::parse("blender"),
+        Err(TemplateError::UnknownPreset { .. })
+    ));
+    for p in ["anatomical", "mixamo", "unity", "makehuman"] {
+        let preset = Preset::parse(p).unwrap();
+        let names = preset.names().unwrap();
+        assert!(names.joints.keys().all(|k| is_canonical_key(k)));
+    }
+}
+
+#[test]
+fn preset_renaming_never_duplicates_names() {
+    // A non-canonical joint already called like a canonical target gets a suffix.
+    let mut s = Skeleton::default();
+    s.joints.push(Joint::new("spine_02", None, DVec3::ZERO));
+    s.joints
+        .push(Joint::new("spine_01", Some(JointId(0)), DVec3::Y));
+    let c = BTreeMap::from([("spine".to_string(), JointId(1))]);
+    apply_preset(&mut s, &c, Preset::MakeHuman).unwrap();
+    assert_eq!(s.joints[1].name, "spine_02");
+    assert_eq!(s.joints[0].name, "spine_02_2");
+}
