@@ -3,11 +3,13 @@
 //! Exit codes: 0 success, 1 an error while working (printed as `skelfit: error: ...` with its
 //! chain of causes), 2 invalid command-line usage (printed by clap).
 
+mod bench;
 mod common;
 mod demo;
 mod eval;
 mod info;
 mod skeleton;
+mod study;
 mod voxelize;
 
 use clap::{Parser, Subcommand};
@@ -24,6 +26,9 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Rig every model of a refdata-style folder (in parallel), evaluate each against its
+    /// reference rig, and write accuracy and timing tables (CSV, Markdown, JSON, HTML).
+    Bench(bench::BenchArgs),
     /// Run the main job on the bundled data: statistics, voxelization and distance maps of every
     /// model below data/, results in reports/demo/.
     Demo(demo::DemoArgs),
@@ -36,6 +41,9 @@ enum Command {
     /// Fit the general control skeleton of any figure (dissertation ch.5), skin the mesh to it
     /// and write a skinned .glb (plus JSON/BVH on request).
     Skeleton(skeleton::SkeletonArgs),
+    /// Robustness studies: re-tessellated or rotated variants of a mesh, rigged and compared
+    /// with the base rig and the reference.
+    Study(study::StudyArgs),
     /// Voxelize a mesh and compute its exact distance map; print grid, interior and timings.
     Voxelize(voxelize::VoxelizeArgs),
 }
@@ -44,10 +52,12 @@ enum Command {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
+        Command::Bench(args) => bench::run(args),
         Command::Demo(args) => demo::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),
         Command::Skeleton(args) => skeleton::run(args),
+        Command::Study(args) => study::run(args),
         Command::Voxelize(args) => voxelize::run(args),
     };
     match result {
