@@ -101,7 +101,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let title = args.title.clone().unwrap_or_else(|| {
         format!(
             "skelfit bench: {} rig vs rig_{} on {}",
-            args.method.to_possible_value().map_or("?".into(), |v| v.get_name().to_owned()),
+            args.method
+                .to_possible_value()
+                .map_or("?".into(), |v| v.get_name().to_owned()),
             args.rig,
             args.dir.display()
         )
@@ -125,7 +127,12 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     }
     if args.html {
         let pages = if args.model_pages {
-            write_model_pages(&args.out.join("models"), &models, &results, args.page_triangles)?
+            write_model_pages(
+                &args.out.join("models"),
+                &models,
+                &results,
+                args.page_triangles,
+            )?
         } else {
             vec![None; results.len()]
         };
@@ -175,11 +182,9 @@ fn write_model_pages(
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let mut links = Vec::with_capacity(results.len());
     for (model, result) in models.iter().zip(results) {
-        let (Some(evaluation), Some(predicted), Some(reference)) = (
-            &result.evaluation,
-            &result.predicted,
-            &result.reference_rig,
-        ) else {
+        let (Some(evaluation), Some(predicted), Some(reference)) =
+            (&result.evaluation, &result.predicted, &result.reference_rig)
+        else {
             links.push(None);
             continue;
         };

@@ -81,26 +81,39 @@ pub struct RotationArgs {
 /// Runs the command.
 pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     match &args.kind {
-        StudyKindArgs::Tessellation(a) => run_study(&a.common, "tessellation", |mesh, name, r, o| {
-            Ok(tessellation_study(mesh, name, r, &a.levels, o)?)
-        }),
+        StudyKindArgs::Tessellation(a) => {
+            run_study(&a.common, "tessellation", |mesh, name, r, o| {
+                Ok(tessellation_study(mesh, name, r, &a.levels, o)?)
+            })
+        }
         StudyKindArgs::Rotation(a) => {
             let [x, y, z] = a.axis[..] else {
                 anyhow::bail!("--axis takes three numbers x,y,z (got {:?})", a.axis);
             };
             run_study(&a.common, "rotation", |mesh, name, r, o| {
-                Ok(rotation_study(mesh, name, r, a.n, glam::DVec3::new(x, y, z), o)?)
+                Ok(rotation_study(
+                    mesh,
+                    name,
+                    r,
+                    a.n,
+                    glam::DVec3::new(x, y, z),
+                    o,
+                )?)
             })
         }
     }
 }
 
-fn run_study(common: &StudyCommon, kind: &str, study: impl Fn(
+fn run_study(
+    common: &StudyCommon,
+    kind: &str,
+    study: impl Fn(
         &skelfit::mesh::Mesh,
         &str,
         Option<&ReferenceRig>,
         &StudyOptions,
-    ) -> anyhow::Result<Study>) -> anyhow::Result<()> {
+    ) -> anyhow::Result<Study>,
+) -> anyhow::Result<()> {
     let mut options = StudyOptions::default();
     options.rigger.method = common.method.into();
     options.rigger.general.voxel = common.voxel.options()?;
@@ -143,17 +156,20 @@ fn run_study(common: &StudyCommon, kind: &str, study: impl Fn(
             let reference = reference.as_ref()?.deforming();
             let predicted =
                 ReferenceRig::from_skeleton(name.clone(), b.skeleton.clone()?).deforming();
-            let evaluation = b.to_reference.clone().or_else(|| {
-                evaluate(&predicted, &reference, Some(&mesh), &options.eval).ok()
-            })?;
+            let evaluation = b
+                .to_reference
+                .clone()
+                .or_else(|| evaluate(&predicted, &reference, Some(&mesh), &options.eval).ok())?;
             Some((evaluation, predicted, reference))
         });
-        let input = base.as_ref().map(|(evaluation, predicted, reference)| ReportInput {
-            evaluation,
-            predicted,
-            reference,
-            mesh: Some(&page_mesh),
-        });
+        let input = base
+            .as_ref()
+            .map(|(evaluation, predicted, reference)| ReportInput {
+                evaluation,
+                predicted,
+                reference,
+                mesh: Some(&page_mesh),
+            });
         write_file(
             &out("html"),
             study_html(&result, &title, &preamble, input.as_ref()).as_bytes(),

@@ -3,8 +3,8 @@
 //! and per-stage timings. One model at a time here; callers run [`bench_model`] in parallel.
 
 use super::{
-    aggregate, evaluate, load_skeleton, percent_cell, rig_mesh, EvalError, EvalOptions,
-    Evaluation, JointPairing, MatchMethod, ReferenceRig, RigMethod, RiggerOptions, Table,
+    aggregate, evaluate, load_skeleton, percent_cell, rig_mesh, EvalError, EvalOptions, Evaluation,
+    JointPairing, MatchMethod, ReferenceRig, RigMethod, RiggerOptions, Table,
 };
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -338,9 +338,7 @@ pub fn bench_csv(results: &[BenchResult]) -> Result<String, EvalError> {
     for r in results {
         let e = r.evaluation.as_ref();
         let num = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
-        let joint_stat = |f: fn(&Evaluation) -> f64| {
-            num(e.filter(|e| e.has_joint_errors()).map(f))
-        };
+        let joint_stat = |f: fn(&Evaluation) -> f64| num(e.filter(|e| e.has_joint_errors()).map(f));
         let mut row: Vec<String> = vec![
             r.category.clone(),
             r.model.clone(),
@@ -387,8 +385,20 @@ pub fn bench_csv(results: &[BenchResult]) -> Result<String, EvalError> {
 /// The accuracy table: one row per model, errors in % of figure size (`–` where unavailable).
 pub fn bench_table(results: &[BenchResult]) -> Table {
     let headers = [
-        "model", "category", "reference", "pairing", "joints", "paired", "mean %", "median %",
-        "max %", "worst", "J2J %", "J2B %", "B2B %", "status",
+        "model",
+        "category",
+        "reference",
+        "pairing",
+        "joints",
+        "paired",
+        "mean %",
+        "median %",
+        "max %",
+        "worst",
+        "J2J %",
+        "J2B %",
+        "B2B %",
+        "status",
     ];
     let numeric = [
         false, false, false, false, true, true, true, true, true, false, true, true, true, false,
@@ -397,9 +407,8 @@ pub fn bench_table(results: &[BenchResult]) -> Table {
         .iter()
         .map(|r| {
             let e = r.evaluation.as_ref();
-            let stat = |f: fn(&Evaluation) -> f64| {
-                percent_cell(e.filter(|e| e.has_joint_errors()).map(f))
-            };
+            let stat =
+                |f: fn(&Evaluation) -> f64| percent_cell(e.filter(|e| e.has_joint_errors()).map(f));
             let chamfer = |f: fn(&Evaluation) -> f64| percent_cell(e.map(f));
             vec![
                 r.model.clone(),
@@ -515,7 +524,9 @@ pub fn bench_markdown(results: &[BenchResult], title: &str, preamble: &str) -> S
             p.count, p.mean, p.median, p.max, p.rms
         ));
     } else {
-        md.push_str("* per-joint errors: unavailable (no model shares joint keys with its reference)\n");
+        md.push_str(
+            "* per-joint errors: unavailable (no model shares joint keys with its reference)\n",
+        );
     }
     if !evaluations.is_empty() {
         let c = &dataset.chamfer_percent;

@@ -88,6 +88,5 @@ pub use study::{
 };
 pub use table::{
     aggregate, joint_rows, joint_table, key_table, model_row, model_table, percent_cell, to_json,
-    write_csv,
-    DatasetSummary, JointRow, KeyRow, ModelRow, Table,
+    write_csv, DatasetSummary, JointRow, KeyRow, ModelRow, Table,
 };

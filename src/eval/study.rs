@@ -3,9 +3,9 @@
 //! reference.
 
 use super::{
-    chamfer, correspond, evaluate, figure_size, rig_mesh, ChamferDistances,
-    ChamferOptions, ErrorSummary, EvalError, EvalOptions, Evaluation, FigureMeasure, FigureSize,
-    JointPairing, MatchMethod, ReferenceRig, RiggerOptions, Table,
+    chamfer, correspond, evaluate, figure_size, rig_mesh, ChamferDistances, ChamferOptions,
+    ErrorSummary, EvalError, EvalOptions, Evaluation, FigureMeasure, FigureSize, JointPairing,
+    MatchMethod, ReferenceRig, RiggerOptions, Table,
 };
 use crate::mesh::Mesh;
 use crate::skeleton::Skeleton;
@@ -332,7 +332,9 @@ pub fn tessellation_study(
 ) -> Result<Study, crate::Error> {
     if let Some(bad) = levels.iter().find(|l| !(l.is_finite() && **l > 0.0)) {
         return Err(EvalError::Study {
-            message: format!("tessellation level {bad} must be a positive triangle ratio (e.g. 0.25 or 2)"),
+            message: format!(
+                "tessellation level {bad} must be a positive triangle ratio (e.g. 0.25 or 2)"
+            ),
         }
         .into());
     }
@@ -542,7 +544,11 @@ pub fn study_markdown(study: &Study, title: &str, preamble: &str) -> String {
     let notes: Vec<String> = study
         .variants
         .iter()
-        .flat_map(|v| v.warnings.iter().map(move |w| format!("* {}: {w}", v.label)))
+        .flat_map(|v| {
+            v.warnings
+                .iter()
+                .map(move |w| format!("* {}: {w}", v.label))
+        })
         .collect();
     if !notes.is_empty() {
         md.push_str("\n## Notes\n\n");

@@ -172,8 +172,9 @@ impl Default for LineChartOptions {
     }
 }
 
-/// An SVG line plot of `series` with ticks at the x values of the points, a y axis from 0 to
-/// the largest value with 5 ticks, and a legend. A standalone `<svg>` element.
+/// An SVG line plot of `series` (points joined in order of x) with ticks at the x values of
+/// the points, a y axis from 0 to the largest value with 5 ticks, and a legend below. A
+/// standalone `<svg>` element.
 pub fn line_chart(series: &[Series], options: &LineChartOptions) -> String {
     let (left, right, top) = (56.0, 16.0, 14.0);
     let (w, h) = (options.width, options.height + 16.0 * series.len() as f64);
@@ -242,10 +243,15 @@ pub fn line_chart(series: &[Series], options: &LineChartOptions) -> String {
         escape(&options.y_label)
     );
     for (i, s) in series.iter().enumerate() {
-        let path: Vec<String> = s
+        let mut drawn: Vec<(f64, f64)> = s
             .points
             .iter()
+            .copied()
             .filter(|(x, y)| x.is_finite() && y.is_finite() && (!options.log_x || *x > 0.0))
+            .collect();
+        drawn.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let path: Vec<String> = drawn
+            .iter()
             .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
             .collect();
         let _ = write!(
@@ -262,7 +268,7 @@ pub fn line_chart(series: &[Series], options: &LineChartOptions) -> String {
                 s.colour
             );
         }
-        let ly = options.height - 8.0 + 16.0 * i as f64;
+        let ly = top + plot_h + 52.0 + 16.0 * i as f64;
         let _ = write!(
             svg,
             r#"<line x1="{l:.1}" y1="{a:.1}" x2="{m:.1}" y2="{a:.1}" stroke="{c}" stroke-width="2"/><text x="{t:.1}" y="{b:.1}">{}</text>"#,

@@ -178,20 +178,21 @@ pub fn study_html(
     );
     let ok = || study.variants.iter().filter(|v| v.failure.is_none());
     let mut series = vec![Series {
-        name: "displacement from base (mean per joint, or CD-J2J)".into(),
+        name: "CD-J2J to the base rig".into(),
         colour: "#d62728".into(),
         points: ok()
-            .filter_map(|v| Some((v.level, v.displacement_headline()?)))
+            .filter_map(|v| Some((v.level, v.chamfer_to_base_percent?.j2j)))
             .collect(),
     }];
-    let max: Vec<(f64, f64)> = ok()
-        .filter_map(|v| Some((v.level, v.displacement_percent?.max)))
+    let paired: Vec<(f64, f64)> = ok()
+        .filter_map(|v| Some((v.level, v.displacement_percent?.mean)))
         .collect();
-    if !max.is_empty() {
+    // A per-joint series only when variants other than the base pair with it.
+    if paired.len() > 1 {
         series.push(Series {
-            name: "largest joint displacement".into(),
+            name: "mean joint displacement from the base rig".into(),
             colour: "#ff7f0e".into(),
-            points: max,
+            points: paired,
         });
     }
     let reference: Vec<(f64, f64)> = ok()
@@ -199,7 +200,7 @@ pub fn study_html(
         .collect();
     if !reference.is_empty() {
         series.push(Series {
-            name: "error to reference (mean per joint, or CD-J2J)".into(),
+            name: "error to the reference (mean per joint, or CD-J2J)".into(),
             colour: "#1f77b4".into(),
             points: reference,
         });

@@ -461,13 +461,23 @@ fn fine_grid_timings() {
         return;
     };
     let mesh = load(&dir.join("mesh.obj")).unwrap();
-    for (fraction, e) in [(0.01, 0.4), (0.01, 1.0), (0.01, 2.0), (0.005, 0.4), (0.005, 1.0), (0.005, 2.0)] {
+    for (fraction, e) in [
+        (0.01, 0.4),
+        (0.01, 1.0),
+        (0.01, 2.0),
+        (0.005, 0.4),
+        (0.005, 1.0),
+        (0.005, 2.0),
+    ] {
         let options = GeneralSkeletonOptions {
             voxel: VoxelOptions {
                 size: skelfit::voxel::VoxelSize::Fraction(fraction),
                 ..Default::default()
             },
-            general: GeneralOptions { approximation_error: e, ..Default::default() },
+            general: GeneralOptions {
+                approximation_error: e,
+                ..Default::default()
+            },
             ..Default::default()
         };
         print!("err {e} ");

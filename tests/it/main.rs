@@ -1,5 +1,6 @@
 //! Integration tests: one binary, one module per stage.
 
+mod bench;
 mod cli;
 mod common;
 mod distance;
