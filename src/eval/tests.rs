@@ -731,7 +731,7 @@ fn bench_failures_are_recorded_not_returned() {
     let result = bench_model(&models[0], &BenchOptions::default());
     assert!(result.failure.is_some());
     assert!(result.evaluation.is_none());
-    let csv = bench_csv(&[result.clone()]).unwrap();
+    let csv = bench_csv(std::slice::from_ref(&result)).unwrap();
     assert!(csv.lines().nth(1).unwrap().contains(",failed,"), "{csv}");
     assert!(bench_table(&[result]).rows[0][13].starts_with("failed: "));
 }
@@ -780,4 +780,49 @@ fn study_parameters_are_validated() {
     assert!(err.to_string().contains("n >= 1"), "{err}");
     let err = rotation_study(&mesh, "c", None, 4, DVec3::ZERO, &options).unwrap_err();
     assert!(err.to_string().contains("axis"), "{err}");
+}
+
+#[test]
+fn a_coincidental_shared_name_does_not_make_a_per_joint_evaluation() {
+    // The general skeleton's `root` against a reference that also has a `root`.
+    let predicted = Skeleton {
+        joints: vec![
+            joint("root", None, [0.0; 3]),
+            joint("joint_001", Some(0), [0.0, 1.0, 0.0]),
+        ],
+    };
+    let reference = Skeleton {
+        joints: vec![
+            joint("root", None, [0.0, 0.5, 0.0]),
+            joint("Spine", Some(0), [0.0, 1.0, 0.0]),
+            joint("Tail", Some(0), [0.0, 0.5, -1.0]),
+        ],
+    };
+    let options = EvalOptions {
+        pairing: JointPairing::IfShared,
+        ..Default::default()
+    };
+    let e = evaluate(
+        &rig(predicted.clone()),
+        &rig(reference.clone()),
+        None,
+        &options,
+    )
+    .unwrap();
+    assert_eq!(e.method, MatchMethod::ChamferOnly);
+    assert!(
+        e.warnings[0].contains("only 1 of the reference's 3 joint names"),
+        "{:?}",
+        e.warnings
+    );
+    // Asked for explicitly (Required), the name pairing stands.
+    let e = evaluate(
+        &rig(predicted),
+        &rig(reference),
+        None,
+        &EvalOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(e.method, MatchMethod::Name);
+    assert_eq!(e.joints.len(), 1);
 }
