@@ -321,3 +321,39 @@ fn bench_on_refdata_category_other() {
         assert!(j2j > 0.0 && j2j < 20.0, "{row}");
     }
 }
+
+/// `bench.json` without the timings (which differ between runs).
+fn without_timings(mut value: serde_json::Value) -> serde_json::Value {
+    for row in value.as_array_mut().unwrap() {
+        row.as_object_mut().unwrap().remove("timings");
+    }
+    value
+}
+
+#[test]
+fn bench_results_do_not_depend_on_the_thread_count() {
+    let tmp = tempfile::tempdir().unwrap();
+    let data = tmp.path().join("data");
+    horse_folder(&data);
+    let mut runs = Vec::new();
+    for threads in ["1", "2"] {
+        let out = tmp.path().join(format!("out{threads}"));
+        let o = Command::new(env!("CARGO_BIN_EXE_skelfit"))
+            .args([
+                "bench",
+                data.to_str().unwrap(),
+                "--rig",
+                "gltf",
+                "--out",
+                out.to_str().unwrap(),
+                "--voxel-size",
+                "0.02",
+            ])
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        runs.push(without_timings(json(&out.join("bench.json"))));
+    }
+    assert_eq!(runs[0], runs[1]);
+}
