@@ -8,6 +8,7 @@ mod common;
 mod demo;
 mod eval;
 mod info;
+mod report;
 mod skeleton;
 mod study;
 mod voxelize;
@@ -38,6 +39,8 @@ enum Command {
     /// Print statistics of a mesh: vertices, triangles, components, boundary and non-manifold
     /// edges, bounding box, volume.
     Info(info::InfoArgs),
+    /// Rebuild the self-contained HTML page of a bench run or a study from its JSON results.
+    Report(report::ReportArgs),
     /// Fit the general control skeleton of any figure (dissertation ch.5), skin the mesh to it
     /// and write a skinned .glb (plus JSON/BVH on request).
     Skeleton(skeleton::SkeletonArgs),
@@ -56,6 +59,7 @@ pub fn main() -> ExitCode {
         Command::Demo(args) => demo::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),
+        Command::Report(args) => report::run(args),
         Command::Skeleton(args) => skeleton::run(args),
         Command::Study(args) => study::run(args),
         Command::Voxelize(args) => voxelize::run(args),

@@ -141,6 +141,10 @@ fn bench_reports_per_model_failures_and_rig_fallbacks() {
         broken_row.contains(",failed,") && broken_row.contains("no triangles"),
         "{broken_row}"
     );
+    let o = skelfit(&["report", out.join("bench.json").to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let rebuilt = std::fs::read_to_string(out.join("bench.html")).unwrap();
+    assert!(rebuilt.contains("1 chamfer only, 1 failed"), "{rebuilt}");
     let md = std::fs::read_to_string(out.join("bench.md")).unwrap();
     assert!(
         md.contains("no rig_game_engine.json: evaluated against its only rig file rig_gltf.json"),
@@ -285,6 +289,20 @@ fn studies_write_tables_and_a_page_with_the_plot() {
         "0.02",
     ]);
     assert!(o.status.success(), "{}", text(&o.stderr));
+    // `skelfit report` rebuilds the page from the JSON.
+    let rebuilt = tmp.path().join("rebuilt.html");
+    let o = skelfit(&[
+        "report",
+        out.join("tessellation.json").to_str().unwrap(),
+        "-o",
+        rebuilt.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let page = std::fs::read_to_string(&rebuilt).unwrap();
+    assert!(
+        page.contains("<polyline") && page.contains("x0.5"),
+        "{page}"
+    );
     let study = json(&out.join("rotation.json"));
     assert_eq!(study["kind"], "rotation");
     assert_eq!(study["variants"][1]["level"], 180.0);
