@@ -57,7 +57,18 @@ fn page_start(title: &str, preamble: &str) -> String {
         t = escape(title)
     );
     if !preamble.is_empty() {
-        let _ = write!(html, "<p>{}</p>", escape(preamble));
+        // Markdown code spans (`...`) become <code> elements.
+        let parts: Vec<String> = preamble.split('`').map(escape).collect();
+        let mut text = String::new();
+        for (i, part) in parts.iter().enumerate() {
+            match (i % 2, i + 1 < parts.len()) {
+                (1, true) => {
+                    let _ = write!(text, "<code>{part}</code>");
+                }
+                _ => text.push_str(part),
+            }
+        }
+        let _ = write!(html, "<p>{text}</p>");
     }
     html
 }
