@@ -1,12 +1,12 @@
-//! `skelfit eval PRED REF [--mesh MESH] [--csv OUT] [--json OUT] [--html OUT]`: compare a
-//! predicted skeleton with a reference rig joint by joint.
+//! `skelfit eval PRED REF [--mesh MESH] [--csv OUT] [--json OUT] [--html OUT] [--chamfer-only]`:
+//! compare a predicted skeleton with a reference rig joint by joint.
 
 use super::common::{load_mesh, write_file};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use skelfit::eval::{
     evaluate, joint_rows, joint_table, load_skeleton, to_json, write_csv, EvalOptions, Evaluation,
-    FigureMeasure, ReferenceRig,
+    FigureMeasure, JointPairing, ReferenceRig,
 };
 use skelfit::report::{html_report, ReportInput, ReportOptions};
 use std::path::{Path, PathBuf};
@@ -60,6 +60,10 @@ pub struct EvalArgs {
     /// Print the table as Markdown instead of aligned text.
     #[arg(long)]
     pub markdown: bool,
+    /// Do not pair joints: report only the topology-free chamfer distances (for skeletons
+    /// that share no joint names or canonical keys, e.g. the general control skeleton).
+    #[arg(long)]
+    pub chamfer_only: bool,
 }
 
 /// Loads both skeletons (and the mesh), evaluates, prints the per-joint table and summary to
@@ -74,6 +78,11 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     let options = EvalOptions {
         deforming_only: !args.all_joints,
         measure: args.measure.into(),
+        pairing: if args.chamfer_only {
+            JointPairing::Skip
+        } else {
+            JointPairing::Required
+        },
         ..Default::default()
     };
     let evaluation =
@@ -122,6 +131,19 @@ fn load_rig(path: &Path, role: &str) -> anyhow::Result<ReferenceRig> {
 
 /// The per-joint table followed by the summary lines.
 fn summary_text(e: &Evaluation, markdown: bool) -> String {
+    if !e.has_joint_errors() {
+        return format!(
+            "per-joint errors not computed (--chamfer-only); figure size {:.4} ({:?})\nCD-J2J {:.4} ({:.2} %)  CD-J2B {:.4} ({:.2} %)  CD-B2B {:.4} ({:.2} %)\n",
+            e.figure.size,
+            e.figure.measure,
+            e.chamfer.j2j,
+            e.chamfer_percent.j2j,
+            e.chamfer.j2b,
+            e.chamfer_percent.j2b,
+            e.chamfer.b2b,
+            e.chamfer_percent.b2b,
+        );
+    }
     let table = joint_table(&joint_rows(e));
     let mut out = if markdown {
         table.markdown()

@@ -3,12 +3,15 @@
 //! Exit codes: 0 success, 1 an error while working (printed as `skelfit: error: ...` with its
 //! chain of causes), 2 invalid command-line usage (printed by clap).
 
+mod bench;
 mod common;
 mod demo;
 mod eval;
 mod info;
 mod label;
+mod report;
 mod skeleton;
+mod study;
 mod voxelize;
 
 use clap::{Parser, Subcommand};
@@ -25,6 +28,9 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Rig every model of a refdata-style folder (in parallel), evaluate each against its
+    /// reference rig, and write accuracy and timing tables (CSV, Markdown, JSON, HTML).
+    Bench(bench::BenchArgs),
     /// Run the main job on the bundled data: statistics, voxelization and distance maps of every
     /// model below data/, results in reports/demo/.
     Demo(demo::DemoArgs),
@@ -38,9 +44,14 @@ enum Command {
     /// write labels.json (plus a coloured PLY and an SVG picture on request), or regenerate the
     /// accuracy table with --table.
     Label(label::LabelArgs),
+    /// Rebuild the self-contained HTML page of a bench run or a study from its JSON results.
+    Report(report::ReportArgs),
     /// Fit the general control skeleton of any figure (dissertation ch.5), skin the mesh to it
     /// and write a skinned .glb (plus JSON/BVH on request).
     Skeleton(skeleton::SkeletonArgs),
+    /// Robustness studies: re-tessellated or rotated variants of a mesh, rigged and compared
+    /// with the base rig and the reference.
+    Study(study::StudyArgs),
     /// Voxelize a mesh and compute its exact distance map; print grid, interior and timings.
     Voxelize(voxelize::VoxelizeArgs),
 }
@@ -49,11 +60,14 @@ enum Command {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
+        Command::Bench(args) => bench::run(args),
         Command::Demo(args) => demo::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),
         Command::Label(args) => label::run(args),
+        Command::Report(args) => report::run(args),
         Command::Skeleton(args) => skeleton::run(args),
+        Command::Study(args) => study::run(args),
         Command::Voxelize(args) => voxelize::run(args),
     };
     match result {

@@ -225,6 +225,9 @@ pub enum MatchMethod {
     Canonical,
     /// By identical joint names (no shared canonical keys).
     Name,
+    /// Not paired: only the topology-free chamfer distances were computed (see
+    /// [`JointPairing`](super::JointPairing)).
+    ChamferOnly,
 }
 
 /// One paired joint.

@@ -70,6 +70,18 @@ pub enum EvalError {
         /// What is wrong.
         message: String,
     },
+    /// A benchmark folder holds no model folders.
+    #[error("no model folders (mesh.obj with rig_<rig>.json files) found in {path}: pass a refdata-style folder such as data or ../shared/refdata")]
+    NoModels {
+        /// The folder searched.
+        path: PathBuf,
+    },
+    /// A study was given invalid parameters.
+    #[error("invalid study parameter: {message}")]
+    Study {
+        /// What is wrong, naming the value.
+        message: String,
+    },
     /// Writing a table failed.
     #[error("cannot write the {what} table: {message}")]
     Table {

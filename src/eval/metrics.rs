@@ -3,7 +3,7 @@
 
 use super::{
     canonical_map, chamfer, correspond, CanonicalSource, ChamferDistances, ChamferOptions,
-    EvalError, MatchMethod, ReferenceRig,
+    Correspondence, EvalError, MatchMethod, ReferenceRig,
 };
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -45,6 +45,23 @@ pub struct FigureSize {
     pub source: SizeSource,
 }
 
+/// Whether [`evaluate`] pairs joints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JointPairing {
+    /// Pair joints; skeletons that share none are an error ([`EvalError::NoSharedJoints`]).
+    /// The default for comparing two files, where nothing shared is usually a naming problem.
+    #[default]
+    Required,
+    /// Pair joints when the skeletons share any; otherwise report only the chamfer distances
+    /// ([`MatchMethod::ChamferOnly`], with a warning saying per-joint errors are unavailable).
+    /// For batch runs whose predicted joints are not anatomically named (the general control
+    /// skeleton).
+    IfShared,
+    /// Never pair: only the chamfer distances.
+    Skip,
+}
+
 /// Options of [`evaluate`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EvalOptions {
@@ -59,11 +76,21 @@ pub struct EvalOptions {
     /// Spacing of bone samples for the bone-to-bone chamfer distance, as a fraction of figure
     /// size. Default 0.002 (≈3.5 mm on a 1.75 m figure; halving it changes B2B by < 0.1 %).
     pub bone_sample_fraction: f64,
+    /// Whether joints are paired. Default [`JointPairing::Required`].
+    pub pairing: JointPairing,
+    /// With [`JointPairing::IfShared`], a pairing by identical joint names (no canonical keys
+    /// shared) is kept only when it covers at least this fraction of the reference's joints;
+    /// fewer shared names are taken as coincidental and give a chamfer-only evaluation.
+    /// Default 0.5 (measured on refdata: the general skeleton's `root` matched 1 of the
+    /// T-rex's 29 joints, a meaningless 30 % "error").
+    pub min_name_fraction: f64,
 }
 
 impl Default for EvalOptions {
     fn default() -> Self {
         Self {
+            pairing: JointPairing::Required,
+            min_name_fraction: 0.5,
             deforming_only: true,
             measure: FigureMeasure::Auto,
             unit_mismatch_ratio: 10.0,
@@ -151,7 +178,7 @@ pub struct Evaluation {
     pub predicted_naming: CanonicalSource,
     /// Where the reference canonical keys came from.
     pub reference_naming: CanonicalSource,
-    /// Per-joint errors, in canonical order.
+    /// Per-joint errors, in canonical order (empty for [`MatchMethod::ChamferOnly`]).
     pub joints: Vec<JointError>,
     /// Summary of `joints[].error`, mesh units.
     pub summary: ErrorSummary,
@@ -234,6 +261,16 @@ fn size_warning(what: &str, a: f64, b: f64, ratio: f64) -> Option<String> {
     })
 }
 
+/// A correspondence without pairs.
+fn chamfer_only(predicted: &ReferenceRig, reference: &ReferenceRig) -> Correspondence {
+    Correspondence {
+        pairs: Vec::new(),
+        method: MatchMethod::ChamferOnly,
+        predicted_naming: canonical_map(predicted).1,
+        reference_naming: canonical_map(reference).1,
+    }
+}
+
 /// Compares `predicted` with `reference`: pairs joints ([`correspond`]), measures each pair's
 /// distance in mesh units and as a percentage of figure size ([`figure_size`], on `mesh` when
 /// given), summarises them and adds the RigNet chamfer distances. Both skeletons must be in the
@@ -241,7 +278,9 @@ fn size_warning(what: &str, a: f64, b: f64, ratio: f64) -> Option<String> {
 ///
 /// # Errors
 /// [`EvalError::Empty`] when a skeleton has no (deforming) joints,
-/// [`EvalError::NoSharedJoints`] when nothing pairs.
+/// [`EvalError::NoSharedJoints`] when nothing pairs and `options.pairing` is
+/// [`JointPairing::Required`]; otherwise such skeletons give an evaluation with no per-joint
+/// errors ([`MatchMethod::ChamferOnly`]) and the chamfer distances.
 pub fn evaluate(
     predicted: &ReferenceRig,
     reference: &ReferenceRig,
@@ -260,9 +299,41 @@ pub fn evaluate(
             });
         }
     }
-    let correspondence = correspond(&predicted, &reference)?;
-    let figure = figure_size(&reference, mesh, options.measure);
     let mut warnings = Vec::new();
+    let correspondence = match options.pairing {
+        JointPairing::Required => correspond(&predicted, &reference)?,
+        JointPairing::IfShared => match correspond(&predicted, &reference) {
+            Ok(c)
+                if c.method == MatchMethod::Name
+                    && (c.pairs.len() as f64)
+                        < options.min_name_fraction * reference.skeleton.len() as f64 =>
+            {
+                let names: Vec<&str> = c.pairs.iter().map(|p| p.key.as_str()).collect();
+                warnings.push(format!(
+                    "per-joint errors are unavailable: no canonical keys are shared and only {} of the reference's {} joint names coincide ({}); only the chamfer distances are reported",
+                    names.len(),
+                    reference.skeleton.len(),
+                    names.join(", ")
+                ));
+                chamfer_only(&predicted, &reference)
+            }
+            Ok(c) => c,
+            Err(EvalError::NoSharedJoints {
+                predicted: p,
+                reference: r,
+            }) => {
+                warnings.push(format!(
+                    "per-joint errors are unavailable: the skeletons share no joints (predicted has {} joints without canonical names, reference has {}); only the chamfer distances are reported",
+                    p.len(),
+                    r.len()
+                ));
+                chamfer_only(&predicted, &reference)
+            }
+            Err(e) => return Err(e),
+        },
+        JointPairing::Skip => chamfer_only(&predicted, &reference),
+    };
+    let figure = figure_size(&reference, mesh, options.measure);
     let predicted_size = extent(predicted.bounding_box(), figure.measure);
     let reference_size = extent(reference.bounding_box(), figure.measure);
     warnings.extend(size_warning(
@@ -357,4 +428,11 @@ pub fn evaluate(
         joints,
         warnings,
     })
+}
+
+impl Evaluation {
+    /// Whether per-joint errors were computed (false for [`MatchMethod::ChamferOnly`]).
+    pub fn has_joint_errors(&self) -> bool {
+        self.method != MatchMethod::ChamferOnly
+    }
 }

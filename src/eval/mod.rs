@@ -8,7 +8,15 @@
 //!                                  evaluate ─▶ Evaluation (per-joint errors, summaries,
 //!                                                 chamfer J2J/J2B/B2B, warnings)
 //!                                      table ─▶ rows ─▶ CSV / JSON / Markdown; aggregate
+//!
+//! rig_mesh (RigMethod) ─▶ bench_model (one model of a folder) ─▶ bench tables
+//!                     └─▶ tessellation_study / rotation_study ─▶ displacement per variant
 //! ```
+//!
+//! Skeletons that share no joint keys (the general control skeleton against an anatomical
+//! reference) can still be compared by the topology-free chamfer distances:
+//! [`JointPairing::IfShared`] / [`JointPairing::Skip`] give a [`MatchMethod::ChamferOnly`]
+//! evaluation instead of [`EvalError::NoSharedJoints`].
 //!
 //! Errors are given in mesh units and as a percentage of figure size (height for upright
 //! figures, longest bounding-box side otherwise), as `DESIGN.md` prescribes.
@@ -39,6 +47,7 @@
 //! assert!((result.summary.max - 0.01).abs() < 1e-12);
 //! ```
 
+mod bench;
 mod bvh;
 mod chamfer;
 mod correspondence;
@@ -46,10 +55,16 @@ mod error;
 mod metrics;
 mod reference;
 mod rig;
+mod rigger;
+mod study;
 mod table;
 #[cfg(test)]
 mod tests;
 
+pub use bench::{
+    bench_counts, bench_csv, bench_markdown, bench_model, bench_table, find_bench_models,
+    stage_names, timing_table, BenchCounts, BenchModel, BenchOptions, BenchResult,
+};
 pub use bvh::parse_bvh;
 pub use chamfer::{
     bone_segments, chamfer, point_segment_distance, sample_segments, ChamferDistances,
@@ -62,11 +77,16 @@ pub use correspondence::{
 pub use error::EvalError;
 pub use metrics::{
     evaluate, figure_size, resolve_measure, ErrorSummary, EvalOptions, Evaluation, FigureMeasure,
-    FigureSize, JointError, SizeSource,
+    FigureSize, JointError, JointPairing, SizeSource,
 };
 pub use reference::{load_gltf_rig, load_skeleton, parse_json_rig, REFDATA_FORMAT};
 pub use rig::{ReferenceRig, RigFormat};
+pub use rigger::{rig_mesh, Orientation, RigMethod, Rigged, RiggerOptions};
+pub use study::{
+    rotation_study, study_csv, study_markdown, study_table, tessellation_study,
+    DisplacementPairing, JointDisplacement, Study, StudyKind, StudyOptions, StudyVariant,
+};
 pub use table::{
-    aggregate, joint_rows, joint_table, key_table, model_row, model_table, to_json, write_csv,
-    DatasetSummary, JointRow, KeyRow, ModelRow, Table,
+    aggregate, joint_rows, joint_table, key_table, model_row, model_table, percent_cell, to_json,
+    write_csv, DatasetSummary, JointRow, KeyRow, ModelRow, Table,
 };

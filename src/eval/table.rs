@@ -40,23 +40,26 @@ pub struct ModelRow {
     pub joints: usize,
     /// Figure size, mesh units.
     pub figure_size: f64,
-    /// Mean error, mesh units.
-    pub mean: f64,
+    /// How joints were paired (`chamfer_only`: no per-joint errors, the error columns are
+    /// empty).
+    pub pairing: super::MatchMethod,
+    /// Mean error, mesh units (`None` without per-joint errors).
+    pub mean: Option<f64>,
     /// Median error, mesh units.
-    pub median: f64,
+    pub median: Option<f64>,
     /// Largest error, mesh units.
-    pub max: f64,
+    pub max: Option<f64>,
     /// RMS error, mesh units.
-    pub rms: f64,
+    pub rms: Option<f64>,
     /// Mean error, % of figure size.
-    pub mean_percent: f64,
+    pub mean_percent: Option<f64>,
     /// Median error, % of figure size.
-    pub median_percent: f64,
+    pub median_percent: Option<f64>,
     /// Largest error, % of figure size.
-    pub max_percent: f64,
+    pub max_percent: Option<f64>,
     /// RMS error, % of figure size.
-    pub rms_percent: f64,
-    /// Key of the joint with the largest error.
+    pub rms_percent: Option<f64>,
+    /// Key of the joint with the largest error (empty without per-joint errors).
     pub worst_joint: String,
     /// CD-J2J, % of figure size.
     pub cd_j2j_percent: f64,
@@ -90,7 +93,7 @@ pub struct DatasetSummary {
     pub models: usize,
     /// All joint errors of all models pooled, % of figure size.
     pub pooled_percent: ErrorSummary,
-    /// Summary of the per-model mean errors, % of figure size.
+    /// Summary of the per-model mean errors, % of figure size (models with per-joint errors).
     pub model_means_percent: ErrorSummary,
     /// Mean over models of CD-J2J, CD-J2B, CD-B2B, % of figure size.
     pub chamfer_percent: super::ChamferDistances,
@@ -123,19 +126,21 @@ pub fn joint_rows(evaluation: &Evaluation) -> Vec<JointRow> {
 pub fn model_row(evaluation: &Evaluation) -> ModelRow {
     let s = &evaluation.summary;
     let p = &evaluation.summary_percent;
+    let some = |v: f64| evaluation.has_joint_errors().then_some(v);
     ModelRow {
         model: evaluation.model.clone(),
         rig: evaluation.rig.clone().unwrap_or_default(),
         joints: s.count,
         figure_size: evaluation.figure.size,
-        mean: s.mean,
-        median: s.median,
-        max: s.max,
-        rms: s.rms,
-        mean_percent: p.mean,
-        median_percent: p.median,
-        max_percent: p.max,
-        rms_percent: p.rms,
+        pairing: evaluation.method,
+        mean: some(s.mean),
+        median: some(s.median),
+        max: some(s.max),
+        rms: some(s.rms),
+        mean_percent: some(p.mean),
+        median_percent: some(p.median),
+        max_percent: some(p.max),
+        rms_percent: some(p.rms),
         worst_joint: evaluation.worst_joint.clone(),
         cd_j2j_percent: evaluation.chamfer_percent.j2j,
         cd_j2b_percent: evaluation.chamfer_percent.j2b,
@@ -149,7 +154,11 @@ pub fn aggregate(evaluations: &[Evaluation]) -> DatasetSummary {
         .iter()
         .flat_map(|e| e.joints.iter().map(|j| j.error_percent))
         .collect();
-    let means: Vec<f64> = evaluations.iter().map(|e| e.summary_percent.mean).collect();
+    let means: Vec<f64> = evaluations
+        .iter()
+        .filter(|e| e.has_joint_errors())
+        .map(|e| e.summary_percent.mean)
+        .collect();
     let mut by_key: BTreeMap<(usize, String), Vec<f64>> = BTreeMap::new();
     for evaluation in evaluations {
         for joint in &evaluation.joints {
@@ -341,7 +350,13 @@ pub fn joint_table(rows: &[JointRow]) -> Table {
     }
 }
 
-/// The per-model table (errors in % of figure size, plus chamfer distances).
+/// `value` with two decimals, or `–` when absent (no per-joint errors).
+pub fn percent_cell(value: Option<f64>) -> String {
+    value.map_or_else(|| "–".to_owned(), |v| format!("{v:.2}"))
+}
+
+/// The per-model table (errors in % of figure size, plus chamfer distances; `–` where
+/// per-joint errors are unavailable).
 pub fn model_table(rows: &[ModelRow]) -> Table {
     Table {
         headers: [
@@ -360,10 +375,10 @@ pub fn model_table(rows: &[ModelRow]) -> Table {
                     r.model.clone(),
                     r.rig.clone(),
                     r.joints.to_string(),
-                    format!("{:.2}", r.mean_percent),
-                    format!("{:.2}", r.median_percent),
-                    format!("{:.2}", r.max_percent),
-                    format!("{:.2}", r.rms_percent),
+                    percent_cell(r.mean_percent),
+                    percent_cell(r.median_percent),
+                    percent_cell(r.max_percent),
+                    percent_cell(r.rms_percent),
                     r.worst_joint.clone(),
                     format!("{:.2}", r.cd_j2j_percent),
                     format!("{:.2}", r.cd_j2b_percent),

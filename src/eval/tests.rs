@@ -587,3 +587,242 @@ fn tables_render() {
         .markdown()
         .contains("| elbow_L |"));
 }
+
+/// Two skeletons without a shared name or canonical key (the general skeleton's situation).
+fn unrelated_pair() -> (Skeleton, Skeleton) {
+    let a = Skeleton {
+        joints: vec![
+            joint("joint_000", None, [0.0; 3]),
+            joint("joint_001", Some(0), [0.0, 1.0, 0.0]),
+        ],
+    };
+    let b = Skeleton {
+        joints: vec![
+            joint("Root", None, [0.1, 0.0, 0.0]),
+            joint("Wing", Some(0), [1.0, 0.0, 0.0]),
+        ],
+    };
+    (a, b)
+}
+
+#[test]
+fn chamfer_only_when_nothing_pairs_and_pairing_is_optional() {
+    let (a, b) = unrelated_pair();
+    let required = evaluate(
+        &rig(a.clone()),
+        &rig(b.clone()),
+        None,
+        &EvalOptions::default(),
+    );
+    assert!(matches!(required, Err(EvalError::NoSharedJoints { .. })));
+    let options = EvalOptions {
+        pairing: JointPairing::IfShared,
+        ..Default::default()
+    };
+    let e = evaluate(&rig(a.clone()), &rig(b.clone()), None, &options).unwrap();
+    assert_eq!(e.method, MatchMethod::ChamferOnly);
+    assert!(!e.has_joint_errors());
+    assert!(e.joints.is_empty() && e.worst_joint.is_empty());
+    assert!(
+        e.warnings[0].contains("per-joint errors are unavailable"),
+        "{:?}",
+        e.warnings
+    );
+    let spacing = options.bone_sample_fraction * e.figure.size;
+    let direct = chamfer(
+        &a,
+        &b,
+        &ChamferOptions {
+            bone_sample_spacing: spacing,
+        },
+    );
+    assert_eq!(e.chamfer, direct);
+    assert!(e.chamfer.j2j > 0.0);
+    assert!((e.chamfer_percent.j2j - 100.0 * direct.j2j / e.figure.size).abs() < 1e-12);
+    // Tables leave the per-joint columns empty.
+    let row = model_row(&e);
+    assert_eq!(row.pairing, MatchMethod::ChamferOnly);
+    assert_eq!((row.mean_percent, row.max), (None, None));
+    assert!(model_table(&[row]).markdown().contains("| – |"));
+    // With IfShared, skeletons that do pair are evaluated per joint as usual.
+    let s = stick_figure();
+    let paired = evaluate(&rig(s.clone()), &rig(s), None, &options).unwrap();
+    assert_eq!(paired.method, MatchMethod::Canonical);
+    assert!(paired.warnings.is_empty());
+}
+
+#[test]
+fn skip_pairing_reports_chamfer_only_even_for_identical_skeletons() {
+    let s = stick_figure();
+    let options = EvalOptions {
+        pairing: JointPairing::Skip,
+        ..Default::default()
+    };
+    let e = evaluate(&rig(s.clone()), &rig(s), None, &options).unwrap();
+    assert_eq!(e.method, MatchMethod::ChamferOnly);
+    assert!(e.warnings.is_empty(), "{:?}", e.warnings);
+    // Identical skeletons: zero up to rounding of the bone samples.
+    assert!(e.chamfer.j2j == 0.0 && e.chamfer.j2b == 0.0 && e.chamfer.b2b < 1e-12);
+}
+
+#[test]
+fn aggregate_ignores_chamfer_only_models_in_per_joint_statistics() {
+    let s = stick_figure();
+    let offset = evaluate(
+        &rig(translated(&s, DVec3::new(0.0, 0.018, 0.0))),
+        &rig(s.clone()),
+        None,
+        &EvalOptions::default(),
+    )
+    .unwrap();
+    let (a, b) = unrelated_pair();
+    let options = EvalOptions {
+        pairing: JointPairing::IfShared,
+        ..Default::default()
+    };
+    let chamfer_only = evaluate(&rig(a), &rig(b), None, &options).unwrap();
+    let dataset = aggregate(&[offset.clone(), chamfer_only.clone()]);
+    assert_eq!(dataset.models, 2);
+    assert_eq!(dataset.model_means_percent.count, 1);
+    assert!((dataset.model_means_percent.mean - offset.summary_percent.mean).abs() < 1e-12);
+    assert_eq!(dataset.pooled_percent.count, offset.joints.len());
+    let mean_j2j = 0.5 * (offset.chamfer_percent.j2j + chamfer_only.chamfer_percent.j2j);
+    assert!((dataset.chamfer_percent.j2j - mean_j2j).abs() < 1e-12);
+}
+
+#[test]
+fn bench_models_are_found_with_rig_fallback() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let models = find_bench_models(&data, "game_engine").unwrap();
+    let names: Vec<&str> = models.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(names, ["mh_neutral_default", "quaternius_horse"]);
+    assert_eq!(models[0].category, "humanoid");
+    assert!(models[0].note.is_none());
+    let horse = &models[1];
+    assert!(horse.reference.as_ref().unwrap().ends_with("rig_gltf.json"));
+    assert!(horse
+        .note
+        .as_ref()
+        .unwrap()
+        .contains("only rig file rig_gltf.json"));
+    // A model folder given directly is one model.
+    let one = find_bench_models(&data.join("quadruped/quaternius_horse"), "gltf").unwrap();
+    assert_eq!(one.len(), 1);
+    assert!(one[0].note.is_none());
+}
+
+#[test]
+fn bench_failures_are_recorded_not_returned() {
+    let dir = tempfile::tempdir().unwrap();
+    assert!(matches!(
+        find_bench_models(dir.path(), "game_engine"),
+        Err(EvalError::NoModels { .. })
+    ));
+    let ambiguous = dir.path().join("two_rigs");
+    std::fs::create_dir_all(&ambiguous).unwrap();
+    std::fs::write(ambiguous.join("mesh.obj"), "v 0 0 0\n").unwrap();
+    std::fs::write(ambiguous.join("rig_a.json"), "{}").unwrap();
+    std::fs::write(ambiguous.join("rig_b.json"), "{}").unwrap();
+    let models = find_bench_models(dir.path(), "game_engine").unwrap();
+    assert_eq!(models.len(), 1);
+    assert!(models[0].reference.is_none());
+    let note = models[0].note.clone().unwrap();
+    assert!(note.contains("rig_a.json, rig_b.json"), "{note}");
+    let result = bench_model(&models[0], &BenchOptions::default());
+    assert!(result.failure.is_some());
+    assert!(result.evaluation.is_none());
+    let csv = bench_csv(std::slice::from_ref(&result)).unwrap();
+    assert!(csv.lines().nth(1).unwrap().contains(",failed,"), "{csv}");
+    assert!(bench_table(&[result]).rows[0][13].starts_with("failed: "));
+}
+
+#[test]
+fn tessellation_and_rotation_studies_of_a_capsule() {
+    let mesh = crate::mesh::Mesh::capsule(DVec3::ZERO, 0.2, 0.6, 8, 16);
+    let options = StudyOptions::default();
+    let study = tessellation_study(&mesh, "capsule", None, &[0.5, 2.0], &options).unwrap();
+    let labels: Vec<&str> = study.variants.iter().map(|v| v.label.as_str()).collect();
+    assert_eq!(labels, ["x1", "x0.5", "x2"]);
+    let base = study.base().unwrap();
+    assert_eq!(base.triangles, mesh.triangles.len());
+    let c = base.chamfer_to_base_percent.unwrap();
+    assert!(c.j2j == 0.0 && c.j2b == 0.0 && c.b2b < 1e-12, "{c:?}");
+    assert_eq!(base.pairing, Some(DisplacementPairing::Index));
+    for v in &study.variants {
+        assert!(v.failure.is_none(), "{:?}", v.failure);
+        // Re-meshing a capsule moves its axis joints by a few percent at most.
+        let j2j = v.chamfer_to_base_percent.unwrap().j2j;
+        assert!(j2j < 5.0, "{} {j2j}", v.label);
+    }
+    assert!(study.variants[2].triangles > mesh.triangles.len());
+    // A rotation about the capsule's own axis, rotated back, lands near the base rig.
+    let study = rotation_study(&mesh, "capsule", None, 4, DVec3::Y, &options).unwrap();
+    assert_eq!(study.variants.len(), 4);
+    assert_eq!(study.variants[1].level, 90.0);
+    for v in &study.variants {
+        let j2j = v.chamfer_to_base_percent.unwrap().j2j;
+        assert!(j2j < 5.0, "{} {j2j}", v.label);
+    }
+    let table = study_table(&study);
+    assert_eq!(table.rows.len(), 4);
+    assert_eq!(table.rows[1][0], "90.0°");
+    assert!(study_markdown(&study, "t", "").contains("| 90.0° |"));
+    assert_eq!(study_csv(&study).unwrap().lines().count(), 5);
+}
+
+#[test]
+fn study_parameters_are_validated() {
+    let mesh = crate::mesh::Mesh::capsule(DVec3::ZERO, 0.2, 0.6, 8, 16);
+    let options = StudyOptions::default();
+    let err = tessellation_study(&mesh, "c", None, &[0.5, -1.0], &options).unwrap_err();
+    assert!(err.to_string().contains("-1"), "{err}");
+    let err = rotation_study(&mesh, "c", None, 0, DVec3::Y, &options).unwrap_err();
+    assert!(err.to_string().contains("n >= 1"), "{err}");
+    let err = rotation_study(&mesh, "c", None, 4, DVec3::ZERO, &options).unwrap_err();
+    assert!(err.to_string().contains("axis"), "{err}");
+}
+
+#[test]
+fn a_coincidental_shared_name_does_not_make_a_per_joint_evaluation() {
+    // The general skeleton's `root` against a reference that also has a `root`.
+    let predicted = Skeleton {
+        joints: vec![
+            joint("root", None, [0.0; 3]),
+            joint("joint_001", Some(0), [0.0, 1.0, 0.0]),
+        ],
+    };
+    let reference = Skeleton {
+        joints: vec![
+            joint("root", None, [0.0, 0.5, 0.0]),
+            joint("Spine", Some(0), [0.0, 1.0, 0.0]),
+            joint("Tail", Some(0), [0.0, 0.5, -1.0]),
+        ],
+    };
+    let options = EvalOptions {
+        pairing: JointPairing::IfShared,
+        ..Default::default()
+    };
+    let e = evaluate(
+        &rig(predicted.clone()),
+        &rig(reference.clone()),
+        None,
+        &options,
+    )
+    .unwrap();
+    assert_eq!(e.method, MatchMethod::ChamferOnly);
+    assert!(
+        e.warnings[0].contains("only 1 of the reference's 3 joint names"),
+        "{:?}",
+        e.warnings
+    );
+    // Asked for explicitly (Required), the name pairing stands.
+    let e = evaluate(
+        &rig(predicted),
+        &rig(reference),
+        None,
+        &EvalOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(e.method, MatchMethod::Name);
+    assert_eq!(e.joints.len(), 1);
+}

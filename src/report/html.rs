@@ -31,7 +31,7 @@ pub struct ReportOptions {
     pub chart: ChartOptions,
 }
 
-const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;color:#222}\
+pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;color:#222}\
 h1{font-size:1.3em}h2{font-size:1.1em;margin-top:1.5em}\
 .views{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}\
 figure{margin:0}figcaption{text-align:center;font-size:.9em;color:#555}\
@@ -71,9 +71,12 @@ pub fn html_report(input: &ReportInput, options: &ReportOptions) -> String {
             view.name()
         );
     }
-    html.push_str("</div><h2>Error per joint</h2>");
-    html.push_str(&error_bar_chart(e, &options.chart));
-    html.push_str(&joint_table(e));
+    html.push_str("</div>");
+    if e.has_joint_errors() {
+        html.push_str("<h2>Error per joint</h2>");
+        html.push_str(&error_bar_chart(e, &options.chart));
+        html.push_str(&joint_table(e));
+    }
     html.push_str("</body></html>\n");
     html
 }
@@ -126,18 +129,30 @@ fn summary_table(e: &Evaluation) -> String {
             .replace('_', " "),
         ),
     ];
-    for (name, u, p) in [
-        ("mean error", e.summary.mean, e.summary_percent.mean),
-        ("median error", e.summary.median, e.summary_percent.median),
-        ("max error", e.summary.max, e.summary_percent.max),
-        ("RMS error", e.summary.rms, e.summary_percent.rms),
+    let per_joint = if e.has_joint_errors() {
+        vec![
+            ("mean error", e.summary.mean, e.summary_percent.mean),
+            ("median error", e.summary.median, e.summary_percent.median),
+            ("max error", e.summary.max, e.summary_percent.max),
+            ("RMS error", e.summary.rms, e.summary_percent.rms),
+        ]
+    } else {
+        rows.push((
+            "per-joint errors".into(),
+            "unavailable: the skeletons share no joint keys; chamfer distances only".into(),
+        ));
+        Vec::new()
+    };
+    for (name, u, p) in per_joint.into_iter().chain([
         ("CD-J2J", e.chamfer.j2j, e.chamfer_percent.j2j),
         ("CD-J2B", e.chamfer.j2b, e.chamfer_percent.j2b),
         ("CD-B2B", e.chamfer.b2b, e.chamfer_percent.b2b),
-    ] {
+    ]) {
         rows.push((name.into(), format!("{u:.4} ({p:.2} %)")));
     }
-    rows.push(("worst joint".into(), e.worst_joint.clone()));
+    if e.has_joint_errors() {
+        rows.push(("worst joint".into(), e.worst_joint.clone()));
+    }
     if !e.unmatched.is_empty() {
         rows.push((
             "reference keys not predicted".into(),

@@ -1,6 +1,7 @@
 //! Reports: pictures of the voxel stages (distance slices as PNG), orthographic SVG projections
 //! of a mesh with predicted and reference joints, an SVG bar chart of the error per joint, and a
-//! self-contained HTML page combining them with the per-joint table. Tables for
+//! self-contained HTML page combining them with the per-joint table; pages for benchmark runs
+//! and robustness studies (tables, bar and line charts). Tables for
 //! CSV/JSON/Markdown live in [`crate::eval`] (`joint_rows`, `write_csv`, ...).
 //!
 //! The SVG and HTML output is plain string building: no network resources, no extra crates.
@@ -8,14 +9,16 @@
 mod chart;
 mod error;
 mod html;
+mod pages;
 mod slices;
 mod svg;
 #[cfg(test)]
 mod tests;
 
-pub use chart::{error_bar_chart, ChartOptions};
+pub use chart::{bar_chart, error_bar_chart, line_chart, ChartOptions, LineChartOptions, Series};
 pub use error::ReportError;
 pub use html::{html_report, write_html_report, ReportInput, ReportOptions};
+pub use pages::{bench_html, study_html, table_html};
 pub use slices::{distance_slice, png_bytes, RgbImage};
 pub use svg::{projection_svg, SvgOptions, View};
 

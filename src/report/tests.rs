@@ -156,3 +156,37 @@ fn bar_chart_has_a_bar_per_joint() {
 fn escape_special_characters() {
     assert_eq!(escape("a<b>&\"c'"), "a&lt;b&gt;&amp;&quot;c&#39;");
 }
+
+#[test]
+fn line_chart_sorts_points_and_draws_every_series() {
+    let series = vec![
+        Series {
+            name: "a".into(),
+            colour: "#f00".into(),
+            points: vec![(1.0, 0.0), (0.1, 2.0), (2.0, 1.0)],
+        },
+        Series {
+            name: "b & c".into(),
+            colour: "#00f".into(),
+            points: vec![(0.1, 1.0)],
+        },
+    ];
+    let svg = line_chart(
+        &series,
+        &LineChartOptions {
+            log_x: true,
+            ..Default::default()
+        },
+    );
+    assert_eq!(svg.matches("<polyline").count(), 2);
+    assert!(svg.contains("b &amp; c"));
+    // Sorted by x: the leftmost point (x = 0.1) comes first, at the left edge of the plot.
+    let points = svg.split("points=\"").nth(1).unwrap();
+    assert!(points.starts_with("56.0,"), "{points}");
+    let bars = bar_chart(
+        &[("m".into(), 2.0), ("n".into(), 1.0)],
+        "cap",
+        &ChartOptions::default(),
+    );
+    assert_eq!(bars.matches("<rect").count(), 2);
+}

@@ -1,6 +1,7 @@
 //! Integration tests: one binary, one module per stage.
 
 mod anatomy;
+mod bench;
 mod cli;
 mod common;
 mod distance;

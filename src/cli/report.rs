@@ -1,0 +1,74 @@
+//! `skelfit report RESULTS.json [-o OUT.html]`: rebuild the self-contained HTML page of a
+//! `bench` run (`bench.json`) or a study (`tessellation.json`, `rotation.json`) from its JSON.
+//! The JSON holds no skeletons, so study pages are written without the projections.
+
+use super::common::write_file;
+use anyhow::Context;
+use clap::Args;
+use skelfit::eval::{BenchResult, Study};
+use skelfit::report::{bench_html, study_html};
+use std::path::PathBuf;
+
+/// Arguments of `skelfit report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// `bench.json` written by `skelfit bench`, or `<study>.json` written by `skelfit study`.
+    pub results: PathBuf,
+    /// HTML file to write (default: the results file with the extension .html).
+    #[arg(short, long, value_name = "OUT.html")]
+    pub output: Option<PathBuf>,
+    /// Page title.
+    #[arg(long)]
+    pub title: Option<String>,
+}
+
+/// Runs the command.
+pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
+    let text = std::fs::read_to_string(&args.results)
+        .with_context(|| format!("reading {}", args.results.display()))?;
+    let value: serde_json::Value = serde_json::from_str(&text)
+        .with_context(|| format!("{} is not JSON", args.results.display()))?;
+    let preamble = format!(
+        "Rebuilt from {} by skelfit report (skelfit {}).",
+        args.results.display(),
+        env!("CARGO_PKG_VERSION")
+    );
+    let html = if value.is_array() {
+        let results: Vec<BenchResult> = serde_json::from_value(value).with_context(|| {
+            format!(
+                "{} is not a bench.json written by skelfit bench",
+                args.results.display()
+            )
+        })?;
+        let title = args
+            .title
+            .clone()
+            .unwrap_or_else(|| "skelfit bench".to_owned());
+        bench_html(&results, &title, &preamble, &|_| None)
+    } else {
+        let study: Study = serde_json::from_value(value).with_context(|| {
+            format!(
+                "{} is neither a bench.json nor a study JSON written by skelfit",
+                args.results.display()
+            )
+        })?;
+        let title = args.title.clone().unwrap_or_else(|| {
+            format!(
+                "skelfit {} study: {}",
+                serde_json::to_value(study.kind)
+                    .ok()
+                    .and_then(|v| v.as_str().map(str::to_owned))
+                    .unwrap_or_default(),
+                study.model
+            )
+        });
+        study_html(&study, &title, &preamble, None)
+    };
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.results.with_extension("html"));
+    write_file(&output, html.as_bytes())?;
+    println!("wrote {}", output.display());
+    Ok(())
+}

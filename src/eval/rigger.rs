@@ -1,0 +1,99 @@
+//! The automatic rigging methods that `bench` and the studies measure: one enum, one entry
+//! function. A new method (e.g. the anatomical rig) is a new [`RigMethod`] variant, its options
+//! in [`RiggerOptions`] and one arm in [`rig_mesh`].
+
+use crate::mesh::Mesh;
+use crate::pipeline::{general_skeleton, GeneralSkeletonOptions};
+use crate::skeleton::Skeleton;
+use glam::{DQuat, DVec3};
+use serde::{Deserialize, Serialize};
+
+/// An automatic rigging method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RigMethod {
+    /// The general control skeleton (dissertation ch.5, [`general_skeleton`]): joints are not
+    /// anatomically named, so evaluations of it are chamfer-only.
+    #[default]
+    General,
+}
+
+impl RigMethod {
+    /// Every method, in documentation order.
+    pub const ALL: &'static [RigMethod] = &[RigMethod::General];
+
+    /// Lowercase name as used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            RigMethod::General => "general",
+        }
+    }
+}
+
+/// The figure's orientation, for methods that need it (the general skeleton does not: it is
+/// orientation-free). Studies that rotate a mesh rotate these with it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Orientation {
+    /// Up direction, unit vector. Default +Y (DESIGN.md, dissertation 7.1.2).
+    pub up: DVec3,
+    /// Direction the figure faces, unit vector. Default +Z.
+    pub forward: DVec3,
+}
+
+impl Default for Orientation {
+    fn default() -> Self {
+        Self {
+            up: DVec3::Y,
+            forward: DVec3::Z,
+        }
+    }
+}
+
+impl Orientation {
+    /// Both directions rotated by `rotation`.
+    pub fn rotated(&self, rotation: DQuat) -> Self {
+        Self {
+            up: rotation * self.up,
+            forward: rotation * self.forward,
+        }
+    }
+}
+
+/// Options of [`rig_mesh`]: the method and each method's parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct RiggerOptions {
+    /// Which method. Default [`RigMethod::General`].
+    pub method: RigMethod,
+    /// The figure's orientation (up/forward). Default +Y up, +Z forward.
+    pub orientation: Orientation,
+    /// Parameters of [`RigMethod::General`] (defaults: dissertation Table 5.2).
+    pub general: GeneralSkeletonOptions,
+}
+
+/// A skeleton fitted by [`rig_mesh`], in the mesh's units and frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rigged {
+    /// The fitted skeleton.
+    pub skeleton: Skeleton,
+    /// Wall-clock time per pipeline stage, `(stage, milliseconds)`, in stage order.
+    pub timings: Vec<(String, f64)>,
+    /// Warnings of every stage, as sentences.
+    pub warnings: Vec<String>,
+}
+
+/// Fits a skeleton into `mesh` with `options.method`.
+///
+/// # Errors
+/// The method's first failing stage (see [`general_skeleton`]).
+pub fn rig_mesh(mesh: &Mesh, options: &RiggerOptions) -> crate::Result<Rigged> {
+    match options.method {
+        RigMethod::General => {
+            let general = general_skeleton(mesh, &options.general)?;
+            Ok(Rigged {
+                skeleton: general.skeleton,
+                timings: general.timings,
+                warnings: general.warnings,
+            })
+        }
+    }
+}

@@ -1,0 +1,271 @@
+//! Self-contained HTML pages for benchmark runs and robustness studies: summaries, tables,
+//! bar and line charts, and (for studies) projections of the base rig against the reference.
+
+use super::{
+    bar_chart, escape, html::STYLE, line_chart, projection_svg, ChartOptions, LineChartOptions,
+    ReportInput, Series, SvgOptions, View,
+};
+use crate::eval::{
+    aggregate, bench_counts, bench_table, key_table, study_table, timing_table, BenchResult,
+    Evaluation, Study, StudyKind, Table,
+};
+use std::fmt::Write;
+
+/// `table` as an HTML `<table>` (numeric columns right-aligned). Cells of column `link_column`
+/// become links to `link(row)` where it returns one.
+pub fn table_html(
+    table: &Table,
+    link_column: Option<usize>,
+    link: &dyn Fn(usize) -> Option<String>,
+) -> String {
+    let mut html = String::from("<table><tr>");
+    for h in &table.headers {
+        let _ = write!(html, "<th>{}</th>", escape(h));
+    }
+    html.push_str("</tr>");
+    for (r, row) in table.rows.iter().enumerate() {
+        html.push_str("<tr>");
+        for (c, cell) in row.iter().enumerate() {
+            let class = if table.numeric.get(c).copied().unwrap_or(false) {
+                " class=\"n\""
+            } else {
+                ""
+            };
+            let text = escape(cell);
+            match (link_column == Some(c)).then(|| link(r)).flatten() {
+                Some(href) => {
+                    let _ = write!(
+                        html,
+                        "<td{class}><a href=\"{}\">{text}</a></td>",
+                        escape(&href)
+                    );
+                }
+                None => {
+                    let _ = write!(html, "<td{class}>{text}</td>");
+                }
+            }
+        }
+        html.push_str("</tr>");
+    }
+    html.push_str("</table>");
+    html
+}
+
+fn page_start(title: &str, preamble: &str) -> String {
+    let mut html = format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{t}</title><style>{STYLE}</style></head><body><h1>{t}</h1>",
+        t = escape(title)
+    );
+    if !preamble.is_empty() {
+        // Markdown code spans (`...`) become <code> elements.
+        let parts: Vec<String> = preamble.split('`').map(escape).collect();
+        let mut text = String::new();
+        for (i, part) in parts.iter().enumerate() {
+            match (i % 2, i + 1 < parts.len()) {
+                (1, true) => {
+                    let _ = write!(text, "<code>{part}</code>");
+                }
+                _ => text.push_str(part),
+            }
+        }
+        let _ = write!(html, "<p>{text}</p>");
+    }
+    html
+}
+
+/// The headline number of an evaluation: mean per-joint error (% of figure size) when joints
+/// paired, else CD-J2J (%).
+fn headline(e: &Evaluation) -> f64 {
+    if e.has_joint_errors() {
+        e.summary_percent.mean
+    } else {
+        e.chamfer_percent.j2j
+    }
+}
+
+/// A benchmark run as one page: summary, a bar chart per model (mean per-joint error, or CD-J2J
+/// where per-joint errors are unavailable), the accuracy table, the per-joint table pooled over
+/// models, the timing table and the notes. `model_page(i)` gives a link for model `i` (e.g.
+/// `models/<name>.html`) or `None`.
+pub fn bench_html(
+    results: &[BenchResult],
+    title: &str,
+    preamble: &str,
+    model_page: &dyn Fn(usize) -> Option<String>,
+) -> String {
+    let mut html = page_start(title, preamble);
+    let counts = bench_counts(results);
+    let evaluations: Vec<Evaluation> = results
+        .iter()
+        .filter_map(|r| r.evaluation.clone())
+        .collect();
+    let dataset = aggregate(&evaluations);
+    let _ = write!(
+        html,
+        "<h2>Summary</h2><ul><li>models: {} ({} with per-joint errors, {} chamfer only, {} failed)</li>",
+        counts.models, counts.per_joint, counts.chamfer_only, counts.failed
+    );
+    if dataset.pooled_percent.count > 0 {
+        let p = &dataset.pooled_percent;
+        let _ = write!(
+            html,
+            "<li>per-joint error over {} joints: mean {:.2} %, median {:.2} %, max {:.2} %, RMS {:.2} % of figure size</li>",
+            p.count, p.mean, p.median, p.max, p.rms
+        );
+    } else {
+        html.push_str("<li>per-joint errors: unavailable (no model shares joint keys with its reference)</li>");
+    }
+    if !evaluations.is_empty() {
+        let c = &dataset.chamfer_percent;
+        let _ = write!(
+            html,
+            "<li>mean over {} evaluated models: CD-J2J {:.2} %, CD-J2B {:.2} %, CD-B2B {:.2} % of figure size</li>",
+            evaluations.len(),
+            c.j2j,
+            c.j2b,
+            c.b2b
+        );
+    }
+    html.push_str("</ul>");
+    let bars: Vec<(String, f64)> = results
+        .iter()
+        .filter_map(|r| Some((r.model.clone(), headline(r.evaluation.as_ref()?))))
+        .collect();
+    if !bars.is_empty() {
+        let caption = if evaluations.iter().all(Evaluation::has_joint_errors) {
+            "mean per-joint error, % of figure size"
+        } else {
+            "mean per-joint error (or CD-J2J where joints do not pair), % of figure size"
+        };
+        let options = ChartOptions {
+            label_width: 230.0,
+            ..Default::default()
+        };
+        html.push_str("<h2>Accuracy per model</h2>");
+        html.push_str(&bar_chart(&bars, caption, &options));
+    }
+    html.push_str("<h2>Accuracy</h2>");
+    html.push_str(&table_html(&bench_table(results), Some(0), model_page));
+    if !dataset.keys.is_empty() {
+        html.push_str("<h2>Per joint, pooled over models</h2>");
+        html.push_str(&table_html(&key_table(&dataset.keys), None, &|_| None));
+    }
+    html.push_str("<h2>Timings (ms)</h2>");
+    html.push_str(&table_html(&timing_table(results), None, &|_| None));
+    let notes: Vec<String> = results
+        .iter()
+        .flat_map(|r| {
+            r.notes
+                .iter()
+                .map(move |n| format!("<li>{}: {}</li>", escape(&r.model), escape(n)))
+        })
+        .collect();
+    if !notes.is_empty() {
+        let _ = write!(html, "<h2>Notes</h2><ul>{}</ul>", notes.concat());
+    }
+    html.push_str("</body></html>\n");
+    html
+}
+
+/// A study as one page: the displacement-per-level plot, the table, and, when `base` is given,
+/// the three projections of the base rig against the reference.
+pub fn study_html(
+    study: &Study,
+    title: &str,
+    preamble: &str,
+    base: Option<&ReportInput>,
+) -> String {
+    let mut html = page_start(title, preamble);
+    let _ = write!(
+        html,
+        "<p>Model <b>{}</b>{}; figure size {:.4}. All values are % of figure size.</p>",
+        escape(&study.model),
+        study
+            .reference
+            .as_ref()
+            .map(|r| format!(", reference {}", escape(r)))
+            .unwrap_or_default(),
+        study.figure.size
+    );
+    let ok = || study.variants.iter().filter(|v| v.failure.is_none());
+    let mut series = vec![Series {
+        name: "CD-J2J to the base rig".into(),
+        colour: "#d62728".into(),
+        points: ok()
+            .filter_map(|v| Some((v.level, v.chamfer_to_base_percent?.j2j)))
+            .collect(),
+    }];
+    let paired: Vec<(f64, f64)> = ok()
+        .filter_map(|v| Some((v.level, v.displacement_percent?.mean)))
+        .collect();
+    // A per-joint series only when variants other than the base pair with it.
+    if paired.len() > 1 {
+        series.push(Series {
+            name: "mean joint displacement from the base rig".into(),
+            colour: "#ff7f0e".into(),
+            points: paired,
+        });
+    }
+    let reference: Vec<(f64, f64)> = ok()
+        .filter_map(|v| Some((v.level, headline(v.to_reference.as_ref()?))))
+        .collect();
+    if !reference.is_empty() {
+        series.push(Series {
+            name: "error to the reference (mean per joint, or CD-J2J)".into(),
+            colour: "#1f77b4".into(),
+            points: reference,
+        });
+    }
+    let options = LineChartOptions {
+        log_x: study.kind == StudyKind::Tessellation,
+        x_label: match study.kind {
+            StudyKind::Tessellation => "triangle ratio (log scale)".into(),
+            StudyKind::Rotation => "rotation, degrees".into(),
+        },
+        y_label: "% of figure size".into(),
+        ..Default::default()
+    };
+    html.push_str("<h2>Displacement per level</h2>");
+    html.push_str(&line_chart(&series, &options));
+    html.push_str("<h2>Variants</h2>");
+    html.push_str(&table_html(&study_table(study), None, &|_| None));
+    if let Some(input) = base {
+        let s = SvgOptions::default();
+        let _ = write!(
+            html,
+            "<h2>Base rig against the reference</h2><p><span class=\"swatch\" style=\"background:{}\"></span>reference<span class=\"swatch\" style=\"background:{}\"></span>predicted<span class=\"swatch\" style=\"background:{}\"></span>error</p><div class=\"views\">",
+            s.reference_colour, s.predicted_colour, s.error_colour
+        );
+        for view in View::ALL {
+            let _ = write!(
+                html,
+                "<figure>{}<figcaption>{}</figcaption></figure>",
+                projection_svg(
+                    view,
+                    input.mesh,
+                    input.predicted,
+                    input.reference,
+                    input.evaluation,
+                    &s
+                ),
+                view.name()
+            );
+        }
+        html.push_str("</div>");
+    }
+    let notes: Vec<String> = study
+        .variants
+        .iter()
+        .flat_map(|v| {
+            v.warnings
+                .iter()
+                .chain(&v.failure)
+                .map(move |w| format!("<li>{}: {}</li>", escape(&v.label), escape(w)))
+        })
+        .collect();
+    if !notes.is_empty() {
+        let _ = write!(html, "<h2>Notes</h2><ul>{}</ul>", notes.concat());
+    }
+    html.push_str("</body></html>\n");
+    html
+}

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Regenerates the committed validation reports in reports/ with the release binary:
+#   reports/data/      bench of the bundled models (data/), with one HTML page per model
+#   reports/refdata/   bench of the whole reference set (../shared/refdata or $SKELFIT_REFDATA)
+#   reports/studies/   tessellation and rotation studies of the bundled MakeHuman body and horse
+#   reports/labels/    body-part labelling accuracy on the reference set
+#   reports/scaling/   time against interior voxel count (mesh to skinned general skeleton)
+# Usage: tools/regenerate_reports.sh   (from anywhere; takes a few minutes)
+# Set SKELFIT_SKIP_SCALING=1 to leave reports/scaling/ alone (its timings need a quiet machine).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+REFDATA="${SKELFIT_REFDATA:-../shared/refdata}"
+METHOD="${SKELFIT_METHOD:-general}"
+cargo build --release --quiet
+BIN="${CARGO_TARGET_DIR:-target}/release/skelfit"
+
+"$BIN" bench data --rig game_engine --method "$METHOD" --out reports/data --html --model-pages
+
+for model in humanoid/mh_neutral_default:rig_game_engine.json quadruped/quaternius_horse:rig_gltf.json; do
+  dir="data/${model%%:*}"
+  out="reports/studies/$(basename "$dir")"
+  "$BIN" study tessellation "$dir/mesh.obj" --reference "$dir/${model##*:}" --method "$METHOD" \
+    --levels 0.1,0.25,0.5,1,2 --out "$out" --html
+  "$BIN" study rotation "$dir/mesh.obj" --reference "$dir/${model##*:}" --method "$METHOD" \
+    --n 8 --out "$out" --html
+done
+
+if [ -f "$REFDATA/README.md" ]; then
+  "$BIN" bench "$REFDATA" --rig game_engine --method "$METHOD" --out reports/refdata --html
+  "$BIN" label --table "$REFDATA" -o reports/labels
+else
+  echo "reference data not found at $REFDATA (set SKELFIT_REFDATA): reports/refdata not regenerated" >&2
+fi
+
+if [ -z "${SKELFIT_SKIP_SCALING:-}" ]; then
+  cargo run --release --quiet --example scaling -- --out reports/scaling
+fi
