@@ -267,9 +267,8 @@ fn dms_is_connected_on_a_humanoid_a_quadruped_and_a_spider() {
     }
 }
 
-/// Every refdata model; slow in debug builds (`cargo test --release -- --ignored`).
+/// Every refdata model (about 2 s in release; CI runs release tests).
 #[test]
-#[ignore = "all refdata models: run with --release -- --ignored"]
 fn dms_is_connected_on_every_refdata_model() {
     let Some(root) = crate::common::refdata() else {
         return;
