@@ -39,6 +39,9 @@ pub enum Error {
     /// Fitting an anatomical skeleton failed.
     #[error(transparent)]
     Fit(#[from] crate::fit::FitError),
+    /// Refining a humanoid skeleton by slicing failed.
+    #[error(transparent)]
+    Refine(#[from] crate::refine::RefineError),
     /// Writing a report or picture failed.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),

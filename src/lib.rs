@@ -54,6 +54,7 @@ pub mod mesh;
 pub mod output;
 pub mod paths;
 pub mod pipeline;
+pub mod refine;
 pub mod report;
 pub mod skeleton;
 pub mod skin;

@@ -9,6 +9,8 @@
 //! - [`load`] dispatches on the extension to [`load_obj`], [`load_gltf`], [`load_stl`],
 //!   [`load_ply`]; [`load_gltf_scene`] also returns a glTF skin's joints in the bind pose.
 //! - [`Mesh::stats`] gives [`MeshStats`] (components, boundary and non-manifold edges, volume).
+//! - [`slice_plane`] and [`slice_sphere`] cut a mesh into [`SliceLoop`]s with centroid,
+//!   perimeter and [`PrincipalAxes`] (seed 004).
 //! - [`Mesh::oriented_outward`] repairs inconsistent winding ([`OrientReport`]).
 
 mod error;
@@ -22,6 +24,9 @@ mod orient;
 mod ply;
 mod retessellate;
 mod shapes;
+mod slice;
+mod slice_plane;
+mod slice_sphere;
 mod stats;
 mod stl;
 mod topology;
@@ -33,6 +38,9 @@ pub use load::load;
 pub use obj::load_obj;
 pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION, FLAT_VOLUME_FRACTION};
 pub use ply::load_ply;
+pub use slice::{PrincipalAxes, SliceLoop};
+pub use slice_plane::slice_plane;
+pub use slice_sphere::slice_sphere;
 pub use stats::MeshStats;
 pub use stl::load_stl;
 pub use topology::DEGENERATE_AREA_FRACTION;

@@ -1,0 +1,165 @@
+//! Body frame and head geometry (seed 004, 3.1): the transverse normal from the legs, head
+//! slices from the top down, frontal and sagittal normals from the head's projected points.
+
+use super::geometry::{nearest_loop, pca_2d};
+use super::RefineOptions;
+use crate::mesh::{slice_plane, Mesh, SliceLoop};
+use glam::DVec3;
+
+/// The body's orthonormal directions (seed 004, 3: transverse, frontal and sagittal plane
+/// normals) and its vertical extent.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyFrame {
+    /// Normal of the transverse plane, pointing up (feet → head).
+    pub up: DVec3,
+    /// Normal of the frontal plane, pointing forward (the way the face looks).
+    pub forward: DVec3,
+    /// Normal of the sagittal plane, pointing to the figure's left: `up × forward`.
+    pub left: DVec3,
+    /// Height of the topmost mesh point along `up` (mesh units, `p · up`).
+    pub top: f64,
+    /// Height of the lowest mesh point along `up`.
+    pub bottom: f64,
+}
+
+impl BodyFrame {
+    /// A frame from `up` and the part of `forward` perpendicular to it, with the mesh's
+    /// extent along `up`. `None` when they are parallel or the mesh has no vertices.
+    pub fn new(mesh: &Mesh, up: DVec3, forward: DVec3) -> Option<Self> {
+        let up = up.try_normalize()?;
+        let forward = (forward - up * forward.dot(up)).try_normalize()?;
+        let (bottom, top) = mesh
+            .triangles
+            .iter()
+            .flatten()
+            .map(|&i| mesh.positions[i as usize].dot(up))
+            .fold(None, |acc: Option<(f64, f64)>, h| {
+                Some(acc.map_or((h, h), |(lo, hi)| (lo.min(h), hi.max(h))))
+            })?;
+        Some(Self {
+            up,
+            forward,
+            left: up.cross(forward),
+            top,
+            bottom,
+        })
+    }
+
+    /// Figure height along `up`, mesh units.
+    pub fn height(&self) -> f64 {
+        self.top - self.bottom
+    }
+
+    /// Height of `p` along `up`.
+    pub fn h(&self, p: DVec3) -> f64 {
+        p.dot(self.up)
+    }
+
+    /// `p` moved along `up` to height `h`.
+    pub fn at_height(&self, p: DVec3, h: f64) -> DVec3 {
+        p + self.up * (h - self.h(p))
+    }
+}
+
+/// The head as transverse slices from the top down to the chin-throat (or head-torso)
+/// transfer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeadSlices {
+    /// The head's slices, top first, each the loop around the head at its height.
+    pub slices: Vec<SliceLoop>,
+    /// Index of the slice with the largest diameter.
+    pub largest: usize,
+    /// Which criterion ended the head: `true` for the diameter shrink, `false` for the turned
+    /// principal axes (or the depth limit).
+    pub ended_by_shrink: bool,
+}
+
+/// Slices the head from the top of `frame` downwards (seed 004, 3.1). `near` is a point of the
+/// rough skeleton inside the head, used to pick the head's loop where a slice has several
+/// (hands raised above the head). `None` when no head-like sequence of slices is found.
+pub fn head_slices(
+    mesh: &Mesh,
+    frame: &BodyFrame,
+    near: DVec3,
+    options: &RefineOptions,
+) -> Option<HeadSlices> {
+    let step = options.head_slice_step * frame.height();
+    let max_slices = (options.head_max_depth / options.head_slice_step).ceil() as usize;
+    let turn_cos = options.head_turn_degrees.to_radians().cos();
+    let mut slices: Vec<SliceLoop> = Vec::new();
+    let mut largest: Option<(usize, f64, DVec3, f64)> = None; // index, diameter, axis, elongation
+    let mut previous = near;
+    for k in 1..=max_slices {
+        let h = frame.top - step * k as f64;
+        let loops = slice_plane(mesh, frame.up * h, frame.up);
+        let guess = frame.at_height(previous, h);
+        let Some(slice) = nearest_loop(&loops, guess) else {
+            continue;
+        };
+        let Some(axes) = slice.principal_axes() else {
+            continue;
+        };
+        let elongation = axes.major_diameter / axes.minor_diameter.max(f64::MIN_POSITIVE);
+        let checked = step * k as f64 > options.head_min_depth * frame.height();
+        if let (true, Some((_, diameter, axis, e))) = (checked, largest) {
+            if axes.major_diameter < options.head_shrink_ratio * diameter {
+                return finish(slices, largest, true);
+            }
+            let turned = axes.major.dot(axis).abs() < turn_cos;
+            let elongated =
+                elongation > options.head_min_elongation && e > options.head_min_elongation;
+            if turned && elongated {
+                return finish(slices, largest, false);
+            }
+        }
+        if largest.is_none_or(|(_, d, _, _)| axes.major_diameter > d) {
+            largest = Some((slices.len(), axes.major_diameter, axes.major, elongation));
+        }
+        previous = slice.centroid().unwrap_or(guess);
+        slices.push(slice.clone());
+    }
+    None
+}
+
+fn finish(
+    slices: Vec<SliceLoop>,
+    largest: Option<(usize, f64, DVec3, f64)>,
+    ended_by_shrink: bool,
+) -> Option<HeadSlices> {
+    let (largest, ..) = largest?;
+    (slices.len() >= 3).then_some(HeadSlices {
+        slices,
+        largest,
+        ended_by_shrink,
+    })
+}
+
+/// Frontal and sagittal normals from the head (seed 004, 3.1): the principal axes of all head
+/// slice points projected into one transverse plane; the longer axis is forward, its sign taken
+/// from `forward_hint`. Returns the frame with `forward` and `left` replaced, or `None` when
+/// the head is too round to tell.
+pub fn frame_from_head(
+    frame: &BodyFrame,
+    head: &HeadSlices,
+    forward_hint: DVec3,
+) -> Option<BodyFrame> {
+    let points: Vec<(f64, f64)> = head
+        .slices
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .map(|p| (p.dot(frame.forward), p.dot(frame.left)))
+        .collect();
+    let (major, ratio) = pca_2d(&points)?;
+    if ratio < 1.02 {
+        return None;
+    }
+    let mut forward = (frame.forward * major.0 + frame.left * major.1).normalize();
+    if forward.dot(forward_hint) < 0.0 {
+        forward = -forward;
+    }
+    Some(BodyFrame {
+        forward,
+        left: frame.up.cross(forward),
+        ..*frame
+    })
+}

@@ -1,0 +1,46 @@
+//! Slicing-based refinement of a roughly aligned humanoid skeleton (seed 004): the mesh is cut by
+//! planes and spheres to place the joints where a human's joints are.
+//!
+//! ```text
+//! rough skeleton + canonical map
+//!   ─▶ body frame: transverse normal from ankle→hip vectors; head slices from the top down
+//!      (diameter shrink / principal axes turning); frontal and sagittal normals from the head
+//!   ─▶ head joint: perimeter-weighted head centroid at nose level, averaged with the occipital
+//!      circle's centre
+//!   ─▶ torso: median-plane silhouette (cubic B-spline) → neck, back, lumbar, sacroiliac,
+//!      throat, crotch points
+//!   ─▶ hips: transverse slice between crotch and sacroiliac heights, halves' centroids
+//!   ─▶ limbs: Plumber sphere slices (barycentres, perimeters, diameters, B-splines) →
+//!      ankles (curvature), wrists (thickness/width minima), knees and elbows (smallest angle or
+//!      limb ratio + minimal perimeter), shoulders (armpit + half-rotated sagittal plane)
+//!   ─▶ spine: Catmull-Rom curve through head, C7/T1, T6/T7, L3/L4, sacrum; 24 inter-vertebral
+//!      joints + sacrum by equation (1) (argmin)
+//!   ─▶ skeleton: refined joints moved, the rest carried along, frames turned
+//! ```
+//!
+//! Anything that cannot be found keeps its rough position with a warning naming the joint.
+
+mod carry;
+mod driver;
+mod error;
+mod frame;
+mod geometry;
+mod head;
+mod limb;
+mod limb_joints;
+mod options;
+mod shoulder;
+mod spine;
+mod torso;
+
+pub use carry::carry;
+pub use driver::{refine, Refinement, REFINED_KEYS};
+pub use error::RefineError;
+pub use frame::{frame_from_head, head_slices, BodyFrame, HeadSlices};
+pub use head::{head_joint, HeadJoint};
+pub use limb::{trace_limb, LimbProfile, LimbSlice};
+pub use limb_joints::{ankle, arc_near, bend, wrist, BendRule};
+pub use options::RefineOptions;
+pub use shoulder::{armpit, shoulder};
+pub use spine::{spine, Spine, SPINE_JOINTS};
+pub use torso::{hips, torso_points, TorsoBounds, TorsoPoints};

@@ -1,0 +1,132 @@
+//! Tunable numbers of the refinement, with their sources.
+
+/// Options of [`super::refine`]. Lengths given as fractions of the figure's height (measured
+/// along the body's transverse normal) so that one set of defaults serves children and adults
+/// in any unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RefineOptions {
+    /// Spacing of the transverse head slices, fraction of height. Default 0.004 (7 mm on a
+    /// 1.75 m figure): fine enough that the chin-throat transfer is seen within a centimetre
+    /// (seed 004, 3.1).
+    pub head_slice_step: f64,
+    /// The head ends where a slice's diameter falls below this fraction of the largest head
+    /// slice's diameter ("shrinked significantly", seed 004, 3.1). Default 0.75: the neck is
+    /// 55-65 % of the head's length on the MakeHuman bodies (measurement).
+    pub head_shrink_ratio: f64,
+    /// The head also ends where the major axis has turned by more than this angle (degrees)
+    /// from the largest slice's (the 90° head-torso transfer, seed 004, 3.1). Default 60.
+    pub head_turn_degrees: f64,
+    /// Principal axes only count as turned when both slices are at least this elongated
+    /// (major / minor diameter); round slices have no meaningful axis. Default 1.1.
+    pub head_min_elongation: f64,
+    /// Neither criterion is checked above this depth below the top, fraction of height: the
+    /// first slices of the skull are small and round, their axes meaningless. Default 0.05
+    /// (9 cm on 1.75 m, about the forehead).
+    pub head_min_depth: f64,
+    /// The head search stops in any case this far below the top, fraction of height. Default
+    /// 0.2 (a head is about 1/8 of an adult's height, 1/5-1/6 of a child's).
+    pub head_max_depth: f64,
+    /// Part of the nose-level slice used as the back of the head for the occipital circle:
+    /// points whose forward coordinate is behind the slice centroid by at least this fraction
+    /// of the slice's forward extent. Default 0.1 (seed 004, 3.1, fig. 2).
+    pub head_back_fraction: f64,
+    /// Step between Plumber sphere centres along a limb, fraction of height. Default 0.008
+    /// (14 mm on 1.75 m: about a third of a wrist's diameter).
+    pub limb_step: f64,
+    /// Sphere radius as a multiple of the local limb radius (perimeter / 2π of the previous
+    /// slice): the sphere must be larger than the tube to cut it (Mortara et al. 2004 grow the
+    /// radius with the tube). Default 1.5.
+    pub sphere_radius_factor: f64,
+    /// A slice whose perimeter exceeds the previous one by this factor means the sphere has
+    /// reached the torso (or the foot): the limb trace stops. Default 1.6.
+    pub merge_ratio: f64,
+    /// A slice whose perimeter is below this fraction of the previous one means the limb has
+    /// split into digits: the trace stops. Default 0.6.
+    pub split_ratio: f64,
+    /// Limbs are traced beyond their distal rough joint by this fraction of the distal segment
+    /// (into hand and foot, needed by the wrist and ankle criteria). Default 0.7.
+    pub distal_overshoot: f64,
+    /// Knees and elbows: a smallest angle above this (degrees) counts as a straight limb and the
+    /// limb ratio is used instead (seed 004, 3.3). Default 165.
+    pub straight_degrees: f64,
+    /// Upper leg's share of the hip-ankle centroid-curve length where the knee of a straight
+    /// leg is searched (Dellas et al. 2007 via seed 004, 3.3). Default 0.49: thigh / (thigh +
+    /// shank) of the MakeHuman reference rigs (measurement).
+    pub leg_ratio: f64,
+    /// Upper arm's share of the shoulder-wrist length for a straight arm. Default 0.54:
+    /// humerus / (humerus + ulna) of adult anthropometry (~0.31 m / 0.26 m).
+    pub arm_ratio: f64,
+    /// Half-width of the minimal-perimeter search around the ratio point, fraction of the limb
+    /// length. Default 0.06.
+    pub ratio_window: f64,
+    /// The ankle is searched on the part of the leg curve below this fraction of the rough
+    /// knee-ankle segment. Default 0.6.
+    pub ankle_search_from: f64,
+    /// The wrist is searched on the part of the arm curve beyond this fraction of the rough
+    /// elbow-wrist segment. Default 0.5.
+    pub wrist_search_from: f64,
+    /// Curvature on the leg's centroid curve is measured over this arc-length window, fraction
+    /// of height. Default 0.03 (5 cm).
+    pub curvature_window: f64,
+    /// Height of the hip slice above the crotch, fraction of height. Default 0.05. The seed
+    /// (3.3) averages the crotch and sacroiliac heights; on the MakeHuman bodies the buttocks'
+    /// flat bulge made the sacroiliac height unstable (the hip joints lay at 0.6-1.2 of the
+    /// way from crotch to sacroiliac point), while the hips lay 0.044-0.058 of height above
+    /// the crotch on all six (measurement, reports/refine).
+    pub hip_above_crotch: f64,
+    /// The back's neck point and the throat are searched no higher than this fraction of the
+    /// way from the shoulders to the head joint. Default 0.5: the back of the neck rises
+    /// forward up to the skull, so the seed's local maximum (3.2) is reached only at the
+    /// window's end; C7/T1 of the MakeHuman rigs lies at 0.51-0.52 of the way (measurement).
+    pub neck_window: f64,
+    /// Resampling step of the median silhouette before its cubic B-spline, fraction of height.
+    /// Default 0.004.
+    pub silhouette_step: f64,
+    /// Depth of the thoracic spine (T6/T7) in front of the back point, fraction of height: the
+    /// seed's "heuristical value depending on the body's overall height" (3.2). Default 0.035
+    /// (6 cm on 1.75 m: skin, spinous process and lamina to the vertebral body's back).
+    pub thoracic_depth: f64,
+    /// Depth of the lumbar spine (L3/L4) in front of the lumbar point, fraction of height.
+    /// Default 0.04.
+    pub lumbar_depth: f64,
+    /// Depth of the sacrum centre in front of the sacroiliac point, fraction of height.
+    /// Default 0.045.
+    pub sacral_depth: f64,
+    /// A refined joint farther than this from its rough position (fraction of height) is
+    /// rejected and the joint keeps its rough position with a warning. Default 0.09: the rough
+    /// skeletons to refine are off by up to ~6 cm (issue 6), twice that is a failed analysis.
+    pub max_shift: f64,
+}
+
+impl Default for RefineOptions {
+    fn default() -> Self {
+        Self {
+            head_slice_step: 0.004,
+            head_shrink_ratio: 0.75,
+            head_turn_degrees: 60.0,
+            head_min_elongation: 1.1,
+            head_min_depth: 0.05,
+            head_max_depth: 0.2,
+            head_back_fraction: 0.1,
+            limb_step: 0.008,
+            sphere_radius_factor: 1.5,
+            merge_ratio: 1.6,
+            split_ratio: 0.6,
+            distal_overshoot: 0.7,
+            straight_degrees: 165.0,
+            leg_ratio: 0.49,
+            arm_ratio: 0.54,
+            ratio_window: 0.06,
+            ankle_search_from: 0.6,
+            wrist_search_from: 0.5,
+            curvature_window: 0.03,
+            hip_above_crotch: 0.05,
+            neck_window: 0.5,
+            silhouette_step: 0.004,
+            thoracic_depth: 0.035,
+            lumbar_depth: 0.04,
+            sacral_depth: 0.045,
+            max_shift: 0.09,
+        }
+    }
+}

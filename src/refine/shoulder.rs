@@ -1,0 +1,83 @@
+//! Shoulders from the armpits (seed 004, 3.3, fig. 4b): the armpit as the apex of the gap
+//! between arm and torso on the frontal-plane slice, then the arm's line cut by the sagittal
+//! plane through the armpit, rotated half-way into the arm direction.
+
+use super::frame::BodyFrame;
+use super::geometry::fit_line;
+use super::limb::LimbProfile;
+use crate::mesh::{slice_plane, Mesh};
+use glam::DVec3;
+
+/// The armpit of the side `sign` (+1 left, −1 right) on the frontal slice through `centre`:
+/// over lateral offsets from `inner` to `outer` (distances from the median plane), the highest
+/// point of the body's outline that bounds, from above, the empty region at height `waist`
+/// (the gap between arm and torso). `samples` lateral positions are tried. `None` without
+/// such a gap (arms touching the torso down to the waist).
+#[allow(clippy::too_many_arguments)]
+pub fn armpit(
+    mesh: &Mesh,
+    frame: &BodyFrame,
+    centre: DVec3,
+    sign: f64,
+    inner: f64,
+    outer: f64,
+    waist: f64,
+    samples: usize,
+) -> Option<DVec3> {
+    let loops = slice_plane(mesh, centre, frame.forward);
+    let lateral = |p: DVec3| (p - centre).dot(frame.left) * sign;
+    let segments: Vec<((f64, f64), (f64, f64))> = loops
+        .iter()
+        .flat_map(|l| l.segments())
+        .map(|(a, b)| ((lateral(a), frame.h(a)), (lateral(b), frame.h(b))))
+        .collect();
+    let mut best: Option<(f64, f64)> = None;
+    for k in 0..=samples {
+        let u = inner + (outer - inner) * k as f64 / samples.max(1) as f64;
+        let mut crossings: Vec<f64> = segments
+            .iter()
+            .filter(|(a, b)| (a.0 < u) != (b.0 < u))
+            .map(|(a, b)| a.1 + (b.1 - a.1) * (u - a.0) / (b.0 - a.0))
+            .collect();
+        crossings.sort_by(f64::total_cmp);
+        let below = crossings.iter().filter(|&&h| h < waist).count();
+        if below % 2 == 1 {
+            continue; // the waist height is inside the body here
+        }
+        let Some(&top) = crossings.iter().find(|&&h| h >= waist) else {
+            continue;
+        };
+        if best.is_none_or(|(_, h)| top > h) {
+            best = Some((u, top));
+        }
+    }
+    let (u, h) = best?;
+    let origin = centre + frame.left * (sign * u);
+    Some(frame.at_height(origin, h))
+}
+
+/// The shoulder from the armpit and the arm's profile: the line through the slices of the
+/// upper arm up to arc length `upper_end`, cut by the plane through `armpit` whose normal is
+/// half-way between the outward lateral direction and the arm's direction.
+pub fn shoulder(
+    frame: &BodyFrame,
+    arm: &LimbProfile,
+    armpit: DVec3,
+    sign: f64,
+    upper_end: f64,
+) -> Option<DVec3> {
+    let points: Vec<DVec3> = arm
+        .slices
+        .iter()
+        .filter(|s| s.arc <= upper_end)
+        .map(|s| s.centre)
+        .collect();
+    let (p0, dir) = fit_line(&points)?;
+    let normal = (frame.left * sign + dir).try_normalize()?;
+    let denom = dir.dot(normal);
+    if denom.abs() < 1e-6 {
+        return None;
+    }
+    let t = (armpit - p0).dot(normal) / denom;
+    Some(p0 + dir * t)
+}

@@ -1,0 +1,230 @@
+//! The spine curve and its joints (seed 004, 3.2): control points from the torso's
+//! characteristic points, a chordal Catmull-Rom curve through them, and the 24 inter-vertebral
+//! joints plus the sacrum centre spaced by minimising the length deviation of adjacent
+//! segments (equation 1) with argmin.
+
+use super::frame::BodyFrame;
+use super::torso::TorsoPoints;
+use super::RefineOptions;
+use argmin::core::{CostFunction, Executor, Gradient, State};
+use argmin::solver::linesearch::MoreThuenteLineSearch;
+use argmin::solver::quasinewton::LBFGS;
+use glam::DVec3;
+use nalgebra::DVector;
+
+/// Names of the spine joints from the top: the joint below each vertebra (`C1` joins C1 and
+/// C2, ..., `L5` joins L5 and the sacrum), then the sacrum centre.
+pub const SPINE_JOINTS: [&str; 25] = [
+    "C1", "C2", "C3", "C4", "C5", "C6", "C7", "T1", "T2", "T3", "T4", "T5", "T6", "T7", "T8", "T9",
+    "T10", "T11", "T12", "L1", "L2", "L3", "L4", "L5", "sacrum",
+];
+
+/// Index in the joint sequence (0 = head joint, then [`SPINE_JOINTS`]) of the joints fixed to
+/// control points: head, C7/T1, T6/T7, L3/L4, sacrum centre.
+const FIXED: [usize; 5] = [0, 7, 13, 22, 25];
+
+/// The spine: its control points, the curve and the joints.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spine {
+    /// Control points from the top: head joint, C7/T1, T6/T7, L3/L4, sacrum centre, lower end.
+    pub control: Vec<DVec3>,
+    /// The joints named by [`SPINE_JOINTS`], top first.
+    pub joints: Vec<(String, DVec3)>,
+}
+
+impl Spine {
+    /// The joint called `name` (a [`SPINE_JOINTS`] entry).
+    pub fn joint(&self, name: &str) -> Option<DVec3> {
+        self.joints.iter().find(|(n, _)| n == name).map(|(_, p)| *p)
+    }
+}
+
+/// Builds the spine from the head joint and the torso points. The depth offsets move the back
+/// points into the body along `frame.forward`; every point is kept in the median plane through
+/// `centre`. `None` when the control points are not ordered top to bottom.
+pub fn spine(
+    frame: &BodyFrame,
+    centre: DVec3,
+    head: DVec3,
+    torso: &TorsoPoints,
+    options: &RefineOptions,
+) -> Option<Spine> {
+    let height = frame.height();
+    let median = |p: DVec3| p - frame.left * (p - centre).dot(frame.left);
+    let c7 = (torso.throat + torso.neck) * 0.5;
+    let t6 = torso.back + frame.forward * (options.thoracic_depth * height);
+    let l3 = torso.lumbar + frame.forward * (options.lumbar_depth * height);
+    let sacrum = torso.sacroiliac + frame.forward * (options.sacral_depth * height);
+    let end = frame.at_height(sacrum, frame.h(torso.crotch));
+    let control: Vec<DVec3> = [head, c7, t6, l3, sacrum, end]
+        .into_iter()
+        .map(median)
+        .collect();
+    if control.windows(2).any(|w| frame.h(w[0]) <= frame.h(w[1])) {
+        return None;
+    }
+    let curve = CatmullRom::new(&control);
+    let fixed: Vec<f64> = (0..FIXED.len()).map(|k| curve.knots[k]).collect();
+    let t = spacing(&fixed)?;
+    let joints = SPINE_JOINTS
+        .iter()
+        .zip(t.iter().skip(1))
+        .map(|(name, &u)| (name.to_string(), curve.point(u)))
+        .collect();
+    Some(Spine { control, joints })
+}
+
+/// Chordal Catmull-Rom curve (Barry-Goldman pyramid) through points, ends extended by
+/// reflection.
+struct CatmullRom {
+    points: Vec<DVec3>,
+    knots: Vec<f64>,
+}
+
+impl CatmullRom {
+    fn new(control: &[DVec3]) -> Self {
+        let n = control.len();
+        let mut points = Vec::with_capacity(n + 2);
+        points.push(control[0] * 2.0 - control[1]);
+        points.extend_from_slice(control);
+        points.push(control[n - 1] * 2.0 - control[n - 2]);
+        let mut knots = vec![0.0];
+        for w in control.windows(2) {
+            let last = knots[knots.len() - 1];
+            knots.push(last + w[0].distance(w[1]).max(1e-12));
+        }
+        Self { points, knots }
+    }
+
+    /// The point at chordal parameter `t` (0 at the first control point).
+    fn point(&self, t: f64) -> DVec3 {
+        let k = &self.knots;
+        let n = k.len();
+        let t = t.clamp(k[0], k[n - 1]);
+        let i = k.partition_point(|&x| x <= t).clamp(1, n - 1) - 1;
+        let (t1, t2) = (k[i], k[i + 1]);
+        let t0 = if i == 0 { t1 - (t2 - t1) } else { k[i - 1] };
+        let t3 = if i + 2 < n { k[i + 2] } else { t2 + (t2 - t1) };
+        let [p0, p1, p2, p3] = [
+            self.points[i],
+            self.points[i + 1],
+            self.points[i + 2],
+            self.points[i + 3],
+        ];
+        let lerp = |a: DVec3, b: DVec3, ta: f64, tb: f64| a + (b - a) * ((t - ta) / (tb - ta));
+        let a1 = lerp(p0, p1, t0, t1);
+        let a2 = lerp(p1, p2, t1, t2);
+        let a3 = lerp(p2, p3, t2, t3);
+        let b1 = lerp(a1, a2, t0, t2);
+        let b2 = lerp(a2, a3, t1, t3);
+        lerp(b1, b2, t1, t2)
+    }
+}
+
+/// Equation (1) of seed 004 over the free joint parameters, the fixed ones held.
+struct LengthDeviation {
+    fixed: Vec<f64>,
+}
+
+impl LengthDeviation {
+    /// All 26 parameters from the free ones.
+    fn full(&self, free: &DVector<f64>) -> Vec<f64> {
+        let mut out = Vec::with_capacity(26);
+        let mut f = free.iter();
+        for i in 0..26 {
+            match FIXED.iter().position(|&k| k == i) {
+                Some(k) => out.push(self.fixed[k]),
+                None => out.push(*f.next().unwrap_or(&0.0)),
+            }
+        }
+        out
+    }
+}
+
+impl CostFunction for LengthDeviation {
+    type Param = DVector<f64>;
+    type Output = f64;
+    fn cost(&self, free: &Self::Param) -> Result<f64, argmin::core::Error> {
+        let t = self.full(free);
+        Ok((1..t.len() - 1)
+            .map(|i| (t[i] - (t[i - 1] + t[i + 1]) * 0.5).powi(2))
+            .sum())
+    }
+}
+
+impl Gradient for LengthDeviation {
+    type Param = DVector<f64>;
+    type Gradient = DVector<f64>;
+    fn gradient(&self, free: &Self::Param) -> Result<DVector<f64>, argmin::core::Error> {
+        let t = self.full(free);
+        let mut g = vec![0.0; t.len()];
+        for i in 1..t.len() - 1 {
+            let r = t[i] - (t[i - 1] + t[i + 1]) * 0.5;
+            g[i] += 2.0 * r;
+            g[i - 1] -= r;
+            g[i + 1] -= r;
+        }
+        Ok(DVector::from_iterator(
+            free.len(),
+            (0..t.len()).filter(|i| !FIXED.contains(i)).map(|i| g[i]),
+        ))
+    }
+}
+
+/// Minimises equation (1) for the parameters of the 26 joints (head, 24 inter-vertebral
+/// joints, sacrum centre) with the `fixed` parameters of [`FIXED`], starting from a uniform
+/// spacing between the ends. `None` when the solver fails.
+fn spacing(fixed: &[f64]) -> Option<Vec<f64>> {
+    let problem = LengthDeviation {
+        fixed: fixed.to_vec(),
+    };
+    let (first, last) = (fixed[0], fixed[fixed.len() - 1]);
+    let free = 26 - FIXED.len();
+    let init = DVector::from_iterator(
+        free,
+        (0..26)
+            .filter(|i| !FIXED.contains(i))
+            .map(|i| first + (last - first) * i as f64 / 25.0),
+    );
+    let solver = LBFGS::new(MoreThuenteLineSearch::new(), 7)
+        .with_tolerance_grad(1e-14)
+        .ok()?;
+    let result = Executor::new(problem, solver)
+        .configure(|state| state.param(init).max_iters(200))
+        .run()
+        .ok()?;
+    let best = result.state().get_best_param()?.clone();
+    let problem = LengthDeviation {
+        fixed: fixed.to_vec(),
+    };
+    Some(problem.full(&best))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spacing_is_even_between_fixed_joints() {
+        let t = spacing(&[0.0, 7.0, 20.0, 29.0, 35.0]).unwrap();
+        for (i, v) in t.iter().enumerate().take(8) {
+            assert!((v - i as f64).abs() < 1e-6, "{t:?}");
+        }
+        // 7 → 20 over 6 intervals.
+        assert!((t[10] - (7.0 + 13.0 * 3.0 / 6.0)).abs() < 1e-6, "{t:?}");
+    }
+
+    #[test]
+    fn catmull_rom_passes_through_its_control_points() {
+        let c = [
+            DVec3::new(0.0, 3.0, 0.0),
+            DVec3::new(0.1, 2.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.2),
+            DVec3::new(0.0, 0.0, 0.0),
+        ];
+        let curve = CatmullRom::new(&c);
+        for (k, p) in c.iter().enumerate() {
+            assert!(curve.point(curve.knots[k]).distance(*p) < 1e-9);
+        }
+    }
+}

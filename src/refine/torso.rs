@@ -1,0 +1,166 @@
+//! Characteristic points of the torso on its median-plane silhouette (seed 004, 3.2) and the
+//! hips from the transverse slice between crotch and sacroiliac heights (3.3, fig. 4a).
+
+use super::frame::BodyFrame;
+use super::geometry::resample;
+use super::RefineOptions;
+use crate::mesh::{slice_plane, Mesh};
+use bspline::BSpline;
+use glam::DVec3;
+
+/// Heights (along the body's up) of the rough skeleton that bound the searches on the
+/// silhouette.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorsoBounds {
+    /// Height of the (refined) head joint.
+    pub head: f64,
+    /// Mean height of the rough shoulders.
+    pub shoulders: f64,
+    /// Mean height of the rough hips.
+    pub hips: f64,
+}
+
+/// The characteristic points of the torso silhouette (seed 004, 3.2, fig. 3c), mesh units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TorsoPoints {
+    /// Back of the neck: local maximum of the forward coordinate on the back.
+    pub neck: DVec3,
+    /// Upper back: local minimum (the thoracic bulge).
+    pub back: DVec3,
+    /// Lower back: local maximum (the lumbar hollow).
+    pub lumbar: DVec3,
+    /// Buttocks: local minimum below the lumbar point.
+    pub sacroiliac: DVec3,
+    /// Front of the neck: least forward point between the back point and the head.
+    pub throat: DVec3,
+    /// Lowest point of the silhouette.
+    pub crotch: DVec3,
+    /// The smoothed silhouette (closed), for pictures and checks.
+    pub silhouette: Vec<DVec3>,
+}
+
+/// Slices the mesh with the median plane (through `centre`, normal `frame.left`), smooths the
+/// torso's loop with a closed cubic B-spline and finds the characteristic points. `None` when
+/// no loop spans from the hips to the shoulders or a point is missing.
+pub fn torso_points(
+    mesh: &Mesh,
+    frame: &BodyFrame,
+    centre: DVec3,
+    bounds: &TorsoBounds,
+    options: &RefineOptions,
+) -> Option<TorsoPoints> {
+    let loops = slice_plane(mesh, centre, frame.left);
+    let torso = loops
+        .iter()
+        .filter(|l| l.closed)
+        .filter(|l| {
+            let (lo, hi) = l.points.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+                (lo.min(frame.h(*p)), hi.max(frame.h(*p)))
+            });
+            lo < bounds.hips && hi > bounds.shoulders
+        })
+        .max_by(|a, b| a.perimeter().total_cmp(&b.perimeter()))?;
+    let step = options.silhouette_step * frame.height();
+    let points = resample(&torso.points, true, step);
+    let silhouette = smooth_closed(&points)?;
+    let n = silhouette.len();
+    let h = |i: usize| frame.h(silhouette[i]);
+    let f = |i: usize| silhouette[i].dot(frame.forward);
+    let top = (0..n).max_by(|&a, &b| h(a).total_cmp(&h(b)))?;
+    let bottom = (0..n).min_by(|&a, &b| h(a).total_cmp(&h(b)))?;
+    // The two arcs from top to bottom.
+    let arc = |forward_walk: bool| -> Vec<usize> {
+        let mut out = vec![top];
+        let mut i = top;
+        while i != bottom {
+            i = if forward_walk {
+                (i + 1) % n
+            } else {
+                (i + n - 1) % n
+            };
+            out.push(i);
+        }
+        out
+    };
+    let (a, b) = (arc(true), arc(false));
+    let mean = |v: &[usize]| v.iter().map(|&i| f(i)).sum::<f64>() / v.len() as f64;
+    let (front, back) = if mean(&a) > mean(&b) { (a, b) } else { (b, a) };
+    let pick = |arc: &[usize], lo: f64, hi: f64, largest: bool| -> Option<usize> {
+        let within = arc.iter().copied().filter(|&i| h(i) >= lo && h(i) <= hi);
+        if largest {
+            within.max_by(|&x, &y| f(x).total_cmp(&f(y)))
+        } else {
+            within.min_by(|&x, &y| f(x).total_cmp(&f(y)))
+        }
+    };
+    let crotch = bottom;
+    let neck_top = bounds.shoulders + options.neck_window * (bounds.head - bounds.shoulders);
+    let neck = pick(&back, bounds.shoulders, neck_top, true)?;
+    let back_point = pick(
+        &back,
+        (bounds.hips + bounds.shoulders) * 0.5,
+        h(neck),
+        false,
+    )?;
+    let lumbar = pick(&back, bounds.hips, h(back_point), true)?;
+    let sacroiliac = pick(&back, h(crotch), h(lumbar), false)?;
+    let throat = pick(&front, h(back_point), neck_top, false)?;
+    Some(TorsoPoints {
+        neck: silhouette[neck],
+        back: silhouette[back_point],
+        lumbar: silhouette[lumbar],
+        sacroiliac: silhouette[sacroiliac],
+        throat: silhouette[throat],
+        crotch: silhouette[crotch],
+        silhouette,
+    })
+}
+
+/// Closed uniform cubic B-spline with `points` as control points, evaluated once per control
+/// point (seed 004, 3.2: "interpolated by a cubic B-spline curve"). `None` for fewer than four.
+fn smooth_closed(points: &[DVec3]) -> Option<Vec<DVec3>> {
+    let n = points.len();
+    if n < 4 {
+        return None;
+    }
+    let degree = 3;
+    let mut control = points.to_vec();
+    control.extend_from_slice(&points[..degree]);
+    let knots: Vec<f64> = (0..control.len() + degree + 1).map(|i| i as f64).collect();
+    let spline = BSpline::new(degree, control, knots);
+    Some((0..n).map(|i| spline.point((degree + i) as f64)).collect())
+}
+
+/// The hips (seed 004, 3.3): the transverse slice at height `height`, restricted to the loops
+/// whose centroid lies within `reach` of `centre` across the body, split by the median plane
+/// (through `centre`, normal `frame.left`); each side's length-weighted centroid. Returns
+/// `(left, right)`.
+pub fn hips(
+    mesh: &Mesh,
+    frame: &BodyFrame,
+    centre: DVec3,
+    height: f64,
+    reach: f64,
+) -> Option<(DVec3, DVec3)> {
+    let origin = frame.at_height(centre, height);
+    let loops = slice_plane(mesh, origin, frame.up);
+    let mut sums = [(DVec3::ZERO, 0.0); 2];
+    for l in &loops {
+        let Some(g) = l.centroid() else { continue };
+        let across = g - origin;
+        if (across - frame.up * across.dot(frame.up)).length() > reach {
+            continue;
+        }
+        for (a, b) in l.segments() {
+            let mid = (a + b) * 0.5;
+            let w = a.distance(b);
+            let k = usize::from((mid - origin).dot(frame.left) < 0.0);
+            sums[k].0 += mid * w;
+            sums[k].1 += w;
+        }
+    }
+    if sums[0].1 <= 0.0 || sums[1].1 <= 0.0 {
+        return None;
+    }
+    Some((sums[0].0 / sums[0].1, sums[1].0 / sums[1].1))
+}
