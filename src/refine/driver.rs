@@ -3,9 +3,9 @@
 use super::carry::carry;
 use super::frame::{frame_from_head, head_slices, BodyFrame};
 use super::head::head_joint;
-use super::limb::{trace_limb, LimbProfile};
+use super::limb::trace_limb;
 use super::limb_joints::{ankle, arc_near, bend, wrist};
-use super::shoulder::{armpit, shoulder};
+use super::shoulder::{armpit, shoulder, upper_arm_line};
 use super::spine::{spine, Spine};
 use super::torso::{hips, torso_points, TorsoBounds, TorsoPoints};
 use super::{RefineError, RefineOptions};
@@ -193,17 +193,19 @@ pub fn refine(
         }
         let shoulder_point = waist.and_then(|w| {
             let outer = (el - centre).dot(frame.left) * sign;
+            let ss = arc_near(&profile, sh);
+            let line = upper_arm_line(&profile, ss + 0.2 * (se - ss), ss + 0.7 * (se - ss))?;
             let pit = armpit(
                 mesh,
                 &frame,
-                frame_point(&frame, centre, sh),
+                frame_point(&frame, line.0, centre),
                 sign,
                 0.0,
                 outer,
                 w,
                 ARMPIT_SAMPLES,
             )?;
-            shoulder(&frame, &profile, pit, sign, upper_end(&profile, se))
+            shoulder(&frame, line, pit, sign)
         });
         match shoulder_point {
             Some(s) => {
@@ -330,7 +332,12 @@ pub fn refine(
     }
 
     // Accept refined positions that stay near the rough ones.
-    let mut targets: BTreeMap<JointId, DVec3> = BTreeMap::new();
+    // Joints that are not refined stay where they were (not carried by their neighbours).
+    let mut targets: BTreeMap<JointId, DVec3> = REFINED_KEYS
+        .iter()
+        .filter_map(|key| canonical.get(*key))
+        .map(|id| (*id, skeleton.joint(*id).position))
+        .collect();
     let mut moved = BTreeMap::new();
     for key in REFINED_KEYS {
         let (Some(&id), Some(&to)) = (canonical.get(key), found.get(key)) else {
@@ -350,8 +357,9 @@ pub fn refine(
         targets.insert(id, to);
         moved.insert(key.to_string(), (from, to));
     }
-    if let Some(s) = &spine_result {
-        for (id, p) in place_spine_joints(skeleton, canonical, &targets, s) {
+    let spine_ends_moved = moved.contains_key("pelvis") && moved.contains_key("neck");
+    if let (Some(s), true) = (&spine_result, spine_ends_moved) {
+        for (id, p) in place_spine_joints(skeleton, canonical, s) {
             targets.insert(id, p);
         }
     }
@@ -370,27 +378,16 @@ fn frame_point(frame: &BodyFrame, centre: DVec3, p: DVec3) -> DVec3 {
     p - frame.forward * (p - centre).dot(frame.forward)
 }
 
-/// Arc length up to which the arm's slices count as the upper arm's line: 70 % of the way from
-/// the trace's start to the rough elbow.
-fn upper_end(profile: &LimbProfile, elbow_arc: f64) -> f64 {
-    let start = profile.slices.first().map_or(0.0, |s| s.arc);
-    start + 0.7 * (elbow_arc - start)
-}
-
 /// The joints strictly between pelvis and neck on the skeleton's chain, placed on the spine
 /// polyline from `L5` up to `C7` at their original fractions of the chain's length.
 fn place_spine_joints(
     skeleton: &Skeleton,
     canonical: &BTreeMap<String, JointId>,
-    targets: &BTreeMap<JointId, DVec3>,
     spine: &Spine,
 ) -> Vec<(JointId, DVec3)> {
     let (Some(&pelvis), Some(&neck)) = (canonical.get("pelvis"), canonical.get("neck")) else {
         return Vec::new();
     };
-    if !targets.contains_key(&pelvis) || !targets.contains_key(&neck) {
-        return Vec::new();
-    }
     let mut chain = Vec::new();
     let mut k = skeleton.joint(neck).parent;
     while let Some(p) = k {

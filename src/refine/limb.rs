@@ -95,7 +95,7 @@ fn interpolate(points: &[DVec3], t: f64) -> DVec3 {
 
 /// Traces a limb along the rough joint chain `chain` (proximal → distal, at least two points,
 /// e.g. shoulder, elbow, wrist): seeded at the middle of the first segment, marched towards the
-/// torso until the sphere merges with it, and outwards until beyond the last chain point by
+/// torso up to the first chain point or until the sphere merges with the torso, and outwards until beyond the last chain point by
 /// `distal_overshoot` of the last segment or until the limb splits into digits. `height` is the
 /// figure's height. `None` when the seed is not inside a limb-like tube.
 pub fn trace_limb(
@@ -121,14 +121,15 @@ pub fn trace_limb(
     let chain_length: f64 = chain.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>()
         + options.distal_overshoot * chain[last].distance(chain[last - 1]);
     let seed_to_end = chain_length - chain[0].distance(chain[1]) * 0.5;
-    let outward = march(mesh, seed, axis, radius, step, seed_to_end, options);
+    let outward = march(mesh, seed, axis, radius, step, seed_to_end, false, options);
     let inward = march(
         mesh,
         seed,
         -axis,
         radius,
         step,
-        chain[0].distance(chain[1]),
+        0.5 * chain[0].distance(chain[1]),
+        true,
         options,
     );
     let mut centres: Vec<(DVec3, f64, f64, f64)> = inward.into_iter().rev().collect();
@@ -153,8 +154,10 @@ pub fn trace_limb(
     Some(LimbProfile { slices })
 }
 
-/// Marches spheres from `start` along `direction` for at most `budget` of path: returns
+/// Marches spheres from `start` along `direction` for at most `budget` of path (`towards_torso`
+/// for the proximal march): returns
 /// (barycentre, perimeter, major, minor) per slice.
+#[allow(clippy::too_many_arguments)]
 fn march(
     mesh: &Mesh,
     start: DVec3,
@@ -162,12 +165,13 @@ fn march(
     radius: f64,
     step: f64,
     budget: f64,
+    towards_torso: bool,
     options: &RefineOptions,
 ) -> Vec<(DVec3, f64, f64, f64)> {
     let mut out = Vec::new();
     let (mut centre, mut dir, mut radius) = (start, direction, radius);
     let mut travelled = 0.0;
-    let mut previous: Option<f64> = None;
+    let mut previous: Option<(f64, f64)> = None;
     let max_steps = (budget / step).ceil() as usize + 1;
     for _ in 0..max_steps {
         let rho = (options.sphere_radius_factor * radius).max(step);
@@ -181,12 +185,17 @@ fn march(
             break;
         };
         let perimeter = slice.perimeter();
-        if let Some(p) = previous {
-            if perimeter > options.merge_ratio * p || perimeter < options.split_ratio * p {
+        // Towards the torso, merging is judged against the thinnest slice so far (the sphere
+        // grows with the slices, so the torso can be entered in steps each below the ratio);
+        // outwards against the previous slice, so that the trace turns into hand and foot.
+        if let Some((p, thinnest)) = previous {
+            let reference = if towards_torso { thinnest } else { p };
+            if perimeter > options.merge_ratio * reference || perimeter < options.split_ratio * p {
                 break;
             }
         }
-        previous = Some(perimeter);
+        let thinnest = previous.map_or(perimeter, |(_, t)| t.min(perimeter));
+        previous = Some((perimeter, thinnest));
         out.push((g, perimeter, axes.major_diameter, axes.minor_diameter));
         let Some(new_dir) = (g - centre).try_normalize() else {
             break;

@@ -66,8 +66,8 @@ pub enum BendRule {
 
 /// The knee or elbow between the refined `proximal` and `distal` joints: the point on the
 /// middle part of the centroid curve with the smallest angle; if that angle is above
-/// `straight_degrees`, the point at `ratio` of the curve between the two joints, moved to the
-/// slice of minimal perimeter within `ratio_window` of the limb's length.
+/// `straight_degrees`, the curve point nearest the point at `ratio` of the way between the two
+/// joints, moved to the slice of minimal perimeter within `ratio_window` of the limb's length.
 pub fn bend(
     profile: &LimbProfile,
     proximal: DVec3,
@@ -92,7 +92,9 @@ pub fn bend(
     if angle.to_degrees() <= options.straight_degrees {
         return Some((q, BendRule::SmallestAngle));
     }
-    let target = s0 + ratio * (s1 - s0);
+    // The ratio point on the straight line between the joints, taken to the curve (the trace
+    // may start below the hip, so arc lengths from its start would shift it).
+    let target = arc_near(profile, proximal.lerp(distal, ratio));
     let half = options.ratio_window * (s1 - s0);
     let best = dense
         .iter()

@@ -41,6 +41,6 @@ pub use head::{head_joint, HeadJoint};
 pub use limb::{trace_limb, LimbProfile, LimbSlice};
 pub use limb_joints::{ankle, arc_near, bend, wrist, BendRule};
 pub use options::RefineOptions;
-pub use shoulder::{armpit, shoulder};
+pub use shoulder::{armpit, shoulder, upper_arm_line};
 pub use spine::{spine, Spine, SPINE_JOINTS};
 pub use torso::{hips, torso_points, TorsoBounds, TorsoPoints};

@@ -57,7 +57,8 @@ pub struct RefineOptions {
     /// humerus / (humerus + ulna) of adult anthropometry (~0.31 m / 0.26 m).
     pub arm_ratio: f64,
     /// Half-width of the minimal-perimeter search around the ratio point, fraction of the limb
-    /// length. Default 0.06.
+    /// length. Default 0.02: a wider window pulls the knee to the thin part below the patella,
+    /// 3-4 cm under the MakeHuman knees (measurement).
     pub ratio_window: f64,
     /// The ankle is searched on the part of the leg curve below this fraction of the rough
     /// knee-ankle segment. Default 0.6.
@@ -116,12 +117,12 @@ impl Default for RefineOptions {
             straight_degrees: 165.0,
             leg_ratio: 0.49,
             arm_ratio: 0.54,
-            ratio_window: 0.06,
+            ratio_window: 0.02,
             ankle_search_from: 0.6,
             wrist_search_from: 0.5,
             curvature_window: 0.03,
             hip_above_crotch: 0.05,
-            neck_window: 0.5,
+            neck_window: 0.6,
             silhouette_step: 0.004,
             thoracic_depth: 0.035,
             lumbar_depth: 0.04,

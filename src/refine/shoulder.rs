@@ -56,23 +56,28 @@ pub fn armpit(
     Some(frame.at_height(origin, h))
 }
 
-/// The shoulder from the armpit and the arm's profile: the line through the slices of the
-/// upper arm up to arc length `upper_end`, cut by the plane through `armpit` whose normal is
-/// half-way between the outward lateral direction and the arm's direction.
-pub fn shoulder(
-    frame: &BodyFrame,
-    arm: &LimbProfile,
-    armpit: DVec3,
-    sign: f64,
-    upper_end: f64,
-) -> Option<DVec3> {
+/// The line through the arm's slices between arc lengths `from` and `to` (the upper arm): a
+/// point on it and its distal unit direction.
+pub fn upper_arm_line(arm: &LimbProfile, from: f64, to: f64) -> Option<(DVec3, DVec3)> {
     let points: Vec<DVec3> = arm
         .slices
         .iter()
-        .filter(|s| s.arc <= upper_end)
+        .filter(|s| s.arc >= from && s.arc <= to)
         .map(|s| s.centre)
         .collect();
-    let (p0, dir) = fit_line(&points)?;
+    fit_line(&points)
+}
+
+/// The shoulder from the armpit and the upper arm's line `(point, distal direction)`: the line
+/// cut by the plane through `armpit` whose normal is half-way between the outward lateral
+/// direction (`sign` × left) and the arm's direction.
+pub fn shoulder(
+    frame: &BodyFrame,
+    line: (DVec3, DVec3),
+    armpit: DVec3,
+    sign: f64,
+) -> Option<DVec3> {
+    let (p0, dir) = line;
     let normal = (frame.left * sign + dir).try_normalize()?;
     let denom = dir.dot(normal);
     if denom.abs() < 1e-6 {
