@@ -9,6 +9,10 @@ use glam::DVec3;
 /// Returns one [`SliceLoop`] per connected piece; each point lies exactly on the sphere (the
 /// root of the edge's quadratic), so the loop is not flattened by the tessellation. Vertices on
 /// the sphere count as outside. A non-positive or non-finite radius gives no loops.
+///
+/// Triangles are cut by their corners' sides, so a triangle whose corners all lie outside
+/// while its interior crosses the sphere (a sphere smaller than the triangles) is missed:
+/// subdivide coarse meshes ([`Mesh::subdivided`]) until edges are short against `radius`.
 pub fn slice_sphere(mesh: &Mesh, centre: DVec3, radius: f64) -> Vec<SliceLoop> {
     if !(radius > 0.0 && radius.is_finite()) {
         return Vec::new();

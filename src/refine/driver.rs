@@ -114,6 +114,8 @@ pub fn refine(
         }
     };
     let height = frame.height();
+    let fine = fine_enough(mesh, options.max_mean_edge * height);
+    let mesh = fine.as_ref().unwrap_or(mesh);
     let mut found: BTreeMap<&str, DVec3> = BTreeMap::new();
 
     // 3.1 Head and body frame.
@@ -371,6 +373,31 @@ pub fn refine(
         torso,
         warnings,
     })
+}
+
+/// `mesh` split at edge midpoints until its mean edge is at most `max_edge` (at most three
+/// rounds), or `None` when it already is: plane and sphere slices cut triangles by their
+/// corners' sides, so a long triangle crossing a small sphere with all corners outside would be
+/// missed.
+fn fine_enough(mesh: &Mesh, max_edge: f64) -> Option<Mesh> {
+    let mean_edge = |m: &Mesh| {
+        let total: f64 = (0..m.triangles.len())
+            .map(|t| {
+                let [a, b, c] = m.corners(t);
+                a.distance(b) + b.distance(c) + c.distance(a)
+            })
+            .sum();
+        total / (3 * m.triangles.len().max(1)) as f64
+    };
+    let mut out: Option<Mesh> = None;
+    for _ in 0..3 {
+        let current = out.as_ref().unwrap_or(mesh);
+        if mean_edge(current) <= max_edge {
+            break;
+        }
+        out = Some(current.subdivided());
+    }
+    out
 }
 
 /// `p` moved across the body into the plane through `centre` with normal `frame.forward`.

@@ -93,6 +93,12 @@ pub struct RefineOptions {
     /// Depth of the sacrum centre in front of the sacroiliac point, fraction of height.
     /// Default 0.045.
     pub sacral_depth: f64,
+    /// Meshes whose mean edge is longer than this fraction of height are split at edge
+    /// midpoints first (up to three times): slices cut triangles by their corners' sides, and a
+    /// limb of a 3k-triangle body has triangles longer than the spheres' radius. Default 0.01
+    /// (the 27k-triangle MakeHuman bodies are below it, their 3k decimations four times
+    /// above; measurement).
+    pub max_mean_edge: f64,
     /// A refined joint farther than this from its rough position (fraction of height) is
     /// rejected and the joint keeps its rough position with a warning. Default 0.09: the rough
     /// skeletons to refine are off by up to ~6 cm (issue 6), twice that is a failed analysis.
@@ -127,6 +133,7 @@ impl Default for RefineOptions {
             thoracic_depth: 0.035,
             lumbar_depth: 0.04,
             sacral_depth: 0.045,
+            max_mean_edge: 0.01,
             max_shift: 0.09,
         }
     }

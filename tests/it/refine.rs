@@ -1,0 +1,440 @@
+//! Slicing primitives on analytic shapes and the slicing-based humanoid refinement (seed 004)
+//! on the bundled MakeHuman body; accuracy and tessellation robustness on refdata when present.
+
+use glam::{DQuat, DVec3};
+use skelfit::eval::load_skeleton;
+use skelfit::mesh::{slice_plane, slice_sphere, Mesh, SliceLoop};
+use skelfit::refine::{carry, refine, RefineError, RefineOptions, Refinement, REFINED_KEYS};
+use skelfit::skeleton::{JointId, Skeleton};
+use std::collections::BTreeMap;
+use std::f64::consts::{PI, TAU};
+use std::path::Path;
+
+fn unit_box() -> Mesh {
+    Mesh::cuboid(DVec3::splat(-1.0), DVec3::splat(1.0))
+}
+
+#[test]
+fn plane_through_a_box_gives_its_square_outline() {
+    let loops = slice_plane(&unit_box(), DVec3::new(0.0, 0.3, 0.0), DVec3::Y);
+    assert_eq!(loops.len(), 1);
+    let l = &loops[0];
+    assert!(l.closed);
+    assert!((l.perimeter() - 8.0).abs() < 1e-9, "{}", l.perimeter());
+    assert!(l.centroid().unwrap().distance(DVec3::new(0.0, 0.3, 0.0)) < 1e-9);
+    let axes = l.principal_axes().unwrap();
+    assert!((axes.major_diameter - 2.0).abs() < 0.83, "{axes:?}"); // a square: any axis, 2..2.83
+    assert!(axes.normal.abs().distance(DVec3::Y) < 1e-9, "{axes:?}");
+}
+
+#[test]
+fn plane_through_vertices_and_along_edges_still_gives_one_closed_loop() {
+    // Through the four top vertices: the top face's outline.
+    let top = slice_plane(&unit_box(), DVec3::Y, DVec3::Y);
+    assert_eq!(top.len(), 1, "{top:?}");
+    assert!(top[0].closed);
+    assert!((top[0].perimeter() - 8.0).abs() < 1e-9);
+    // Diagonal plane through two opposite vertical edges.
+    let diagonal = slice_plane(&unit_box(), DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0));
+    assert_eq!(diagonal.len(), 1, "{diagonal:?}");
+    assert!(diagonal[0].closed);
+    let expected = 4.0 * 2f64.sqrt() + 4.0;
+    assert!((diagonal[0].perimeter() - expected).abs() < 1e-9);
+}
+
+#[test]
+fn plane_missing_the_mesh_or_with_a_zero_normal_gives_nothing() {
+    assert!(slice_plane(&unit_box(), DVec3::Y * 5.0, DVec3::Y).is_empty());
+    assert!(slice_plane(&unit_box(), DVec3::ZERO, DVec3::ZERO).is_empty());
+    assert!(slice_sphere(&unit_box(), DVec3::ZERO, 0.0).is_empty());
+}
+
+#[test]
+fn open_mesh_gives_an_open_piece() {
+    let mut mesh = unit_box();
+    mesh.triangles.remove(0); // one triangle of the -z face
+    let loops = slice_plane(&mesh, DVec3::ZERO, DVec3::Y);
+    assert_eq!(loops.len(), 1, "{loops:?}");
+    assert!(!loops[0].closed);
+    assert!(loops[0].perimeter() > 6.0 && loops[0].perimeter() < 8.0);
+}
+
+#[test]
+fn sphere_around_a_capsule_axis_cuts_two_circles_centred_on_the_axis() {
+    let (r, rho) = (0.1, 0.3);
+    // A tube with a ring every 5 cm (a sphere only cuts triangles with a corner inside).
+    let rings: Vec<(f64, f64)> = (0..=40).map(|k| (r, 1.0 - 0.05 * k as f64)).collect();
+    let mesh = Mesh::lathe(DVec3::ZERO, 1.0, &rings, -1.0, 64);
+    let loops = slice_sphere(&mesh, DVec3::ZERO, rho);
+    assert_eq!(loops.len(), 2, "{loops:?}");
+    let polygon = 64.0 * 2.0 * r * (PI / 64.0).sin();
+    for l in &loops {
+        assert!(l.closed);
+        assert!((l.perimeter() - polygon).abs() < 1e-3, "{}", l.perimeter());
+        let g = l.centroid().unwrap();
+        assert!(g.x.abs() < 1e-9 && g.z.abs() < 1e-9, "{g}");
+        assert!((g.y.abs() - (rho * rho - r * r).sqrt()).abs() < 1e-3, "{g}");
+        for p in &l.points {
+            assert!((p.length() - rho).abs() < 1e-12, "points lie on the sphere");
+        }
+        let axes = l.principal_axes().unwrap();
+        assert!((axes.major_diameter - 2.0 * r).abs() < 2e-3, "{axes:?}");
+        assert!(axes.normal.abs().distance(DVec3::Y) < 1e-6);
+    }
+}
+
+#[test]
+fn principal_axes_of_an_ellipse() {
+    let points = (0..200)
+        .map(|k| {
+            let t = TAU * k as f64 / 200.0;
+            DVec3::new(2.0 * t.cos(), 0.5, t.sin())
+        })
+        .collect();
+    let l = SliceLoop {
+        points,
+        closed: true,
+    };
+    let axes = l.principal_axes().unwrap();
+    assert!(axes.major.abs().distance(DVec3::X) < 1e-6, "{axes:?}");
+    assert!(axes.minor.abs().distance(DVec3::Z) < 1e-6, "{axes:?}");
+    assert!((axes.major_diameter - 4.0).abs() < 1e-3);
+    assert!((axes.minor_diameter - 2.0).abs() < 1e-3);
+}
+
+/// The deterministic start of the report (examples/refine_report.rs): the `k`-th refined key
+/// displaced by 3-6 cm.
+fn offset(k: usize) -> DVec3 {
+    let k = k as f64;
+    let dir = DVec3::new(
+        (1.7 * k + 0.3).sin(),
+        (2.3 * k + 1.1).cos(),
+        (0.9 * k + 2.0).sin(),
+    )
+    .normalize();
+    dir * (0.03 + 0.01 * (k % 4.0))
+}
+
+struct Case {
+    mesh: Mesh,
+    truth: Skeleton,
+    rough: Skeleton,
+    canonical: BTreeMap<String, JointId>,
+}
+
+fn case(dir: &Path, rig: &str) -> Case {
+    let mesh = skelfit::mesh::load(&dir.join("mesh.obj")).unwrap();
+    let rig = load_skeleton(&dir.join(rig)).unwrap();
+    let targets = REFINED_KEYS
+        .iter()
+        .enumerate()
+        .filter_map(|(k, key)| {
+            let id = *rig.canonical.get(*key)?;
+            Some((id, rig.skeleton.joint(id).position + offset(k)))
+        })
+        .collect();
+    Case {
+        mesh,
+        rough: carry(&rig.skeleton, &targets),
+        truth: rig.skeleton.clone(),
+        canonical: rig.canonical.clone(),
+    }
+}
+
+fn bundled() -> Case {
+    case(
+        &crate::common::data_dir().join("humanoid/mh_neutral_default"),
+        "rig_game_engine.json",
+    )
+}
+
+/// Errors (mm) of the refined keys: (before, after).
+fn errors(c: &Case, r: &Refinement) -> (Vec<f64>, Vec<f64>) {
+    REFINED_KEYS
+        .iter()
+        .filter_map(|k| c.canonical.get(*k))
+        .map(|id| {
+            let truth = c.truth.joint(*id).position;
+            (
+                c.rough.joint(*id).position.distance(truth) * 1000.0,
+                r.skeleton.joint(*id).position.distance(truth) * 1000.0,
+            )
+        })
+        .unzip()
+}
+
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len() as f64
+}
+
+#[test]
+fn refinement_brings_displaced_joints_back_on_the_bundled_body() {
+    let c = bundled();
+    let r = refine(
+        &c.mesh,
+        &c.rough,
+        &c.canonical,
+        DVec3::Y,
+        DVec3::Z,
+        &RefineOptions::default(),
+    )
+    .unwrap();
+    let (before, after) = errors(&c, &r);
+    let worst = after.iter().copied().fold(0.0, f64::max);
+    assert!(mean(&before) > 40.0);
+    // Measured 15.6 mm mean, 29.8 mm max (reports/refine/accuracy.md).
+    assert!(mean(&after) < 20.0, "{after:?}");
+    assert!(worst < 40.0, "{after:?}");
+    assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    assert!(r.skeleton.validate().is_ok());
+    // The full spine: 24 inter-vertebral joints and the sacrum, top to bottom.
+    assert_eq!(r.spine.len(), 25);
+    assert!(
+        r.spine.windows(2).all(|w| w[0].1.y > w[1].1.y),
+        "{:?}",
+        r.spine
+    );
+    // Spine joints of the skeleton lie between pelvis and neck.
+    let y = |n: &str| r.skeleton.joint(r.skeleton.find(n).unwrap()).position.y;
+    assert!(y("spine_01") > y("pelvis") && y("spine_03") < y("neck_01"));
+    // Fingers follow their wrist.
+    let (hand, finger) = (
+        c.canonical["wrist_L"],
+        r.skeleton.find("middle_01_l").unwrap(),
+    );
+    let moved = |id: JointId| r.skeleton.joint(id).position - c.rough.joint(id).position;
+    assert!(moved(hand).distance(moved(finger)) < 1e-9);
+}
+
+#[test]
+fn refinement_does_not_depend_on_the_mesh_frame() {
+    let c = bundled();
+    let options = RefineOptions::default();
+    let plain = refine(
+        &c.mesh,
+        &c.rough,
+        &c.canonical,
+        DVec3::Y,
+        DVec3::Z,
+        &options,
+    )
+    .unwrap();
+    // Z up, −X forward, shifted.
+    let rotation =
+        DQuat::from_rotation_arc(DVec3::Y, DVec3::Z) * DQuat::from_axis_angle(DVec3::Y, 0.5 * PI);
+    let shift = DVec3::new(3.0, -2.0, 1.0);
+    let f = |p: DVec3| rotation * p + shift;
+    let mesh = c.mesh.transformed(f);
+    let mut rough = c.rough.clone();
+    for j in &mut rough.joints {
+        j.position = f(j.position);
+    }
+    let turned = refine(
+        &mesh,
+        &rough,
+        &c.canonical,
+        rotation * DVec3::Y,
+        rotation * DVec3::Z,
+        &options,
+    )
+    .unwrap();
+    for key in REFINED_KEYS {
+        let id = c.canonical[key];
+        let a = f(plain.skeleton.joint(id).position);
+        let b = turned.skeleton.joint(id).position;
+        assert!(a.distance(b) < 1e-3, "{key}: {a} vs {b}");
+    }
+}
+
+#[test]
+fn a_missing_head_warns_and_keeps_the_rough_head() {
+    let c = bundled();
+    let neck = c.truth.joint(c.canonical["neck"]).position.y;
+    let mut mesh = c.mesh.clone();
+    mesh.triangles.retain(|t| {
+        t.iter()
+            .all(|&i| mesh.positions[i as usize].y < neck + 0.02)
+    });
+    let r = refine(
+        &mesh,
+        &c.rough,
+        &c.canonical,
+        DVec3::Y,
+        DVec3::Z,
+        &RefineOptions::default(),
+    )
+    .unwrap();
+    assert!(
+        r.warnings.iter().any(|w| w.starts_with("head")),
+        "{:?}",
+        r.warnings
+    );
+    let id = c.canonical["head"];
+    assert_eq!(r.skeleton.joint(id).position, c.rough.joint(id).position);
+}
+
+#[test]
+fn a_lying_body_given_as_upright_never_panics_and_names_the_joints_it_kept() {
+    let c = bundled();
+    let tilt = DQuat::from_axis_angle(DVec3::X, 0.45 * PI);
+    let mesh = c.mesh.transformed(|p| tilt * p);
+    let r = refine(
+        &mesh,
+        &c.rough,
+        &c.canonical,
+        DVec3::Y,
+        DVec3::Z,
+        &RefineOptions::default(),
+    )
+    .unwrap();
+    assert!(!r.warnings.is_empty());
+    for key in REFINED_KEYS {
+        let id = c.canonical[key];
+        if !r.moved.contains_key(key) {
+            assert_eq!(
+                r.skeleton.joint(id).position,
+                c.rough.joint(id).position,
+                "{key}"
+            );
+            assert!(
+                r.warnings.iter().any(|w| w.contains(key)),
+                "{key}: {:?}",
+                r.warnings
+            );
+        }
+    }
+}
+
+#[test]
+fn a_body_without_free_limbs_keeps_the_limb_joints_with_warnings() {
+    // A capsule where the body should be: arms and legs fused into one blob.
+    let c = bundled();
+    let mesh = Mesh::capsule(DVec3::new(0.0, 0.9, 0.0), 0.2, 0.7, 12, 48);
+    let r = refine(
+        &mesh,
+        &c.rough,
+        &c.canonical,
+        DVec3::Y,
+        DVec3::Z,
+        &RefineOptions::default(),
+    )
+    .unwrap();
+    for key in ["elbow_L", "wrist_R", "knee_L", "ankle_R"] {
+        let id = c.canonical[key];
+        let kept = r.skeleton.joint(id).position == c.rough.joint(id).position;
+        assert!(kept, "{key} moved on a blob");
+        assert!(
+            r.warnings.iter().any(|w| w.contains(key)),
+            "{key}: {:?}",
+            r.warnings
+        );
+    }
+}
+
+#[test]
+fn bad_input_is_an_error() {
+    let c = bundled();
+    let o = RefineOptions::default();
+    assert_eq!(
+        refine(
+            &Mesh::default(),
+            &c.rough,
+            &c.canonical,
+            DVec3::Y,
+            DVec3::Z,
+            &o
+        )
+        .unwrap_err(),
+        RefineError::EmptyMesh
+    );
+    assert!(matches!(
+        refine(
+            &c.mesh,
+            &c.rough,
+            &c.canonical,
+            DVec3::Y,
+            DVec3::Y * 2.0,
+            &o
+        ),
+        Err(RefineError::BadDirections { .. })
+    ));
+    let mut canonical = c.canonical.clone();
+    canonical.insert("head".into(), JointId(10_000));
+    assert!(matches!(
+        refine(&c.mesh, &c.rough, &canonical, DVec3::Y, DVec3::Z, &o),
+        Err(RefineError::BadJointId { .. })
+    ));
+}
+
+/// Accuracy on every MakeHuman body of refdata (skips without it): the measured means are
+/// 10.6-25.6 mm (reports/refine/accuracy.md); this guards against regressions.
+#[test]
+fn refinement_accuracy_on_refdata_humanoids() {
+    let Some(root) = crate::common::refdata() else {
+        return;
+    };
+    for model in [
+        "mh_child_10y",
+        "mh_female_thin_short",
+        "mh_female_young_average",
+        "mh_male_heavy_short",
+        "mh_male_young_average",
+        "mh_neutral_default",
+    ] {
+        let c = case(&root.join("humanoid").join(model), "rig_game_engine.json");
+        let r = refine(
+            &c.mesh,
+            &c.rough,
+            &c.canonical,
+            DVec3::Y,
+            DVec3::Z,
+            &RefineOptions::default(),
+        )
+        .unwrap();
+        let (before, after) = errors(&c, &r);
+        assert!(
+            mean(&after) < 28.0 && mean(&after) < mean(&before),
+            "{model}: {after:?}"
+        );
+    }
+}
+
+/// Tessellation robustness (seed 004, table 1) on refdata's variants from 6k to 107k
+/// triangles: mean displacement from the 27k result. The 3k variants are reported in
+/// reports/refine/robustness.md and not held to it (their limbs are not traced yet).
+#[test]
+fn refinement_is_robust_to_tessellation_from_6k_triangles() {
+    let Some(root) = crate::common::refdata() else {
+        return;
+    };
+    let rig = "rig_game_engine.json";
+    let base_dir = root.join("humanoid/mh_male_young_average");
+    let base = case(&base_dir, rig);
+    let o = RefineOptions::default();
+    let reference = refine(
+        &base.mesh,
+        &base.rough,
+        &base.canonical,
+        DVec3::Y,
+        DVec3::Z,
+        &o,
+    )
+    .unwrap();
+    for variant in ["altdiag", "dec12k", "dec6k", "isoremesh", "subdiv_loop1"] {
+        let dir = root.join(format!("robustness/mh_male_young_average_{variant}"));
+        let mesh = skelfit::mesh::load(&dir.join("mesh.obj")).unwrap();
+        let r = refine(&mesh, &base.rough, &base.canonical, DVec3::Y, DVec3::Z, &o).unwrap();
+        let d: Vec<f64> = REFINED_KEYS
+            .iter()
+            .map(|k| {
+                let id = base.canonical[*k];
+                r.skeleton
+                    .joint(id)
+                    .position
+                    .distance(reference.skeleton.joint(id).position)
+                    * 1000.0
+            })
+            .collect();
+        assert!(mean(&d) <= 3.0, "{variant}: {d:?}");
+    }
+}
