@@ -21,6 +21,7 @@
 mod axial;
 mod error;
 mod frames;
+mod from_labels;
 mod input;
 mod limbs;
 mod options;
@@ -28,6 +29,7 @@ mod polyline;
 mod probe;
 
 pub use error::{FitError, FitWarning};
+pub use from_labels::{fit_input, FitInputOptions};
 pub use input::{
     voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, FitInput, LimbInput, Side,
 };
