@@ -96,7 +96,7 @@ pub fn fit_input(
     }
 
     // Head-to-tail path.
-    let head = labelling.part(Label::Head, None).map(|p| paths.distal(p));
+    let head = labelling.part(Label::Head, None).map(|p| paths.head_tip(p));
     let start = head.unwrap_or_else(|| {
         let dir = match labelling.figure {
             FigureClass::HumanLike => labelling.frame.up,
@@ -300,6 +300,17 @@ impl Paths<'_> {
             .unwrap_or(self.labelling.level_graph.heart)
     }
 
+    /// The tip of the head: its voxel farthest up for human-like figures, farthest forward for
+    /// animal-like ones (the crown and the snout, 7.3.3's extreme marks), else its distal
+    /// extreme. The distal extreme alone wanders over a round head (chin, nose or crown).
+    fn head_tip(&self, part: &Part) -> usize {
+        match self.labelling.figure {
+            FigureClass::HumanLike => self.extreme(part, self.labelling.frame.up),
+            FigureClass::AnimalLike => self.extreme(part, self.labelling.frame.forward),
+            FigureClass::Unknown => self.distal(part),
+        }
+    }
+
     /// The distal end of limb part `i` (the wrist/ankle when it has digits).
     fn wrist(&self, i: usize) -> usize {
         self.distal(&self.labelling.parts[i])
@@ -423,6 +434,7 @@ impl Paths<'_> {
             path: points,
             radii,
             digits,
+            root: Some(p.attachment),
         }
     }
 }

@@ -70,8 +70,12 @@ pub(crate) fn limb(
     let rows = ratios.len();
     let mut chain: Vec<Option<DVec3>> = vec![None; group.chain.len()];
     let mut chain_s: Vec<Option<f64>> = vec![None; group.chain.len()];
-    let s0 = path
-        .sphere_exit(sphere.centre, sphere.radius)
+    let from_label = input
+        .root
+        .filter(|_| options.root_from_labels)
+        .map(|r| path.project(r));
+    let s0 = from_label
+        .or_else(|| path.sphere_exit(sphere.centre, sphere.radius))
         .unwrap_or_else(|| {
             warnings.push(FitWarning::InsideGirdle {
                 group: group.name.clone(),

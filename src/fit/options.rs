@@ -54,6 +54,21 @@ pub struct FitOptions {
     /// from the head tip to the hindmost pair. Default 0.35 (chosen: a human's head and neck
     /// take about a third of the head-to-crotch path).
     pub fallback_trunk_start: f64,
+    /// Where the limb's outer segmentation starts (the human-like shoulder/hip, the animal-like
+    /// elbow/knee): `true` at the path point nearest [`LimbInput::root`](super::LimbInput)
+    /// (where the labelled limb leaves the trunk) when given; `false` at the exit of the girdle
+    /// sphere (dissertation 8.2). Beyond the seed: the sphere's radius is the trunk's
+    /// front-back half-depth, so its exit lies well inside a human's shoulders. Default true
+    /// (measured, see `reports/rig/`).
+    pub root_from_labels: bool,
+    /// The root joint lies this many vertebral segments anterior of the hindmost limb pair's
+    /// point on the spine (clamped to the trunk). Default 0 ("the root joint at the hindmost
+    /// limb pair", 8.1); 0.5 puts it mid-way along the last trunk segment.
+    pub root_offset: f64,
+    /// How far the root joint follows the trunk's dorsal offset: 0 on the centred
+    /// head-to-tail path (the pelvic girdle's centre, where rigs put the pelvis), 1 on the
+    /// dorsal spine. Default 0 (measured on the reference rigs, see `reports/rig/`).
+    pub root_dorsal: f64,
 }
 
 impl Default for FitOptions {
@@ -73,6 +88,9 @@ impl Default for FitOptions {
             min_tail: 0.5,
             neck_at_girdle_edge: 1.0,
             fallback_trunk_start: 0.35,
+            root_from_labels: true,
+            root_offset: 0.0,
+            root_dorsal: 0.0,
         }
     }
 }
@@ -111,6 +129,8 @@ impl FitOptions {
         fraction("wing_shift", self.wing_shift, 0.0, 2.0)?;
         fraction("min_tail", self.min_tail, 0.0, 10.0)?;
         fraction("neck_at_girdle_edge", self.neck_at_girdle_edge, 0.0, 3.0)?;
+        fraction("root_offset", self.root_offset, 0.0, 10.0)?;
+        fraction("root_dorsal", self.root_dorsal, 0.0, 1.0)?;
         fraction(
             "fallback_trunk_start",
             self.fallback_trunk_start,
