@@ -120,6 +120,17 @@ pub(crate) fn limb(
             chain_s[index] = Some(s);
         }
     }
+    if let (Placement::Human, Some(root), Some(s_end)) = (
+        group.placement,
+        input.root.filter(|_| from_label.is_some()),
+        chain_s.get(1).copied().flatten(),
+    ) {
+        // The shoulder/hip sits on the axis of the upper arm/thigh where it meets the trunk:
+        // the segment's axis (fitted to its middle) at the point nearest the labelled root.
+        if let Some(p) = axis_point(&path, s0, s_end, root, options.root_axis_span) {
+            chain[0] = Some(p);
+        }
+    }
     if has_digits && group.digit_row < chain.len() {
         // The path ends at the wrist/ankle voxel: the digit bases take this joint's place.
         chain[group.digit_row] = None;
@@ -153,6 +164,34 @@ pub(crate) fn limb(
         chain,
         digits,
     }
+}
+
+/// The point nearest `target` on the straight line fitted (least squares, principal direction)
+/// to `path` between arc lengths `a + (1 - span) / 2 (b - a)` and `a + (1 + span) / 2 (b - a)`;
+/// `None` when that part of the path is degenerate.
+fn axis_point(path: &Polyline, a: f64, b: f64, target: DVec3, span: f64) -> Option<DVec3> {
+    const SAMPLES: usize = 16;
+    let (lo, hi) = (a + 0.5 * (1.0 - span) * (b - a), a + 0.5 * (1.0 + span) * (b - a));
+    if hi - lo <= 0.0 {
+        return None;
+    }
+    let pts: Vec<DVec3> = (0..=SAMPLES)
+        .map(|k| path.at(lo + (hi - lo) * k as f64 / SAMPLES as f64))
+        .collect();
+    let centre = pts.iter().sum::<DVec3>() / pts.len() as f64;
+    let dir = (pts[SAMPLES] - pts[0]).try_normalize()?;
+    // One power iteration step on the scatter matrix refines the chord direction.
+    let refined = pts
+        .iter()
+        .map(|p| {
+            let d = *p - centre;
+            d * d.dot(dir)
+        })
+        .sum::<DVec3>()
+        .try_normalize()
+        .unwrap_or(dir);
+    let dir = if refined.dot(dir) < 0.0 { -refined } else { refined };
+    Some(centre + dir * (target - centre).dot(dir))
 }
 
 /// An animal-like shoulder/hip inside the girdle sphere (8.2): at the elbow's/knee's lateral

@@ -111,7 +111,7 @@ pub fn fit_with_probe(
     let radii = &input.axial.radii;
 
     // Limb pairs, ordered head → tail, matched to template groups.
-    let pairs = pairs(input, template, &original, &mut warnings);
+    let pairs = pairs(input, template, options, &original, &mut warnings);
 
     // Sections (8.1).
     let length = original.length();
@@ -323,6 +323,7 @@ struct Pair<'a> {
 fn pairs<'a>(
     input: &'a FitInput,
     template: &Template,
+    options: &FitOptions,
     original: &Polyline,
     warnings: &mut Vec<FitWarning>,
 ) -> Vec<Pair<'a>> {
@@ -337,7 +338,13 @@ fn pairs<'a>(
     let mut found: Vec<(LimbKind, usize, f64, Vec<&LimbInput>)> = groups
         .into_iter()
         .map(|((kind, pair), limbs)| {
-            let mid = limbs.iter().map(|l| l.attach).sum::<DVec3>() / limbs.len() as f64;
+            // The pair sits where its limbs leave the trunk (their roots, when labelling gave
+            // them and the options use them), else at its limb-to-limb midpoint (8.1).
+            let at = |l: &&LimbInput| match l.root.filter(|_| options.root_from_labels) {
+                Some(r) => r,
+                None => l.attach,
+            };
+            let mid = limbs.iter().map(at).sum::<DVec3>() / limbs.len() as f64;
             (kind, pair, original.project(mid), limbs)
         })
         .collect();

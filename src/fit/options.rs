@@ -61,6 +61,10 @@ pub struct FitOptions {
     /// front-back half-depth, so its exit lies well inside a human's shoulders. Default true
     /// (measured, see `reports/rig/`).
     pub root_from_labels: bool,
+    /// Human-like shoulders and hips from labelled roots lie on the axis of the upper arm /
+    /// thigh, fitted to this central fraction of that segment, at the point nearest the
+    /// labelled root. Default 0.6 (chosen: avoids the bulges at both ends).
+    pub root_axis_span: f64,
     /// The root joint lies this many vertebral segments anterior of the hindmost limb pair's
     /// point on the spine (clamped to the trunk). Default 0 ("the root joint at the hindmost
     /// limb pair", 8.1); 0.5 puts it mid-way along the last trunk segment.
@@ -89,6 +93,7 @@ impl Default for FitOptions {
             neck_at_girdle_edge: 1.0,
             fallback_trunk_start: 0.35,
             root_from_labels: true,
+            root_axis_span: 0.6,
             root_offset: 0.0,
             root_dorsal: 0.0,
         }
@@ -131,6 +136,7 @@ impl FitOptions {
         fraction("neck_at_girdle_edge", self.neck_at_girdle_edge, 0.0, 3.0)?;
         fraction("root_offset", self.root_offset, 0.0, 10.0)?;
         fraction("root_dorsal", self.root_dorsal, 0.0, 1.0)?;
+        fraction("root_axis_span", self.root_axis_span, 0.05, 1.0)?;
         fraction(
             "fallback_trunk_start",
             self.fallback_trunk_start,
