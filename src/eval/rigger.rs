@@ -2,13 +2,13 @@
 //! function. A new method (e.g. the anatomical rig) is a new [`RigMethod`] variant, its options
 //! in [`RiggerOptions`] and one arm in [`rig_mesh`].
 
-use crate::mesh::Mesh;
 use crate::anatomy::Forward;
+use crate::mesh::Mesh;
 use crate::pipeline::{general_skeleton, rig, GeneralSkeletonOptions, RigOptions};
 use crate::skeleton::{JointId, Skeleton};
-use std::collections::BTreeMap;
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// An automatic rigging method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]

@@ -152,7 +152,8 @@ pub(crate) fn axial(
     // anteriorly), between the centred path and the dorsal spine by `root_dorsal`.
     let n_trunk = template.vertebrae.trunk.clamp(count(te - nk)).max(1);
     let b = |i: usize| nk + i as f64 * (te - nk) / n_trunk as f64;
-    let t_root = (root_t - options.root_offset * seg).clamp(bounds.neck.min(bounds.trunk), bounds.trunk);
+    let t_root =
+        (root_t - options.root_offset * seg).clamp(bounds.neck.min(bounds.trunk), bounds.trunk);
     let root_arc = arc(t_root);
     let root = original
         .at(t_root)

@@ -126,7 +126,11 @@ pub fn fit_input(
                 .iter()
                 .copied()
                 .filter(|&p| from_head.cost[p].is_finite())
-                .max_by(|&a, &b| from_head.cost[a].total_cmp(&from_head.cost[b]).then(b.cmp(&a)))
+                .max_by(|&a, &b| {
+                    from_head.cost[a]
+                        .total_cmp(&from_head.cost[b])
+                        .then(b.cmp(&a))
+                })
                 .unwrap_or(start)
         });
     let mut axial_positions = from_head.path_to_source(end);
@@ -238,10 +242,7 @@ fn limb_pairs(labelling: &Labelling) -> Vec<PairParts> {
             };
             let (lefts, rights) = (sorted(PartSide::L), sorted(PartSide::R));
             let count = lefts.len().max(rights.len());
-            let first = out
-                .iter()
-                .filter(|p: &&PairParts| p.kind == kind)
-                .count();
+            let first = out.iter().filter(|p: &&PairParts| p.kind == kind).count();
             for k in 0..count {
                 out.push(PairParts {
                     kind,
@@ -353,7 +354,10 @@ impl Paths<'_> {
     fn midpoint(&self, path: &[usize]) -> usize {
         let cum: Vec<f64> = std::iter::once(0.0)
             .chain(path.windows(2).scan(0.0, |acc, w| {
-                *acc += self.surface.centre(w[0]).distance(self.surface.centre(w[1]));
+                *acc += self
+                    .surface
+                    .centre(w[0])
+                    .distance(self.surface.centre(w[1]));
                 Some(*acc)
             }))
             .collect();

@@ -171,7 +171,10 @@ pub(crate) fn limb(
 /// `None` when that part of the path is degenerate.
 fn axis_point(path: &Polyline, a: f64, b: f64, target: DVec3, span: f64) -> Option<DVec3> {
     const SAMPLES: usize = 16;
-    let (lo, hi) = (a + 0.5 * (1.0 - span) * (b - a), a + 0.5 * (1.0 + span) * (b - a));
+    let (lo, hi) = (
+        a + 0.5 * (1.0 - span) * (b - a),
+        a + 0.5 * (1.0 + span) * (b - a),
+    );
     if hi - lo <= 0.0 {
         return None;
     }
@@ -190,7 +193,11 @@ fn axis_point(path: &Polyline, a: f64, b: f64, target: DVec3, span: f64) -> Opti
         .sum::<DVec3>()
         .try_normalize()
         .unwrap_or(dir);
-    let dir = if refined.dot(dir) < 0.0 { -refined } else { refined };
+    let dir = if refined.dot(dir) < 0.0 {
+        -refined
+    } else {
+        refined
+    };
     Some(centre + dir * (target - centre).dot(dir))
 }
 
