@@ -31,6 +31,10 @@ pub struct FitInputOptions {
     pub end_extension: f64,
     /// Points at the end of a path used for its end direction. Default 4 voxels.
     pub end_direction_points: usize,
+    /// Make the roots of a limb pair mirror images of each other in the sagittal plane
+    /// through the pair's attach point (the labelled sections of the two sides start at
+    /// slightly different places). Default true (measured, see `reports/rig/`).
+    pub symmetric_roots: bool,
 }
 
 impl Default for FitInputOptions {
@@ -39,6 +43,7 @@ impl Default for FitInputOptions {
             weight_exponent: 3.0,
             end_extension: 1.0,
             end_direction_points: 4,
+            symmetric_roots: true,
         }
     }
 }
@@ -90,9 +95,22 @@ pub fn fit_input(
         let mut left_half: Vec<usize> = path[..=mid].to_vec();
         left_half.reverse();
         let right_half = path[mid..].to_vec();
-        for (part, half, side) in [(l, left_half, Side::Left), (r, right_half, Side::Right)] {
-            limbs.push(paths.limb(part, pair.kind, pair.number, side, attach, &half));
+        let mut left = paths.limb(l, pair.kind, pair.number, Side::Left, attach, &left_half);
+        let mut right = paths.limb(r, pair.kind, pair.number, Side::Right, attach, &right_half);
+        if options.symmetric_roots {
+            // Bilateral symmetry: each root is the mean of itself and its partner's mirror
+            // image in the sagittal plane halfway between them.
+            let n = labelling.frame.left;
+            if let (Some(a), Some(b)) = (left.root, right.root) {
+                let m = 0.5 * (a + b);
+                let mirror = |p: DVec3| p - n * (2.0 * (p - m).dot(n));
+                let a2 = 0.5 * (a + mirror(b));
+                left.root = Some(a2);
+                right.root = Some(mirror(a2));
+            }
         }
+        limbs.push(left);
+        limbs.push(right);
     }
 
     // Head-to-tail path.

@@ -144,11 +144,12 @@ pub fn fit_with_probe(
                     (options.fallback_trunk_start * length, length)
                 }
             };
-            Bounds {
-                head: template.sections.head * neck,
-                neck,
-                trunk,
-            }
+            let head = match options.head_at_narrowing {
+                Some([lo, hi]) => narrowest(&original, radii, lo * neck, hi * neck)
+                    .unwrap_or(template.sections.head * neck),
+                None => template.sections.head * neck,
+            };
+            Bounds { head, neck, trunk }
         }
     };
     let root_t = pairs
@@ -223,6 +224,22 @@ pub fn fit_with_probe(
         warnings,
         template: template.name.clone(),
     })
+}
+
+/// Arc length in `[lo, hi]` where the path's radius (moving average over a few points) is
+/// smallest: the narrowing between the head and the neck. `None` for an empty range.
+fn narrowest(path: &Polyline, radii: &[f64], lo: f64, hi: f64) -> Option<f64> {
+    const HALF: usize = 2;
+    let n = radii.len();
+    (0..n)
+        .filter(|&i| path.cum[i] >= lo && path.cum[i] <= hi)
+        .map(|i| {
+            let (a, b) = (i.saturating_sub(HALF), (i + HALF).min(n - 1));
+            let mean = radii[a..=b].iter().sum::<f64>() / (b - a + 1) as f64;
+            (mean, i)
+        })
+        .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+        .map(|(_, i)| path.cum[i])
 }
 
 fn finite(points: &[DVec3]) -> bool {

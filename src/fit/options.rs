@@ -61,6 +61,14 @@ pub struct FitOptions {
     /// front-back half-depth, so its exit lies well inside a human's shoulders. Default true
     /// (measured, see `reports/rig/`).
     pub root_from_labels: bool,
+    /// Head/neck boundary at the narrowest point of the head-to-tail path (smallest
+    /// distance-map radius: the throat below the skull) between these fractions of the way
+    /// from the head tip to the neck/trunk boundary; `None` splits that way by the template's
+    /// `[sections]` fractions (8.1). Default `None`: measured with `Some([0.2, 0.8])`, the
+    /// long-necked alpaca's CD-J2J fell from 5.6 to 4.6 % of body length, but the quadrupeds'
+    /// mean only from 3.98 to 3.88 % and the MakeHuman heads moved 10 mm away from their skull
+    /// base (the narrowest point is mid-neck).
+    pub head_at_narrowing: Option<[f64; 2]>,
     /// Human-like shoulders and hips from labelled roots lie on the axis of the upper arm /
     /// thigh, fitted to this central fraction of that segment, at the point nearest the
     /// labelled root. Default 0.6 (chosen: avoids the bulges at both ends).
@@ -93,6 +101,7 @@ impl Default for FitOptions {
             neck_at_girdle_edge: 1.0,
             fallback_trunk_start: 0.35,
             root_from_labels: true,
+            head_at_narrowing: None,
             root_axis_span: 0.6,
             root_offset: 0.0,
             root_dorsal: 0.0,
@@ -136,6 +145,10 @@ impl FitOptions {
         fraction("neck_at_girdle_edge", self.neck_at_girdle_edge, 0.0, 3.0)?;
         fraction("root_offset", self.root_offset, 0.0, 10.0)?;
         fraction("root_dorsal", self.root_dorsal, 0.0, 1.0)?;
+        if let Some([lo, hi]) = self.head_at_narrowing {
+            fraction("head_at_narrowing[0]", lo, 0.0, 1.0)?;
+            fraction("head_at_narrowing[1]", hi, lo, 1.0)?;
+        }
         fraction("root_axis_span", self.root_axis_span, 0.05, 1.0)?;
         fraction(
             "fallback_trunk_start",
