@@ -120,6 +120,9 @@ pub(crate) fn limb(
             chain_s[index] = Some(s);
         }
     }
+    if let Some(bend) = options.snap_to_bend {
+        snap_to_bends(&path, &mut chain, &mut chain_s, s0, span, &bend);
+    }
     if let (Placement::Human, Some(root), Some(s_end)) = (
         group.placement,
         input.root.filter(|_| from_label.is_some()),
@@ -163,6 +166,58 @@ pub(crate) fn limb(
         girdle,
         chain,
         digits,
+    }
+}
+
+/// Moves each inner chain joint (not the limb's root or tip) to the sharpest bend of the path
+/// within `bend.window * span` of its Table 8.1 place when that bend turns by at least
+/// `bend.min_angle` degrees; joints keep their order.
+fn snap_to_bends(
+    path: &Polyline,
+    chain: &mut [Option<DVec3>],
+    chain_s: &mut [Option<f64>],
+    s0: f64,
+    span: f64,
+    bend: &super::options::BendSnap,
+) {
+    const STEPS: usize = 24;
+    let placed: Vec<usize> = (0..chain.len()).filter(|&k| chain_s[k].is_some()).collect();
+    let h = bend.stencil * span;
+    if placed.len() < 3 || h <= 0.0 {
+        return;
+    }
+    let turn = |s: f64| {
+        let (a, b, c) = (path.at(s - h), path.at(s), path.at(s + h));
+        let (u, v) = (b - a, c - b);
+        if u.length() < 1e-12 || v.length() < 1e-12 {
+            0.0
+        } else {
+            u.angle_between(v).to_degrees()
+        }
+    };
+    for w in 1..placed.len() - 1 {
+        let k = placed[w];
+        let (Some(s), Some(prev), Some(next)) =
+            (chain_s[k], chain_s[placed[w - 1]], chain_s[placed[w + 1]])
+        else {
+            continue;
+        };
+        let lo = (s - bend.window * span).max(0.5 * (prev + s)).max(s0 + h);
+        let hi = (s + bend.window * span)
+            .min(0.5 * (s + next))
+            .min(path.length() - h);
+        if hi <= lo {
+            continue;
+        }
+        let best = (0..=STEPS)
+            .map(|i| lo + (hi - lo) * i as f64 / STEPS as f64)
+            .map(|t| (turn(t), t))
+            .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1)));
+        if let Some((angle, t)) = best.filter(|b| b.0 >= bend.min_angle) {
+            let _ = angle;
+            chain[k] = Some(path.at(t));
+            chain_s[k] = Some(t);
+        }
     }
 }
 

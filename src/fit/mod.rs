@@ -33,7 +33,7 @@ pub use from_labels::{fit_input, FitInputOptions};
 pub use input::{
     voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, FitInput, LimbInput, Side,
 };
-pub use options::FitOptions;
+pub use options::{BendSnap, FitOptions};
 
 use crate::skeleton::{Joint, JointId, Skeleton};
 use crate::template::{apply_preset, Girdle, LimbKind, Template};
