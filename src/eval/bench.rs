@@ -529,9 +529,11 @@ pub fn joint_model_table(results: &[BenchResult]) -> Table {
         .iter()
         .map(|k| {
             std::iter::once(k.to_string())
-                .chain(evaluated.iter().map(|(_, e)| {
-                    cell(e.joints.iter().find(|j| j.key == *k).map(|j| j.error))
-                }))
+                .chain(
+                    evaluated
+                        .iter()
+                        .map(|(_, e)| cell(e.joints.iter().find(|j| j.key == *k).map(|j| j.error))),
+                )
                 .collect()
         })
         .collect();
@@ -540,7 +542,11 @@ pub fn joint_model_table(results: &[BenchResult]) -> Table {
             rows.push(
                 std::iter::once(format!("**{name}**"))
                     .chain(evaluated.iter().map(|(_, e)| {
-                        cell(Some(if pick == 0 { e.summary.mean } else { e.summary.max }))
+                        cell(Some(if pick == 0 {
+                            e.summary.mean
+                        } else {
+                            e.summary.max
+                        }))
                     }))
                     .collect(),
             );
