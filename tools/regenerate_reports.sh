@@ -3,6 +3,7 @@
 #   reports/data/      bench of the bundled models (data/), with one HTML page per model
 #   reports/refdata/   bench of the whole reference set (../shared/refdata or $SKELFIT_REFDATA)
 #   reports/studies/   tessellation and rotation studies of the bundled MakeHuman body and horse
+#   reports/rig/       bench of the anatomical rig (skelfit rig) on the whole reference set
 #   reports/labels/    body-part labelling accuracy on the reference set
 #   reports/scaling/   time against interior voxel count (mesh to skinned general skeleton)
 # Usage: tools/regenerate_reports.sh   (from anywhere; takes a few minutes)
@@ -27,6 +28,7 @@ done
 
 if [ -f "$REFDATA/README.md" ]; then
   "$BIN" bench "$REFDATA" --rig game_engine --method "$METHOD" --out reports/refdata --html
+  "$BIN" bench "$REFDATA" --rig game_engine --method anatomical --out reports/rig --html
   "$BIN" label --table "$REFDATA" -o reports/labels
 else
   echo "reference data not found at $REFDATA (set SKELFIT_REFDATA): reports/refdata not regenerated" >&2

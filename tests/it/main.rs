@@ -12,5 +12,6 @@ mod general;
 mod medial;
 mod mesh;
 mod refine;
+mod rig;
 mod skin;
 mod voxel;
