@@ -112,6 +112,7 @@ fn run() -> Result<(), String> {
                 path,
                 radii: r,
                 digits: Vec::new(),
+                root: None,
             });
             let ball = j(&format!("ball_{s}"))?;
             let toe = mesh
@@ -140,6 +141,7 @@ fn run() -> Result<(), String> {
                 path,
                 radii: r,
                 digits: Vec::new(),
+                root: None,
             });
         }
         let input = FitInput {

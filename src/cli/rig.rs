@@ -70,6 +70,9 @@ pub struct RigArgs {
     /// A labels override file (JSON) correcting body-part sections (see `skelfit label`).
     #[arg(long, value_name = "OVERRIDE.json")]
     pub labels: Option<PathBuf>,
+    /// Slicing-based refinement of humanoid joints (seed 004) after the fit.
+    #[arg(long, value_name = "on|off", default_value = "on", value_parser = ["on", "off"])]
+    pub refine: String,
     #[command(flatten)]
     pub voxel: VoxelArgs,
     /// Print the summary as JSON on stdout.
@@ -109,6 +112,7 @@ impl RigArgs {
             }
         };
         options.fit.preset = self.preset.into();
+        options.refine.in_rig = self.refine == "on";
         if let Some(path) = &self.labels {
             options.overrides = Some(Overrides::load(path)?);
         }

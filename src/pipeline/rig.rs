@@ -5,6 +5,7 @@ use crate::distance::{edt, DistanceMap};
 use crate::fit::{fit_input, fit_with_probe, Fit, FitInput, FitInputOptions, FitOptions};
 use crate::medial::dms;
 use crate::mesh::Mesh;
+use crate::refine::{refine, RefineOptions};
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::Template;
 use crate::voxel::{voxelize, Solid};
@@ -38,6 +39,9 @@ pub struct RigOptions {
     pub input: FitInputOptions,
     /// The fit (naming preset, geometric choices of 8.1-8.2).
     pub fit: FitOptions,
+    /// Slicing-based refinement of humanoid joints after the fit (seed 004; on by default,
+    /// `in_rig: false` switches it off).
+    pub refine: RefineOptions,
     /// Regions of influence and weights (8.3).
     pub skin: SkinOptions,
 }
@@ -66,7 +70,7 @@ pub struct Rig {
 /// Rigs `mesh` with an anatomical control skeleton (dissertation ch.7-8): voxelize, exact
 /// distance map, medial surface, body-part labels, centralised paths between the labelled
 /// parts ([`fit_input`]), the template fit ([`fit_with_probe`], dorsal rays through the
-/// voxels), and skin weights from the fitted bones ([`skin_from_bones`]).
+/// voxels), for humanoids the slicing refinement ([`refine`], seed 004), and skin weights from the fitted bones ([`skin_from_bones`]).
 ///
 /// Missing body parts are warnings (the fit leaves their joints out); a figure the template does
 /// not suit gets the template's best effort and the warnings say what is missing.
@@ -122,9 +126,27 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
             Template::builtin(name)?
         }
     };
-    let fit = fit_with_probe(&input, &template, &options.fit, Some(&solid))?;
+    let mut fit = fit_with_probe(&input, &template, &options.fit, Some(&solid))?;
     warnings.extend(fit.warnings.iter().map(ToString::to_string));
     lap("fit", &mut timings);
+    if options.refine.in_rig && fit.template == "humanoid" {
+        let up = input.up;
+        match refine(
+            mesh,
+            &fit.skeleton,
+            &fit.canonical,
+            up,
+            input.forward,
+            &options.refine,
+        ) {
+            Ok(refined) => {
+                fit.skeleton = refined.skeleton;
+                warnings.extend(refined.warnings.iter().map(|w| format!("refine: {w}")));
+            }
+            Err(e) => warnings.push(format!("refine: {e}; the fitted joints are kept")),
+        }
+        lap("refine", &mut timings);
+    }
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().map(ToString::to_string));
     lap("skin", &mut timings);

@@ -5,6 +5,9 @@
 /// in any unit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RefineOptions {
+    /// Whether [`crate::pipeline::rig`] refines the joints of humanoid fits (`skelfit rig
+    /// --refine on|off`); [`super::refine`] itself ignores it. Default true.
+    pub in_rig: bool,
     /// Spacing of the transverse head slices, fraction of height. Default 0.004 (7 mm on a
     /// 1.75 m figure): fine enough that the chin-throat transfer is seen within a centimetre
     /// (seed 004, 3.1).
@@ -108,6 +111,7 @@ pub struct RefineOptions {
 impl Default for RefineOptions {
     fn default() -> Self {
         Self {
+            in_rig: true,
             head_slice_step: 0.004,
             head_shrink_ratio: 0.75,
             head_turn_degrees: 60.0,
