@@ -5,10 +5,11 @@ use crate::skeleton::{JointId, Skeleton};
 use glam::{DQuat, DVec3};
 use std::collections::BTreeMap;
 
-/// Returns `skeleton` with the joints of `targets` at their new positions. Every other joint is
-/// displaced like its nearest moved ancestor and nearest moved descendant, blended by its
-/// position along the original path between them (only the ancestor's displacement at the
-/// leaves, e.g. fingers and toes). Each frame is turned by the shortest rotation taking the old
+/// Returns `skeleton` with the joints of `targets` at their new positions. A joint between a
+/// moved ancestor and a moved descendant (spine, clavicle) is displaced like both, blended by
+/// its position along the original path between them; a joint above the moved ones like its
+/// nearest moved descendant; joints beyond the last moved joint of their chain (fingers, toes,
+/// head and jaw ends) keep their positions. Each frame is turned by the shortest rotation taking the old
 /// direction to the joint's first child onto the new one (leaves take their parent's turn).
 pub fn carry(skeleton: &Skeleton, targets: &BTreeMap<JointId, DVec3>) -> Skeleton {
     let n = skeleton.len();
@@ -53,7 +54,11 @@ pub fn carry(skeleton: &Skeleton, targets: &BTreeMap<JointId, DVec3>) -> Skeleto
         }
         let d = match (ancestor, descendant) {
             (Some((da, la)), Some((dd, ld))) if la + ld > 0.0 => da.lerp(dd, la / (la + ld)),
-            (Some((da, _)), _) => da,
+            // Beyond the last moved joint (fingers, toes, head and jaw ends): kept where the
+            // fit put them, inside the figure (moving them with the wrist or ankle can push
+            // toes through the floor).
+            (Some(_), None) => DVec3::ZERO,
+            (Some((da, _)), Some(_)) => da,
             (None, Some((dd, _))) => dd,
             (None, None) => DVec3::ZERO,
         };
