@@ -1,6 +1,6 @@
 //! Accuracy of the slicing refinement (seed 004) against the reference rigs, and its
 //! robustness to tessellation: writes `reports/refine/accuracy.{md,csv}` and
-//! `reports/refine/robustness.{md,csv}`.
+//! `reports/refine/robustness.{md,csv,svg}`.
 //!
 //! Starting skeleton: each reference rig's canonical joints displaced by deterministic offsets
 //! of 3-6 cm (the joints in between carried along). Errors are measured on the 15 joints of
@@ -13,6 +13,7 @@ use glam::DVec3;
 use skelfit::eval::load_skeleton;
 use skelfit::mesh::load;
 use skelfit::refine::{carry, refine, RefineOptions, REFINED_KEYS};
+use skelfit::report::{line_chart, LineChartOptions, Series};
 use skelfit::skeleton::JointId;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -198,6 +199,7 @@ fn robustness(root: &Path, out_dir: &Path, command: &str) -> Result<(), String> 
     variants.sort();
     let mut md = format!("# Refinement robustness to tessellation (seed 004, table 1)\n\nRegenerate: `{command}`\n\nDisplacement (mm) of the {} refined joints of {model} from the result on the 27k-triangle original, same starting skeleton.\n\n| variant | triangles | mean | max | worst joint |\n|---|---|---|---|---|\n", REFINED_KEYS.len());
     let mut csv = String::from("variant,triangles,mean_mm,max_mm\n");
+    let (mut means, mut maxima): (Vec<(f64, f64)>, Vec<(f64, f64)>) = (Vec::new(), Vec::new());
     for dir in variants {
         let name = dir
             .file_name()
@@ -239,6 +241,30 @@ fn robustness(root: &Path, out_dir: &Path, command: &str) -> Result<(), String> 
             max(&values)
         );
     }
+    means.sort_by(|a, b| a.0.total_cmp(&b.0));
+    maxima.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let svg = line_chart(
+        &[
+            Series {
+                name: "mean displacement".into(),
+                colour: "#1f77b4".into(),
+                points: means,
+            },
+            Series {
+                name: "max displacement".into(),
+                colour: "#d62728".into(),
+                points: maxima,
+            },
+        ],
+        &LineChartOptions {
+            log_x: true,
+            x_label: "triangles".into(),
+            y_label: "mm from the 27k result".into(),
+            ..Default::default()
+        },
+    );
+    md += "\n![displacement against triangle count](robustness.svg)\n";
+    std::fs::write(out_dir.join("robustness.svg"), svg).map_err(|e| e.to_string())?;
     std::fs::write(out_dir.join("robustness.md"), md).map_err(|e| e.to_string())?;
     std::fs::write(out_dir.join("robustness.csv"), csv).map_err(|e| e.to_string())?;
     Ok(())
