@@ -199,7 +199,8 @@ fn robustness(root: &Path, out_dir: &Path, command: &str) -> Result<(), String> 
     variants.sort();
     let mut md = format!("# Refinement robustness to tessellation (seed 004, table 1)\n\nRegenerate: `{command}`\n\nDisplacement (mm) of the {} refined joints of {model} from the result on the 27k-triangle original, same starting skeleton.\n\n| variant | triangles | mean | max | worst joint |\n|---|---|---|---|---|\n", REFINED_KEYS.len());
     let mut csv = String::from("variant,triangles,mean_mm,max_mm\n");
-    let (mut means, mut maxima): (Vec<(f64, f64)>, Vec<(f64, f64)>) = (Vec::new(), Vec::new());
+    let mut means: Vec<(f64, f64)> = Vec::new();
+    let mut maxima: Vec<(f64, f64)> = Vec::new();
     for dir in variants {
         let name = dir
             .file_name()
