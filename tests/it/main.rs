@@ -11,5 +11,6 @@ mod fit;
 mod general;
 mod medial;
 mod mesh;
+mod outline;
 mod skin;
 mod voxel;
