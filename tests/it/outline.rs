@@ -183,8 +183,8 @@ fn random_polygon(seed: u64, n: usize) -> Vec<DVec2> {
 
 #[test]
 fn random_simple_polygons_keep_every_invariant() {
-    for seed in 0..60u64 {
-        let n = 5 + (seed as usize % 30);
+    for seed in 0..500u64 {
+        let n = 5 + (seed as usize % 60);
         let polygon = random_polygon(seed, n);
         let s = straight_skeleton(&polygon, 1e-9).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
         check_invariants(&polygon, &s, 1e-7);
@@ -542,4 +542,178 @@ fn cli_outline_writes_a_skinned_glb_svg_and_json() {
         err.contains("skelfit: error:") && err.contains("intersects itself"),
         "{err}"
     );
+}
+
+/// Axis-aligned polygons make many events coincide (equal arm widths, collinear reflex
+/// corners): a plus sign, a comb and a staircase.
+#[test]
+fn orthogonal_polygons_with_simultaneous_events_keep_every_invariant() {
+    let pts = |v: &[(f64, f64)]| v.iter().map(|&(x, y)| DVec2::new(x, y)).collect::<Vec<_>>();
+    let plus = pts(&[
+        (1.0, 0.0),
+        (2.0, 0.0),
+        (2.0, 1.0),
+        (3.0, 1.0),
+        (3.0, 2.0),
+        (2.0, 2.0),
+        (2.0, 3.0),
+        (1.0, 3.0),
+        (1.0, 2.0),
+        (0.0, 2.0),
+        (0.0, 1.0),
+        (1.0, 1.0),
+    ]);
+    let mut comb = vec![DVec2::new(0.0, 0.0), DVec2::new(9.0, 0.0)];
+    for k in (0..5).rev() {
+        let x = 2.0 * k as f64;
+        comb.push(DVec2::new(x + 1.0, 4.0));
+        comb.push(DVec2::new(x, 4.0));
+        if k > 0 {
+            comb.push(DVec2::new(x, 1.0));
+            comb.push(DVec2::new(x - 1.0, 1.0));
+        }
+    }
+    comb[2] = DVec2::new(9.0, 4.0);
+    comb[3] = DVec2::new(8.0, 4.0);
+    // A corner list whose closing edge is long: closed explicitly by repeating the start.
+    let mut stairs = vec![DVec2::new(0.0, 0.0), DVec2::new(6.0, 0.0)];
+    for k in (0..6).rev() {
+        stairs.push(DVec2::new(k as f64 + 1.0, 6.0 - k as f64));
+        stairs.push(DVec2::new(k as f64, 6.0 - k as f64));
+    }
+    stairs.push(DVec2::ZERO);
+    for (name, polygon) in [("plus", plus), ("comb", comb), ("stairs", stairs)] {
+        let outline = Outline::new(polygon.clone(), &OutlineOptions::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let s = straight_skeleton(&outline.points, 1e-9).unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_invariants(&outline.points, &s, 1e-7);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+    /// Random smooth blobs of 2,000 points: the whole pipeline gives a valid skeleton whose
+    /// joints all lie inside the outline.
+    #[test]
+    fn random_blobs_give_valid_skeletons_inside_the_outline(
+        amplitudes in proptest::collection::vec(0.0f64..0.35, 5),
+        phases in proptest::collection::vec(0.0f64..6.3, 5),
+        scale in 0.01f64..1000.0,
+    ) {
+        let points: Vec<DVec2> = (0..2000)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 2000.0;
+                let r = 1.0 + amplitudes
+                    .iter()
+                    .zip(&phases)
+                    .enumerate()
+                    .map(|(i, (c, p))| c * ((i + 2) as f64 * a + p).cos())
+                    .sum::<f64>()
+                    .max(-0.9);
+                DVec2::new(a.cos(), a.sin()) * r * scale
+            })
+            .collect();
+        let options = OutlineOptions::default();
+        let outline = Outline::new(points, &options).unwrap();
+        let part = outline_skeleton(&outline, &options).unwrap();
+        prop_assert!(part.skeleton.validate().is_ok());
+        prop_assert!(!part.skeleton.is_empty());
+        for j in &part.skeleton.joints {
+            prop_assert!(outline.contains(j.position.truncate()), "{} at {} outside", j.name, j.position);
+        }
+        prop_assert_eq!(part.radii.len(), part.skeleton.len());
+    }
+}
+
+#[test]
+fn cli_outline_reads_svg_and_applies_level_of_detail() {
+    let dir = tempfile::tempdir().unwrap();
+    // A plus-shaped figure drawn with curves at the arm ends, in SVG (y down).
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M 40 0 L 60 0 L 60 40 L 100 40
+        C 110 40 110 60 100 60 L 60 60 L 60 100 L 40 100 L 40 60 L 0 60 C -10 60 -10 40 0 40
+        L 40 40 Z"/></svg>"#;
+    let input = write(dir.path(), "plus.svg", svg);
+    let glb = dir.path().join("plus.glb");
+    let fine = dir.path().join("fine.json");
+    let coarse = dir.path().join("coarse.json");
+    let run = |json: &std::path::Path, extra: &[&str]| {
+        let mut args = vec![
+            "outline",
+            input.to_str().unwrap(),
+            "-o",
+            glb.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let out = skelfit(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        skelfit::eval::load_skeleton(json).unwrap().skeleton
+    };
+    let fine = run(&fine, &[]);
+    let coarse = run(&coarse, &["--lod-prune", "45"]);
+    // Four arms meet at the centre; pruning the arms shorter than 45 leaves fewer terminals.
+    assert_eq!(
+        skelfit::lod::degrees(&fine)
+            .iter()
+            .filter(|&&d| d == 1)
+            .count(),
+        4
+    );
+    assert!(
+        coarse.len() < fine.len(),
+        "{} vs {}",
+        coarse.len(),
+        fine.len()
+    );
+}
+
+#[test]
+fn cli_skeleton_level_of_detail_gives_fewer_joints_and_a_valid_rig() {
+    let dir = tempfile::tempdir().unwrap();
+    // Three capsule arms from the origin.
+    let mut mesh = skelfit::mesh::Mesh::default();
+    for k in 0..3 {
+        let rotation = glam::DQuat::from_rotation_z(std::f64::consts::TAU * k as f64 / 3.0);
+        let arm = skelfit::mesh::Mesh::capsule(DVec3::ZERO, 0.1, 0.5, 8, 16)
+            .transformed(|p| rotation * (p + DVec3::new(0.0, 0.5, 0.0)));
+        let base = mesh.positions.len() as u32;
+        mesh.positions.extend(&arm.positions);
+        mesh.triangles
+            .extend(arm.triangles.iter().map(|t| t.map(|i| i + base)));
+    }
+    let obj = dir.path().join("tri.obj");
+    skelfit::export::write_obj(&obj, &mesh).unwrap();
+    let glb = dir.path().join("tri.glb");
+    let count = |extra: &[&str]| {
+        let json = dir.path().join("tri.json");
+        let mut args = vec![
+            "skeleton",
+            obj.to_str().unwrap(),
+            "-o",
+            glb.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+            "--approx-error",
+            "0",
+            "--segments",
+            "12",
+        ];
+        args.extend_from_slice(extra);
+        let out = skelfit(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert_eq!(&std::fs::read(&glb).unwrap()[0..4], b"glTF");
+        skelfit::eval::load_skeleton(&json).unwrap().skeleton.len()
+    };
+    let full = count(&[]);
+    let simplified = count(&["--lod-simplify", "0.2", "--lod-collapse", "0.2"]);
+    assert!(simplified < full, "{simplified} vs {full}");
 }
