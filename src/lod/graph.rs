@@ -125,3 +125,47 @@ pub(crate) fn chain_length(skeleton: &Skeleton, chain: &[usize]) -> f64 {
         })
         .sum()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::skeleton::{Joint, JointId};
+    use glam::DVec3;
+
+    /// root - a - junction - {b - tip1, tip2}
+    fn y_shape() -> Skeleton {
+        let j = |name: &str, parent: Option<usize>, x: f64| {
+            Joint::new(name, parent.map(JointId), DVec3::new(x, 0.0, 0.0))
+        };
+        Skeleton {
+            joints: vec![
+                j("root", None, 0.0),
+                j("a", Some(0), 1.0),
+                j("junction", Some(1), 2.0),
+                j("b", Some(2), 3.0),
+                j("tip1", Some(3), 4.0),
+                j("tip2", Some(2), 5.0),
+            ],
+        }
+    }
+
+    #[test]
+    fn branches_run_between_junction_and_terminal_joints() {
+        let s = y_shape();
+        assert_eq!(degrees(&s), vec![1, 2, 3, 2, 1, 1]);
+        let mut b = branches(&s);
+        b.sort();
+        assert_eq!(b, vec![vec![0, 1, 2], vec![2, 3, 4], vec![2, 5]]);
+        assert!((chain_length(&s, &[0, 1, 2]) - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn scopes_select_a_subtree_or_a_branch() {
+        let s = y_shape();
+        let part = in_scope(&s, &LodScope::Part("b".into())).unwrap();
+        assert_eq!(part, vec![false, false, false, true, true, false]);
+        let branch = in_scope(&s, &LodScope::Branch("a".into())).unwrap();
+        assert_eq!(branch, vec![false, true, true, false, false, false]);
+        assert!(in_scope(&s, &LodScope::Part("x".into())).is_err());
+    }
+}

@@ -18,7 +18,8 @@ pub struct Slice {
 }
 
 /// Uniform samples of a Catmull-Rom spline through `polyline`, about `spacing` apart (at least
-/// two: the ends, which stay exactly at the polyline's ends).
+/// two, the ends, which stay exactly at the polyline's ends; at most
+/// [`MAX_RESAMPLED_POINTS`](super::MAX_RESAMPLED_POINTS)).
 pub fn spline_samples(polyline: &[DVec2], spacing: f64) -> Vec<DVec2> {
     let n = polyline.len();
     if n < 2 {
@@ -49,7 +50,10 @@ pub fn spline_samples(polyline: &[DVec2], spacing: f64) -> Vec<DVec2> {
         }))
         .collect();
     let total = *lengths.last().unwrap_or(&0.0);
-    let count = ((total / spacing.max(f64::MIN_POSITIVE)).round() as usize).max(1);
+    let count = ((total / spacing.max(f64::MIN_POSITIVE))
+        .round()
+        .min(super::MAX_RESAMPLED_POINTS as f64) as usize)
+        .max(1);
     let mut out = Vec::with_capacity(count + 1);
     let mut j = 0usize;
     for k in 0..=count {
@@ -115,7 +119,8 @@ fn ray_distance(origin: DVec2, dir: DVec2, outline: &[DVec2]) -> f64 {
 
 /// Which samples BoundedDP keeps as joints (Algorithm 2): Algorithm 1 with threshold
 /// `epsilon` (outline units), lowered by `options.reduction` until every simplified edge stays
-/// inside the general cylinder of the slices. The ends are always kept.
+/// inside the general cylinder of the slices (at most [`MAX_THRESHOLD_STEPS`] reductions, after
+/// which every sample is kept). The ends are always kept.
 pub fn bounded_dp(slices: &[Slice], epsilon: f64, options: &BoundedDpOptions) -> Vec<bool> {
     let n = slices.len();
     let mut epsilon = epsilon;
@@ -124,14 +129,18 @@ pub fn bounded_dp(slices: &[Slice], epsilon: f64, options: &BoundedDpOptions) ->
         .map(|s| s.left + s.right)
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
-    loop {
+    for _ in 0..MAX_THRESHOLD_STEPS {
         let keep = select(slices, epsilon, options.shape_weight);
         if n <= 2 || inside(slices, &keep) || epsilon < 1e-9 * scale {
             return keep;
         }
-        epsilon *= options.reduction;
+        epsilon *= options.reduction.clamp(0.0, 0.99);
     }
+    vec![true; n]
 }
+
+/// The most threshold reductions of [`bounded_dp`]'s Algorithm 2.
+pub const MAX_THRESHOLD_STEPS: usize = 500;
 
 /// Algorithm 1: the point of largest combined error `E = d⊥ + α (d⁺ + d⁻)` in each range
 /// is kept, and the range split there while `E > epsilon`.

@@ -43,6 +43,7 @@ pub fn outline_part(
 /// [`OutlineError::InvalidOption`] for bad options, [`OutlineError::Mesh`] if the mesh is
 /// invalid (non-finite input).
 pub fn inflate(outline: &Outline, options: &InflateOptions) -> Result<Mesh, OutlineError> {
+    options.validate()?;
     let (lo, hi) = outline.bounds();
     let diagonal = (hi - lo).length();
     let h = options.spacing * diagonal;

@@ -148,6 +148,33 @@ fn check(
     }
 }
 
+impl InflateOptions {
+    /// Checks every field is in range.
+    ///
+    /// # Errors
+    /// [`OutlineError::InvalidOption`] naming the first field out of range.
+    pub fn validate(&self) -> Result<(), OutlineError> {
+        check(
+            "thickness",
+            self.thickness,
+            self.thickness > 0.0,
+            "must be > 0",
+        )?;
+        check(
+            "inflate.spacing",
+            self.spacing,
+            self.spacing >= 0.002 && self.spacing <= 0.2,
+            "must be in [0.002, 0.2]",
+        )?;
+        check(
+            "inflate.convergence",
+            self.convergence,
+            self.convergence > 0.0 && self.convergence < 1.0,
+            "must be in (0, 1)",
+        )
+    }
+}
+
 impl OutlineOptions {
     /// Checks every field is in range.
     ///
@@ -165,8 +192,8 @@ impl OutlineOptions {
         check(
             "resample_fraction",
             self.resample_fraction,
-            self.resample_fraction > 0.0 && self.resample_fraction <= 0.1,
-            "must be in (0, 0.1]",
+            self.resample_fraction >= 1e-5 && self.resample_fraction <= 0.1,
+            "must be in [1e-5, 0.1]",
         )?;
         check(
             "polygon_tolerance",
@@ -234,19 +261,7 @@ impl OutlineOptions {
             b.extent_cap > 0.0,
             "must be > 0",
         )?;
-        check("thickness", i.thickness, i.thickness > 0.0, "must be > 0")?;
-        check(
-            "inflate.spacing",
-            i.spacing,
-            i.spacing >= 0.002 && i.spacing <= 0.2,
-            "must be in [0.002, 0.2]",
-        )?;
-        check(
-            "inflate.convergence",
-            i.convergence,
-            i.convergence > 0.0 && i.convergence < 1.0,
-            "must be in (0, 1)",
-        )?;
+        i.validate()?;
         Ok(self.lod.validate()?)
     }
 }

@@ -3,17 +3,23 @@
 
 use glam::DVec2;
 
+/// The most points [`resample`] produces, however small the spacing.
+pub const MAX_RESAMPLED_POINTS: usize = 1 << 20;
+
 /// Points at equal arc-length steps of about `spacing` along the closed polyline `points`
 /// (outline units), starting at `points[0]`. The step is adjusted so the perimeter divides into
-/// a whole number (at least 3) of equal steps. Returns the input unchanged when it has fewer
-/// than 3 points or `spacing` is not positive.
+/// a whole number (at least 3, at most [`MAX_RESAMPLED_POINTS`]) of equal steps. Returns the
+/// input unchanged when it has fewer than 3 points or `spacing` is not positive.
 pub fn resample(points: &[DVec2], spacing: f64) -> Vec<DVec2> {
     let n = points.len();
     let perimeter = super::input::perimeter(points);
     if n < 3 || spacing.is_nan() || spacing <= 0.0 || perimeter.is_nan() || perimeter <= 0.0 {
         return points.to_vec();
     }
-    let count = ((perimeter / spacing).round() as usize).max(3);
+    let count = ((perimeter / spacing)
+        .round()
+        .min(MAX_RESAMPLED_POINTS as f64) as usize)
+        .max(3);
     let step = perimeter / count as f64;
     let mut out = Vec::with_capacity(count);
     let mut edge = 0usize;

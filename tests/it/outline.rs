@@ -717,3 +717,22 @@ fn cli_skeleton_level_of_detail_gives_fewer_joints_and_a_valid_rig() {
     let simplified = count(&["--lod-simplify", "0.2", "--lod-collapse", "0.2"]);
     assert!(simplified < full, "{simplified} vs {full}");
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+    /// Arbitrary point lists, valid or not, give a result or an error, never a panic or a hang.
+    #[test]
+    fn arbitrary_points_never_panic(
+        raw in proptest::collection::vec((-10i32..10, -10i32..10), 0..25),
+    ) {
+        let points: Vec<DVec2> = raw.iter().map(|&(x, y)| DVec2::new(x as f64, y as f64)).collect();
+        let options = OutlineOptions::default();
+        if let Ok(outline) = Outline::new(points.clone(), &options) {
+            let part = outline_skeleton(&outline, &options);
+            prop_assert!(part.is_ok(), "{:?}", part.err());
+        }
+        // Unvalidated input straight into the algorithms.
+        let _ = straight_skeleton(&points, 1e-9);
+        let _ = outline_skeleton(&Outline { points }, &options);
+    }
+}
