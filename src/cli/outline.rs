@@ -6,6 +6,7 @@ use super::common::millis;
 use super::simplify::LodArgs;
 use anyhow::Context;
 use clap::Args;
+use glam::{DAffine3, DQuat, DVec3};
 use serde_json::json;
 use skelfit::distance::edt;
 use skelfit::export::{write_glb, write_skeleton_json, GltfOptions, JsonOptions};
@@ -47,6 +48,11 @@ pub struct OutlineArgs {
     /// Voxels along the longest side for skinning.
     #[arg(long, value_name = "N", default_value_t = 96)]
     pub resolution: u32,
+    /// Place outline N (1-based, modelling order) in 3D: rotate it by YAW degrees about +Y,
+    /// then move it by (X, Y, Z). Repeat for several outlines; unplaced outlines stay in the
+    /// XY plane as drawn.
+    #[arg(long, value_name = "N:X,Y,Z[,YAW]")]
+    pub place: Vec<String>,
     #[command(flatten)]
     pub lod: LodArgs,
     /// Print the summary as JSON on stdout.
@@ -67,6 +73,39 @@ fn svg_path(base: &Path, k: usize) -> PathBuf {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "svg".into());
     base.with_file_name(format!("{stem}_{}.{ext}", k + 1))
+}
+
+/// Parses `--place N:X,Y,Z[,YAW]` values into one placement per outline.
+fn placements(values: &[String], count: usize) -> anyhow::Result<Vec<PartPlacement>> {
+    let mut out = vec![PartPlacement::default(); count];
+    for value in values {
+        let bad = || {
+            anyhow::anyhow!(
+                "--place {value:?} is not N:X,Y,Z[,YAW] with N an outline number from 1 to {count}"
+            )
+        };
+        let (index, rest) = value.split_once(':').ok_or_else(bad)?;
+        let index: usize = index.trim().parse().map_err(|_| bad())?;
+        let numbers: Vec<f64> = rest
+            .split(',')
+            .map(|s| s.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| bad())?;
+        if index == 0 || index > count || !(3..=4).contains(&numbers.len()) {
+            return Err(bad());
+        }
+        if numbers.iter().any(|x| !x.is_finite()) {
+            return Err(bad());
+        }
+        let yaw = numbers.get(3).copied().unwrap_or(0.0).to_radians();
+        out[index - 1] = PartPlacement {
+            transform: DAffine3::from_rotation_translation(
+                DQuat::from_rotation_y(yaw),
+                DVec3::new(numbers[0], numbers[1], numbers[2]),
+            ),
+        };
+    }
+    Ok(out)
 }
 
 /// Runs the command.
@@ -100,7 +139,7 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
         }
         parts.push(part);
     }
-    let placements = vec![PartPlacement::default(); parts.len()];
+    let placements = placements(&args.place, parts.len())?;
     let assembly = assemble(&parts, &placements).context("connecting the parts")?;
     let skeleton = if lod.is_identity() {
         assembly.skeleton.clone()

@@ -736,3 +736,91 @@ proptest! {
         let _ = outline_skeleton(&Outline { points }, &options);
     }
 }
+
+#[test]
+fn a_part_placed_in_a_crossing_plane_attaches_in_3d() {
+    let options = OutlineOptions::default();
+    let body = Outline::new(
+        rectangle(DVec2::new(0.0, 0.0), DVec2::new(100.0, 20.0), 50),
+        &options,
+    )
+    .unwrap();
+    // A wing drawn in its own XY plane, turned 90° about +Y so it spans the z direction, and
+    // moved so its root end overlaps the body's middle.
+    let wing = Outline::new(
+        rectangle(DVec2::new(-5.0, 5.0), DVec2::new(60.0, 15.0), 50),
+        &options,
+    )
+    .unwrap();
+    let parts = vec![
+        outline_part(&body, &options).unwrap(),
+        outline_part(&wing, &options).unwrap(),
+    ];
+    let turn = glam::DAffine3::from_rotation_translation(
+        glam::DQuat::from_rotation_y(-std::f64::consts::FRAC_PI_2),
+        DVec3::new(50.0, 0.0, 0.0),
+    );
+    let placements = vec![PartPlacement::default(), PartPlacement { transform: turn }];
+    let assembly = assemble(&parts, &placements).unwrap();
+    assert_eq!(assembly.parent_part, vec![None, Some(0)]);
+    let s = &assembly.skeleton;
+    assert_eq!(s.joints.iter().filter(|j| j.parent.is_none()).count(), 1);
+    // The wing's far end sticks out along +z.
+    let far = s
+        .joints
+        .iter()
+        .map(|j| j.position.z)
+        .fold(f64::MIN, f64::max);
+    assert!(far > 40.0, "{far}");
+    assert!(s.validate().is_ok());
+}
+
+#[test]
+fn cli_outline_places_parts_and_rejects_bad_placements() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = |points: Vec<DVec2>| {
+        points
+            .iter()
+            .map(|p| format!("{},{}\n", p.x, p.y))
+            .collect::<String>()
+    };
+    let body = write(
+        dir.path(),
+        "body.csv",
+        &csv(rectangle(DVec2::ZERO, DVec2::new(100.0, 20.0), 50)),
+    );
+    let wing = write(
+        dir.path(),
+        "wing.csv",
+        &csv(rectangle(DVec2::new(-5.0, 5.0), DVec2::new(60.0, 15.0), 50)),
+    );
+    let glb = dir.path().join("bird.glb");
+    let json = dir.path().join("bird.json");
+    let base = [
+        "outline",
+        body.to_str().unwrap(),
+        wing.to_str().unwrap(),
+        "-o",
+        glb.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+        "--print-json",
+    ];
+    let mut args = base.to_vec();
+    args.extend(["--place", "2:50,0,0,-90"]);
+    let out = skelfit(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(summary["parent_part"], serde_json::json!([null, 0]));
+    let rig = skelfit::eval::load_skeleton(&json).unwrap();
+    assert!(rig.skeleton.joints.iter().any(|j| j.position.z > 40.0));
+    let mut args = base.to_vec();
+    args.extend(["--place", "3:0,0,0"]);
+    let out = skelfit(&args);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--place"));
+}
