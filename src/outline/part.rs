@@ -81,7 +81,7 @@ pub fn outline_skeleton(
             polygon,
             straight,
             axis,
-            skeleton: with_frames(s),
+            skeleton: with_frames(renumbered(s)),
             radii,
         });
     };
@@ -94,6 +94,18 @@ pub fn outline_skeleton(
         skeleton,
         radii,
     })
+}
+
+/// Names the joints `root`, `joint_001`, ... again in order (level of detail leaves gaps).
+fn renumbered(mut skeleton: Skeleton) -> Skeleton {
+    for (k, joint) in skeleton.joints.iter_mut().enumerate() {
+        joint.name = if k == 0 {
+            "root".to_string()
+        } else {
+            format!("joint_{k:03}")
+        };
+    }
+    skeleton
 }
 
 /// Douglas-Peucker polygon of `points`, halving the tolerance while the result crosses itself.

@@ -824,3 +824,18 @@ fn cli_outline_places_parts_and_rejects_bad_placements() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--place"));
 }
+
+#[test]
+fn the_bundled_starfish_svg_gets_five_arms_named_in_order() {
+    let path = crate::common::data_dir().join("outlines/starfish.svg");
+    let options = OutlineOptions::default();
+    let outline = read_outline(&path, &options).unwrap();
+    let part = outline_skeleton(&outline, &options).unwrap();
+    let s = &part.skeleton;
+    let degrees = skelfit::lod::degrees(s);
+    assert_eq!(degrees[0], 5, "the root is the centre junction");
+    assert_eq!(degrees.iter().filter(|&&d| d == 1).count(), 5);
+    for (k, joint) in s.joints.iter().enumerate().skip(1) {
+        assert_eq!(joint.name, format!("joint_{k:03}"));
+    }
+}
