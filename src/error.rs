@@ -39,6 +39,12 @@ pub enum Error {
     /// Fitting an anatomical skeleton failed.
     #[error(transparent)]
     Fit(#[from] crate::fit::FitError),
+    /// Reading an outline or building its skeleton or mesh failed.
+    #[error(transparent)]
+    Outline(#[from] crate::outline::OutlineError),
+    /// A level-of-detail operation on a skeleton failed.
+    #[error(transparent)]
+    Lod(#[from] crate::lod::LodError),
     /// Writing a report or picture failed.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),

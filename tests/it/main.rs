@@ -11,6 +11,7 @@ mod fit;
 mod general;
 mod medial;
 mod mesh;
+mod outline;
 mod rig;
 mod skin;
 mod voxel;
