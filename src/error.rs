@@ -42,6 +42,12 @@ pub enum Error {
     /// Refining a humanoid skeleton by slicing failed.
     #[error(transparent)]
     Refine(#[from] crate::refine::RefineError),
+    /// Reading an outline or building its skeleton or mesh failed.
+    #[error(transparent)]
+    Outline(#[from] crate::outline::OutlineError),
+    /// A level-of-detail operation on a skeleton failed.
+    #[error(transparent)]
+    Lod(#[from] crate::lod::LodError),
     /// Writing a report or picture failed.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),

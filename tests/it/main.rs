@@ -11,6 +11,7 @@ mod fit;
 mod general;
 mod medial;
 mod mesh;
+mod outline;
 mod refine;
 mod rig;
 mod skin;
