@@ -342,6 +342,9 @@ pub fn refine(
         .collect();
     let mut moved = BTreeMap::new();
     for key in REFINED_KEYS {
+        if options.keep.iter().any(|k| k == key) {
+            continue;
+        }
         let (Some(&id), Some(&to)) = (canonical.get(key), found.get(key)) else {
             if canonical.contains_key(key) && !warnings.iter().any(|w| w.contains(key)) {
                 warnings.push(format!("{key}: kept at the unrefined position"));

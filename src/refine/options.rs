@@ -8,6 +8,9 @@ pub struct RefineOptions {
     /// Whether [`crate::pipeline::rig`] refines the joints of humanoid fits (`skelfit rig
     /// --refine on|off`); [`super::refine`] itself ignores it. Default true.
     pub in_rig: bool,
+    /// Canonical keys (e.g. `knee_L`) left at their rough positions even when refinement
+    /// finds them. Default empty (refine every joint it can).
+    pub keep: Vec<String>,
     /// Spacing of the transverse head slices, fraction of height. Default 0.004 (7 mm on a
     /// 1.75 m figure): fine enough that the chin-throat transfer is seen within a centimetre
     /// (seed 004, 3.1).
@@ -124,6 +127,7 @@ impl Default for RefineOptions {
             merge_ratio: 1.6,
             split_ratio: 0.6,
             distal_overshoot: 0.7,
+            keep: Vec::new(),
             straight_degrees: 165.0,
             leg_ratio: 0.49,
             arm_ratio: 0.54,
