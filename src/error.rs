@@ -39,6 +39,9 @@ pub enum Error {
     /// Fitting an anatomical skeleton failed.
     #[error(transparent)]
     Fit(#[from] crate::fit::FitError),
+    /// Generating bone meshes failed.
+    #[error(transparent)]
+    Bones(#[from] crate::bones::BoneError),
     /// Writing a report or picture failed.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),

@@ -14,6 +14,7 @@
 //!                                   └─general::control_skeleton─▶ GeneralSkeleton (Skeleton + segments)
 //! FitInput (labelled paths) + template::Template ──fit::fit──▶ Fit (anatomical Skeleton + canonical map)
 //! Skeleton + SegmentVoxels ──skin::skin──▶ Skin (per-vertex weights) ──skin::deform──▶ posed Mesh
+//! Fit + DistanceMap ──bones::bones──▶ Bones (procedural bone meshes attached to joints)
 //! Mesh + Skeleton + Skin ──export::write_glb / write_bvh / write_skeleton_json──▶ files
 //! ```
 //!
@@ -43,6 +44,7 @@
 #![warn(missing_docs)]
 
 pub mod anatomy;
+pub mod bones;
 pub mod distance;
 pub mod error;
 pub mod eval;
