@@ -1,4 +1,9 @@
-//! Drivers that run the pipeline stages in order.
+//! Drivers that run the pipeline stages in order: [`general_skeleton`] / [`general_rig`] (any
+//! figure, dissertation ch.5) and [`rig`] (the anatomical skeleton from a template, ch.7-8).
+
+mod rig;
+
+pub use rig::{auto_template, rig, Rig, RigOptions, TemplateChoice};
 
 use crate::distance::{edt, DistanceMap};
 use crate::general::{control_skeleton, GeneralOptions, GeneralSkeleton};

@@ -409,19 +409,43 @@ pub fn label_graph(
         }
     }
 
-    // Unpaired legs: side from the trunk's centre line, pair from the nearest leg pair.
     let centre = if trunk_points.is_empty() {
         DVec3::ZERO
     } else {
         trunk_points.iter().sum::<DVec3>() / trunk_points.len() as f64
     };
-    for &s in &single_legs {
-        let side = if (sections[s].mean - centre).dot(frame.left) >= 0.0 {
+    let side_of = |s: usize| {
+        if (sections[s].mean - centre).dot(frame.left) >= 0.0 {
             Side::L
         } else {
             Side::R
-        };
-        assign[s].side = Some(side);
+        }
+    };
+    // A lone arm of a human-like figure: a long section left unpaired that joins the upper
+    // half of the trunk (its partner is missing, or too far away to pair).
+    if figure == FigureClass::HumanLike {
+        for s in arms {
+            if assign[s].label.is_none()
+                && sections[s].attachment.dot(frame.up) > centre.dot(frame.up)
+            {
+                let side = side_of(s);
+                assign[s] = Assignment {
+                    label: Some(Label::Arm),
+                    side: Some(side),
+                    limb_pair: Some(LimbPair::Fore),
+                    partner: None,
+                };
+                warnings.push(format!(
+                    "found a single arm (section {s}, on the {} side): its partner is missing",
+                    if side == Side::L { "left" } else { "right" }
+                ));
+            }
+        }
+    }
+
+    // Unpaired legs: side from the trunk's centre line, pair from the nearest leg pair.
+    for &s in &single_legs {
+        assign[s].side = Some(side_of(s));
         let nearest = ordered.iter().min_by(|x, y| {
             let dx = sections[x.0].attachment.distance(sections[s].attachment);
             let dy = sections[y.0].attachment.distance(sections[s].attachment);

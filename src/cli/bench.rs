@@ -21,12 +21,16 @@ pub enum MethodArg {
     /// The general control skeleton (dissertation ch.5); not anatomically named, so evaluated
     /// by chamfer distances only.
     General,
+    /// The anatomical control skeleton from a template (dissertation ch.7-8, `skelfit rig`
+    /// with its defaults); canonical joints are evaluated per joint.
+    Anatomical,
 }
 
 impl From<MethodArg> for RigMethod {
     fn from(arg: MethodArg) -> Self {
         match arg {
             MethodArg::General => RigMethod::General,
+            MethodArg::Anatomical => RigMethod::Anatomical,
         }
     }
 }

@@ -2,17 +2,21 @@
 //!
 //! For every `mesh.obj` below the data folder (the refdata layout: `<kind>/<model>/mesh.obj`),
 //! prints the mesh statistics, voxelizes it, computes its distance map, fits the general control
-//! skeleton and skins the mesh to it, and writes `<out>/<model>/{info.json, voxelize.json,
-//! slices/*.png, general.glb, general.json, general.bvh}`; then a summary table.
+//! skeleton and the anatomical skeleton (template chosen from the labelled figure) and skins the
+//! mesh to each, and writes `<out>/<model>/{info.json, voxelize.json, slices/*.png, general.glb,
+//! general.json, general.bvh, rig.glb, rig.json, rig.bvh}`; with a reference rig beside the mesh
+//! (`rig_game_engine.json`, else the only `rig_*.json`) it also prints the anatomical rig's
+//! per-joint error; then a summary table.
 
 use super::common::{write_file, VoxelArgs};
 use super::voxelize::{print_text, summarize};
 use anyhow::Context;
 use clap::Args;
+use skelfit::eval::{evaluate, load_skeleton, EvalOptions, JointPairing, ReferenceRig};
 use skelfit::export::{
     write_bvh, write_glb, write_skeleton_json, BvhOptions, GltfOptions, JsonOptions,
 };
-use skelfit::pipeline::{general_rig, GeneralRigOptions};
+use skelfit::pipeline::{general_rig, rig, GeneralRigOptions, RigOptions};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `skelfit demo`.
@@ -79,12 +83,13 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
             serde_json::to_string_pretty(&summary)?.as_bytes(),
         )?;
         print_text(&summary);
-        let rig = rig_general(mesh_path, &out)?;
-        rows.push((name, stats, summary, rig));
+        let general = rig_general(mesh_path, &out)?;
+        let anatomical = rig_anatomical(mesh_path, &out)?;
+        rows.push((name, stats, summary, general, anatomical));
     }
     println!();
     println!(
-        "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9} {:>7} {:>9}",
+        "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9} {:>7} {:>9} {:>10} {:>7} {:>9} {:>11}",
         "model",
         "triangles",
         "closed",
@@ -93,15 +98,23 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
         "vol err",
         "voxel ms",
         "joints",
-        "rig ms"
+        "rig ms",
+        "template",
+        "joints",
+        "rig ms",
+        "mean error"
     );
-    for (name, stats, s, (joints, rig_ms)) in &rows {
+    for (name, stats, s, (joints, rig_ms), anatomical) in &rows {
         let vol = s
             .mesh_volume
             .map(|v| format!("{:+.2}%", 100.0 * (s.interior_volume - v) / v))
             .unwrap_or_else(|| "n/a".into());
+        let error = anatomical
+            .error
+            .map(|(mean, percent)| format!("{mean:.4} ({percent:.1}%)"))
+            .unwrap_or_else(|| "n/a".into());
         println!(
-            "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9.1} {:>7} {:>9.1}",
+            "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9.1} {:>7} {:>9.1} {:>10} {:>7} {:>9.1} {:>11}",
             name,
             stats.triangles,
             if stats.closed { "yes" } else { "no" },
@@ -110,7 +123,11 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
             vol,
             s.timings_ms.load + s.timings_ms.voxelize + s.timings_ms.distance,
             joints,
-            rig_ms
+            rig_ms,
+            anatomical.template,
+            anatomical.joints,
+            anatomical.rig_ms,
+            error
         );
     }
     println!("results written to {}", args.out.display());
@@ -160,4 +177,105 @@ fn rig_general(mesh_path: &Path, out: &Path) -> anyhow::Result<(usize, f64)> {
         eprintln!("skelfit: warning: {w}");
     }
     Ok((rig.general.skeleton.len(), rig_ms))
+}
+
+/// What the demo reports of an anatomical rig.
+struct AnatomicalRow {
+    template: String,
+    joints: usize,
+    rig_ms: f64,
+    /// Mean canonical-joint error against the reference rig beside the mesh (mesh units, % of
+    /// figure size), when there is one.
+    error: Option<(f64, f64)>,
+}
+
+/// Rigs one model with the anatomical skeleton (template chosen from the labels) and writes
+/// `rig.glb`, `rig.json` (with the canonical map) and `rig.bvh` into `out`; evaluates it
+/// against the model's reference rig when one is beside the mesh.
+fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow> {
+    let mesh = super::common::load_mesh(mesh_path)?;
+    let start = std::time::Instant::now();
+    let rigged = rig(&mesh, &RigOptions::default())
+        .with_context(|| format!("rigging {} with a template", mesh_path.display()))?;
+    let rig_ms = start.elapsed().as_secs_f64() * 1e3;
+    let glb = out.join("rig.glb");
+    write_glb(
+        &glb,
+        &mesh,
+        &rigged.fit.skeleton,
+        &rigged.skin,
+        &GltfOptions::default(),
+    )?;
+    let info = super::rig::run_info(mesh_path, &rigged, 0.0);
+    super::rig::write_rig_json(&out.join("rig.json"), mesh_path, &rigged, Some(info))?;
+    write_bvh(
+        &out.join("rig.bvh"),
+        &rigged.fit.skeleton,
+        &BvhOptions::default(),
+    )?;
+    println!(
+        "anatomical rig       {} template, {} joints ({} canonical) in {:.1} ms -> {}",
+        rigged.fit.template,
+        rigged.fit.skeleton.len(),
+        rigged.fit.canonical.len(),
+        rig_ms,
+        glb.display()
+    );
+    for w in &rigged.warnings {
+        eprintln!("skelfit: warning: {w}");
+    }
+    let error = match reference_beside(mesh_path) {
+        Some(reference) => {
+            let reference = load_skeleton(&reference)?;
+            let mut predicted = ReferenceRig::from_skeleton("rig", rigged.fit.skeleton.clone());
+            predicted.canonical = rigged.fit.canonical.clone();
+            let options = EvalOptions {
+                pairing: JointPairing::IfShared,
+                ..Default::default()
+            };
+            let e = evaluate(&predicted, &reference, Some(&mesh), &options)?;
+            if e.has_joint_errors() {
+                println!(
+                    "                     mean joint error {:.4} ({:.2} % of figure size) over {} joints",
+                    e.summary.mean,
+                    e.summary_percent.mean,
+                    e.joints.len()
+                );
+                Some((e.summary.mean, e.summary_percent.mean))
+            } else {
+                println!(
+                    "                     no shared joint names: chamfer CD-J2J {:.2} % of figure size",
+                    e.chamfer_percent.j2j
+                );
+                None
+            }
+        }
+        None => None,
+    };
+    Ok(AnatomicalRow {
+        template: rigged.fit.template.clone(),
+        joints: rigged.fit.skeleton.len(),
+        rig_ms,
+        error,
+    })
+}
+
+/// The reference rig beside a mesh: `rig_game_engine.json`, else the only `rig_*.json`.
+fn reference_beside(mesh_path: &Path) -> Option<PathBuf> {
+    let dir = mesh_path.parent()?;
+    let preferred = dir.join("rig_game_engine.json");
+    if preferred.is_file() {
+        return Some(preferred);
+    }
+    let mut rigs: Vec<PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("rig_") && n.ends_with(".json"))
+        })
+        .collect();
+    rigs.sort();
+    (rigs.len() == 1).then(|| rigs.remove(0))
 }

@@ -10,6 +10,7 @@ mod eval;
 mod info;
 mod label;
 mod report;
+mod rig;
 mod skeleton;
 mod study;
 mod voxelize;
@@ -44,6 +45,10 @@ enum Command {
     /// write labels.json (plus a coloured PLY and an SVG picture on request), or regenerate the
     /// accuracy table with --table.
     Label(label::LabelArgs),
+    /// Fit the anatomical control skeleton of a humanoid, quadruped or winged figure from a
+    /// template (dissertation ch.7-8), skin the mesh to it and write a skinned .glb (plus JSON
+    /// with the canonical joint map, BVH).
+    Rig(rig::RigArgs),
     /// Rebuild the self-contained HTML page of a bench run or a study from its JSON results.
     Report(report::ReportArgs),
     /// Fit the general control skeleton of any figure (dissertation ch.5), skin the mesh to it
@@ -66,6 +71,7 @@ pub fn main() -> ExitCode {
         Command::Info(args) => info::run(args),
         Command::Label(args) => label::run(args),
         Command::Report(args) => report::run(args),
+        Command::Rig(args) => rig::run(args),
         Command::Skeleton(args) => skeleton::run(args),
         Command::Study(args) => study::run(args),
         Command::Voxelize(args) => voxelize::run(args),

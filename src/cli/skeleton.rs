@@ -136,7 +136,8 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn model_name(path: &Path) -> Option<String> {
+/// The model name of a mesh path: its stem, or its folder for refdata's `<model>/mesh.obj`.
+pub fn model_name(path: &Path) -> Option<String> {
     let stem = path.file_stem()?.to_string_lossy().into_owned();
     if stem == "mesh" {
         // refdata layout: <kind>/<model>/mesh.obj

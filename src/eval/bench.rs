@@ -129,7 +129,7 @@ pub fn find_bench_models(root: &Path, rig: &str) -> Result<Vec<BenchModel>, Eval
 }
 
 /// Options of [`bench_model`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct BenchOptions {
     /// The rigging method and its parameters.
     pub rigger: RiggerOptions,
@@ -250,7 +250,8 @@ fn run_model(
     result.timings.extend(rigged.timings);
     result.notes.extend(rigged.warnings);
     result.predicted_joints = rigged.skeleton.len();
-    let predicted = ReferenceRig::from_skeleton(model.name.clone(), rigged.skeleton);
+    let mut predicted = ReferenceRig::from_skeleton(model.name.clone(), rigged.skeleton);
+    predicted.canonical = rigged.canonical;
     let clock = Instant::now();
     let evaluation =
         evaluate(&predicted, &reference, Some(&mesh), &options.eval).map_err(|e| e.to_string())?;

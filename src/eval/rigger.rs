@@ -2,11 +2,13 @@
 //! function. A new method (e.g. the anatomical rig) is a new [`RigMethod`] variant, its options
 //! in [`RiggerOptions`] and one arm in [`rig_mesh`].
 
+use crate::anatomy::Forward;
 use crate::mesh::Mesh;
-use crate::pipeline::{general_skeleton, GeneralSkeletonOptions};
-use crate::skeleton::Skeleton;
+use crate::pipeline::{general_skeleton, rig, GeneralSkeletonOptions, RigOptions};
+use crate::skeleton::{JointId, Skeleton};
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// An automatic rigging method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
@@ -16,22 +18,26 @@ pub enum RigMethod {
     /// anatomically named, so evaluations of it are chamfer-only.
     #[default]
     General,
+    /// The anatomical control skeleton from a template (dissertation ch.7-8,
+    /// [`crate::pipeline::rig`]): canonical joints are evaluated per joint.
+    Anatomical,
 }
 
 impl RigMethod {
     /// Every method, in documentation order.
-    pub const ALL: &'static [RigMethod] = &[RigMethod::General];
+    pub const ALL: &'static [RigMethod] = &[RigMethod::General, RigMethod::Anatomical];
 
     /// Lowercase name as used on the command line and in reports.
     pub fn name(self) -> &'static str {
         match self {
             RigMethod::General => "general",
+            RigMethod::Anatomical => "anatomical",
         }
     }
 }
 
-/// The figure's orientation, for methods that need it (the general skeleton does not: it is
-/// orientation-free). Studies that rotate a mesh rotate these with it.
+/// The figure's orientation, for methods that need it (the anatomical rig; the general
+/// skeleton is orientation-free). Studies that rotate a mesh rotate these with it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Orientation {
     /// Up direction, unit vector. Default +Y (DESIGN.md, dissertation 7.1.2).
@@ -60,7 +66,7 @@ impl Orientation {
 }
 
 /// Options of [`rig_mesh`]: the method and each method's parameters.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct RiggerOptions {
     /// Which method. Default [`RigMethod::General`].
     pub method: RigMethod,
@@ -68,6 +74,9 @@ pub struct RiggerOptions {
     pub orientation: Orientation,
     /// Parameters of [`RigMethod::General`] (defaults: dissertation Table 5.2).
     pub general: GeneralSkeletonOptions,
+    /// Parameters of [`RigMethod::Anatomical`] (its orientation is `orientation`).
+    #[serde(skip)]
+    pub anatomical: RigOptions,
 }
 
 /// A skeleton fitted by [`rig_mesh`], in the mesh's units and frame.
@@ -75,6 +84,8 @@ pub struct RiggerOptions {
 pub struct Rigged {
     /// The fitted skeleton.
     pub skeleton: Skeleton,
+    /// Canonical anatomical key → joint, for methods that name anatomy (empty otherwise).
+    pub canonical: BTreeMap<String, JointId>,
     /// Wall-clock time per pipeline stage, `(stage, milliseconds)`, in stage order.
     pub timings: Vec<(String, f64)>,
     /// Warnings of every stage, as sentences.
@@ -91,8 +102,21 @@ pub fn rig_mesh(mesh: &Mesh, options: &RiggerOptions) -> crate::Result<Rigged> {
             let general = general_skeleton(mesh, &options.general)?;
             Ok(Rigged {
                 skeleton: general.skeleton,
+                canonical: BTreeMap::new(),
                 timings: general.timings,
                 warnings: general.warnings,
+            })
+        }
+        RigMethod::Anatomical => {
+            let mut rig_options = options.anatomical.clone();
+            rig_options.label.up = options.orientation.up;
+            rig_options.label.forward = Forward::Direction(options.orientation.forward);
+            let rig = rig(mesh, &rig_options)?;
+            Ok(Rigged {
+                skeleton: rig.fit.skeleton,
+                canonical: rig.fit.canonical,
+                timings: rig.timings,
+                warnings: rig.warnings,
             })
         }
     }

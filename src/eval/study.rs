@@ -25,7 +25,7 @@ pub enum StudyKind {
 }
 
 /// Options of the studies.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct StudyOptions {
     /// The rigging method and its parameters.
     pub rigger: RiggerOptions,
@@ -160,7 +160,7 @@ fn run_study(
     let mut rigged: Vec<(VariantInput, Result<super::Rigged, String>)> = inputs
         .into_par_iter()
         .map(|input| {
-            let mut rigger = options.rigger;
+            let mut rigger = options.rigger.clone();
             rigger.orientation = rigger.orientation.rotated(input.rotation);
             let clock = Instant::now();
             let result = rig_mesh(&input.mesh, &rigger).map(|mut r| {

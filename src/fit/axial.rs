@@ -148,26 +148,29 @@ pub(crate) fn axial(
         .map(|j| spine.at(nk - j as f64 * (nk - h) / n_neck as f64))
         .collect();
 
-    // Trunk: n equal segments; the root at the middle of the one nearest the hindmost pair.
+    // Trunk: n equal segments; the root at the hindmost pair (moved `root_offset` segments
+    // anteriorly), between the centred path and the dorsal spine by `root_dorsal`.
     let n_trunk = template.vertebrae.trunk.clamp(count(te - nk)).max(1);
     let b = |i: usize| nk + i as f64 * (te - nk) / n_trunk as f64;
-    let target = arc(root_t);
-    let r = (0..n_trunk)
-        .min_by(|&i, &j| {
-            let mi = (0.5 * (b(i) + b(i + 1)) - target).abs();
-            let mj = (0.5 * (b(j) + b(j + 1)) - target).abs();
-            mi.total_cmp(&mj).then(j.cmp(&i))
-        })
-        .unwrap_or(n_trunk - 1);
-    let root_arc = 0.5 * (b(r) + b(r + 1));
-    let root = spine.at(root_arc);
+    let t_root =
+        (root_t - options.root_offset * seg).clamp(bounds.neck.min(bounds.trunk), bounds.trunk);
+    let root_arc = arc(t_root);
+    let root = original
+        .at(t_root)
+        .lerp(spine.at(root_arc), options.root_dorsal);
+    // Trunk joints closer than a quarter segment to the root are left out (no coincident
+    // joints); those behind it continue into the tail chain.
+    let gap = 0.25 * (te - nk) / n_trunk as f64;
     let span = (root_arc - nk).max(1e-300);
-    let trunk: Vec<(DVec3, f64)> = (1..=r)
+    let trunk: Vec<(DVec3, f64)> = (1..n_trunk)
         .rev()
+        .filter(|&i| b(i) < root_arc - gap)
         .map(|i| (spine.at(b(i)), (root_arc - b(i)) / span))
         .collect();
-    // Trunk joints behind the root continue into the tail chain.
-    let mut tail: Vec<DVec3> = (r + 1..n_trunk).map(|i| spine.at(b(i))).collect();
+    let mut tail: Vec<DVec3> = (1..n_trunk)
+        .filter(|&i| b(i) > root_arc + gap)
+        .map(|i| spine.at(b(i)))
+        .collect();
     let tail_len = end - te;
     let mut tail_end = None;
     if tail_len >= options.min_tail * seg_s && template.vertebrae.tail.max > 0 {

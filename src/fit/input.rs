@@ -92,6 +92,12 @@ pub struct LimbInput {
     /// Separated digits, any order (the first digit is found as the one nearest the centre
     /// line).
     pub digits: Vec<DigitInput>,
+    /// Where the labelled limb leaves the trunk (its section's top, mesh units), if known.
+    /// With [`FitOptions::root_from_labels`](super::FitOptions::root_from_labels) the limb's
+    /// outer segmentation starts at the path point nearest it instead of at the girdle
+    /// sphere's exit.
+    #[serde(default)]
+    pub root: Option<DVec3>,
 }
 
 /// Everything the fit needs, in mesh units and the mesh frame.

@@ -70,8 +70,12 @@ pub(crate) fn limb(
     let rows = ratios.len();
     let mut chain: Vec<Option<DVec3>> = vec![None; group.chain.len()];
     let mut chain_s: Vec<Option<f64>> = vec![None; group.chain.len()];
-    let s0 = path
-        .sphere_exit(sphere.centre, sphere.radius)
+    let from_label = input
+        .root
+        .filter(|_| options.root_from_labels)
+        .map(|r| path.project(r));
+    let s0 = from_label
+        .or_else(|| path.sphere_exit(sphere.centre, sphere.radius))
         .unwrap_or_else(|| {
             warnings.push(FitWarning::InsideGirdle {
                 group: group.name.clone(),
@@ -116,6 +120,20 @@ pub(crate) fn limb(
             chain_s[index] = Some(s);
         }
     }
+    if let Some(bend) = options.snap_to_bend {
+        snap_to_bends(&path, &mut chain, &mut chain_s, s0, span, &bend);
+    }
+    if let (Placement::Human, Some(root), Some(s_end)) = (
+        group.placement,
+        input.root.filter(|_| from_label.is_some()),
+        chain_s.get(1).copied().flatten(),
+    ) {
+        // The shoulder/hip sits on the axis of the upper arm/thigh where it meets the trunk:
+        // the segment's axis (fitted to its middle) at the point nearest the labelled root.
+        if let Some(p) = axis_point(&path, s0, s_end, root, options.root_axis_span) {
+            chain[0] = Some(p);
+        }
+    }
     if has_digits && group.digit_row < chain.len() {
         // The path ends at the wrist/ankle voxel: the digit bases take this joint's place.
         chain[group.digit_row] = None;
@@ -149,6 +167,93 @@ pub(crate) fn limb(
         chain,
         digits,
     }
+}
+
+/// Moves each inner chain joint (not the limb's root or tip) to the sharpest bend of the path
+/// within `bend.window * span` of its Table 8.1 place when that bend turns by at least
+/// `bend.min_angle` degrees; joints keep their order.
+fn snap_to_bends(
+    path: &Polyline,
+    chain: &mut [Option<DVec3>],
+    chain_s: &mut [Option<f64>],
+    s0: f64,
+    span: f64,
+    bend: &super::options::BendSnap,
+) {
+    const STEPS: usize = 24;
+    let placed: Vec<usize> = (0..chain.len()).filter(|&k| chain_s[k].is_some()).collect();
+    let h = bend.stencil * span;
+    if placed.len() < 3 || h <= 0.0 {
+        return;
+    }
+    let turn = |s: f64| {
+        let (a, b, c) = (path.at(s - h), path.at(s), path.at(s + h));
+        let (u, v) = (b - a, c - b);
+        if u.length() < 1e-12 || v.length() < 1e-12 {
+            0.0
+        } else {
+            u.angle_between(v).to_degrees()
+        }
+    };
+    for w in 1..placed.len() - 1 {
+        let k = placed[w];
+        let (Some(s), Some(prev), Some(next)) =
+            (chain_s[k], chain_s[placed[w - 1]], chain_s[placed[w + 1]])
+        else {
+            continue;
+        };
+        let lo = (s - bend.window * span).max(0.5 * (prev + s)).max(s0 + h);
+        let hi = (s + bend.window * span)
+            .min(0.5 * (s + next))
+            .min(path.length() - h);
+        if hi <= lo {
+            continue;
+        }
+        let best = (0..=STEPS)
+            .map(|i| lo + (hi - lo) * i as f64 / STEPS as f64)
+            .map(|t| (turn(t), t))
+            .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1)));
+        if let Some((angle, t)) = best.filter(|b| b.0 >= bend.min_angle) {
+            let _ = angle;
+            chain[k] = Some(path.at(t));
+            chain_s[k] = Some(t);
+        }
+    }
+}
+
+/// The point nearest `target` on the straight line fitted (least squares, principal direction)
+/// to `path` between arc lengths `a + (1 - span) / 2 (b - a)` and `a + (1 + span) / 2 (b - a)`;
+/// `None` when that part of the path is degenerate.
+fn axis_point(path: &Polyline, a: f64, b: f64, target: DVec3, span: f64) -> Option<DVec3> {
+    const SAMPLES: usize = 16;
+    let (lo, hi) = (
+        a + 0.5 * (1.0 - span) * (b - a),
+        a + 0.5 * (1.0 + span) * (b - a),
+    );
+    if hi - lo <= 0.0 {
+        return None;
+    }
+    let pts: Vec<DVec3> = (0..=SAMPLES)
+        .map(|k| path.at(lo + (hi - lo) * k as f64 / SAMPLES as f64))
+        .collect();
+    let centre = pts.iter().sum::<DVec3>() / pts.len() as f64;
+    let dir = (pts[SAMPLES] - pts[0]).try_normalize()?;
+    // One power iteration step on the scatter matrix refines the chord direction.
+    let refined = pts
+        .iter()
+        .map(|p| {
+            let d = *p - centre;
+            d * d.dot(dir)
+        })
+        .sum::<DVec3>()
+        .try_normalize()
+        .unwrap_or(dir);
+    let dir = if refined.dot(dir) < 0.0 {
+        -refined
+    } else {
+        refined
+    };
+    Some(centre + dir * (target - centre).dot(dir))
 }
 
 /// An animal-like shoulder/hip inside the girdle sphere (8.2): at the elbow's/knee's lateral

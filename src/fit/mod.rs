@@ -21,6 +21,7 @@
 mod axial;
 mod error;
 mod frames;
+mod from_labels;
 mod input;
 mod limbs;
 mod options;
@@ -28,10 +29,11 @@ mod polyline;
 mod probe;
 
 pub use error::{FitError, FitWarning};
+pub use from_labels::{fit_input, FitInputOptions};
 pub use input::{
     voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, FitInput, LimbInput, Side,
 };
-pub use options::FitOptions;
+pub use options::{BendSnap, FitOptions};
 
 use crate::skeleton::{Joint, JointId, Skeleton};
 use crate::template::{apply_preset, Girdle, LimbKind, Template};
@@ -109,7 +111,7 @@ pub fn fit_with_probe(
     let radii = &input.axial.radii;
 
     // Limb pairs, ordered head → tail, matched to template groups.
-    let pairs = pairs(input, template, &original, &mut warnings);
+    let pairs = pairs(input, template, options, &original, &mut warnings);
 
     // Sections (8.1).
     let length = original.length();
@@ -142,11 +144,12 @@ pub fn fit_with_probe(
                     (options.fallback_trunk_start * length, length)
                 }
             };
-            Bounds {
-                head: template.sections.head * neck,
-                neck,
-                trunk,
-            }
+            let head = match options.head_at_narrowing {
+                Some([lo, hi]) => narrowest(&original, radii, lo * neck, hi * neck)
+                    .unwrap_or(template.sections.head * neck),
+                None => template.sections.head * neck,
+            };
+            Bounds { head, neck, trunk }
         }
     };
     let root_t = pairs
@@ -221,6 +224,22 @@ pub fn fit_with_probe(
         warnings,
         template: template.name.clone(),
     })
+}
+
+/// Arc length in `[lo, hi]` where the path's radius (moving average over a few points) is
+/// smallest: the narrowing between the head and the neck. `None` for an empty range.
+fn narrowest(path: &Polyline, radii: &[f64], lo: f64, hi: f64) -> Option<f64> {
+    const HALF: usize = 2;
+    let n = radii.len();
+    (0..n)
+        .filter(|&i| path.cum[i] >= lo && path.cum[i] <= hi)
+        .map(|i| {
+            let (a, b) = (i.saturating_sub(HALF), (i + HALF).min(n - 1));
+            let mean = radii[a..=b].iter().sum::<f64>() / (b - a + 1) as f64;
+            (mean, i)
+        })
+        .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+        .map(|(_, i)| path.cum[i])
 }
 
 fn finite(points: &[DVec3]) -> bool {
@@ -321,6 +340,7 @@ struct Pair<'a> {
 fn pairs<'a>(
     input: &'a FitInput,
     template: &Template,
+    options: &FitOptions,
     original: &Polyline,
     warnings: &mut Vec<FitWarning>,
 ) -> Vec<Pair<'a>> {
@@ -335,7 +355,13 @@ fn pairs<'a>(
     let mut found: Vec<(LimbKind, usize, f64, Vec<&LimbInput>)> = groups
         .into_iter()
         .map(|((kind, pair), limbs)| {
-            let mid = limbs.iter().map(|l| l.attach).sum::<DVec3>() / limbs.len() as f64;
+            // The pair sits where its limbs leave the trunk (their roots, when labelling gave
+            // them and the options use them), else at its limb-to-limb midpoint (8.1).
+            let at = |l: &&LimbInput| match l.root.filter(|_| options.root_from_labels) {
+                Some(r) => r,
+                None => l.attach,
+            };
+            let mid = limbs.iter().map(at).sum::<DVec3>() / limbs.len() as f64;
             (kind, pair, original.project(mid), limbs)
         })
         .collect();

@@ -30,6 +30,7 @@ fn limb(kind: LimbKind, side: Side, pair: usize, attach: DVec3, corners: &[DVec3
         radii: vec![0.04; path.len()],
         path,
         digits: Vec::new(),
+        root: None,
     }
 }
 
@@ -826,6 +827,7 @@ fn oracle_paths_on_makehuman() {
                 path,
                 radii: r,
                 digits: Vec::new(),
+                root: None,
             });
             let ball = j(&format!("ball_{s}"));
             let toe = mesh
@@ -855,6 +857,7 @@ fn oracle_paths_on_makehuman() {
                 path,
                 radii: r,
                 digits: Vec::new(),
+                root: None,
             });
         }
         let input = FitInput {
@@ -997,6 +1000,7 @@ fn oracle_paths_on_the_fox() {
                 path,
                 radii: r,
                 digits: Vec::new(),
+                root: None,
             });
         }
     }

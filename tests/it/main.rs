@@ -12,5 +12,6 @@ mod fit;
 mod general;
 mod medial;
 mod mesh;
+mod rig;
 mod skin;
 mod voxel;

@@ -1,0 +1,231 @@
+//! `skelfit rig MESH -o OUT.glb [--json OUT.json] [--bvh OUT.bvh] [--template ...] [--preset ...]
+//! [--up ..] [--forward ..] [--labels OVERRIDE.json]`: the anatomical control skeleton from a
+//! template (dissertation ch.7-8), skinned and exported.
+
+use super::common::{load_mesh, millis, VoxelArgs};
+use super::skeleton::with_spinner;
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+use serde_json::json;
+use skelfit::anatomy::{parse_direction, Forward, Overrides};
+use skelfit::export::{
+    write_bvh, write_glb, write_skeleton_json, BvhOptions, GltfOptions, JsonOptions,
+};
+use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice};
+use skelfit::template::{Preset, Template};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Naming preset of the output joints (`--preset`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PresetArg {
+    /// skelfit's anatomical names (pelvis, spine_01, shoulder_L, ...).
+    Anatomical,
+    /// Adobe Mixamo (`mixamorig:Hips`, ...).
+    Mixamo,
+    /// Unity Humanoid (HumanBodyBones names).
+    Unity,
+    /// MakeHuman / MPFB2 game_engine (Unreal-style: pelvis, upperarm_l, ...).
+    Makehuman,
+}
+
+impl From<PresetArg> for Preset {
+    fn from(p: PresetArg) -> Self {
+        match p {
+            PresetArg::Anatomical => Preset::Anatomical,
+            PresetArg::Mixamo => Preset::Mixamo,
+            PresetArg::Unity => Preset::Unity,
+            PresetArg::Makehuman => Preset::MakeHuman,
+        }
+    }
+}
+
+/// Arguments of `skelfit rig`.
+#[derive(Debug, Args)]
+pub struct RigArgs {
+    /// Mesh file (.obj, .gltf, .glb, .stl, .ply).
+    pub mesh: PathBuf,
+    /// Skinned binary glTF to write (mesh, armature, weights).
+    #[arg(short, long, value_name = "OUT.glb")]
+    pub output: PathBuf,
+    /// Also write the skeleton as skelfit JSON (joints, `canonical` map, timings under "run").
+    #[arg(long, value_name = "OUT.json")]
+    pub json: Option<PathBuf>,
+    /// Also write the skeleton as BVH.
+    #[arg(long, value_name = "OUT.bvh")]
+    pub bvh: Option<PathBuf>,
+    /// Template: auto (from the labelled figure), humanoid, quadruped, winged, or a path to a
+    /// template .toml file.
+    #[arg(long, value_name = "NAME|FILE", default_value = "auto")]
+    pub template: String,
+    /// Naming preset of the output joints.
+    #[arg(long, value_enum, default_value_t = PresetArg::Anatomical)]
+    pub preset: PresetArg,
+    /// Up direction: an axis (+Y, -Z, ...) or a vector x,y,z.
+    #[arg(long, value_name = "DIR", default_value = "+Y")]
+    pub up: String,
+    /// Forward direction: an axis, a vector x,y,z, or `auto` (guessed from head/tail or feet).
+    #[arg(long, value_name = "DIR", default_value = "+Z")]
+    pub forward: String,
+    /// A labels override file (JSON) correcting body-part sections (see `skelfit label`).
+    #[arg(long, value_name = "OVERRIDE.json")]
+    pub labels: Option<PathBuf>,
+    #[command(flatten)]
+    pub voxel: VoxelArgs,
+    /// Print the summary as JSON on stdout.
+    #[arg(long = "print-json")]
+    pub print_json: bool,
+}
+
+impl RigArgs {
+    /// Validated options (stage ranges are checked by the library before any work).
+    pub fn options(&self) -> anyhow::Result<RigOptions> {
+        let mut options = RigOptions::default();
+        options.label.voxel = self.voxel.options()?;
+        options.label.up = parse_direction(&self.up)
+            .map_err(anyhow::Error::msg)
+            .context("--up")?;
+        options.label.forward = if self.forward.eq_ignore_ascii_case("auto") {
+            Forward::Auto
+        } else {
+            Forward::Direction(
+                parse_direction(&self.forward)
+                    .map_err(anyhow::Error::msg)
+                    .context("--forward")?,
+            )
+        };
+        options.template = match self.template.as_str() {
+            "auto" => TemplateChoice::Auto,
+            name @ ("humanoid" | "quadruped" | "winged") => TemplateChoice::Builtin(name.into()),
+            path => {
+                let path = Path::new(path);
+                if !path.is_file() {
+                    anyhow::bail!(
+                        "--template {}: not a built-in template (auto, humanoid, quadruped, winged) nor a template file",
+                        path.display()
+                    );
+                }
+                TemplateChoice::Custom(Box::new(Template::load(path)?))
+            }
+        };
+        options.fit.preset = self.preset.into();
+        if let Some(path) = &self.labels {
+            options.overrides = Some(Overrides::load(path)?);
+        }
+        Ok(options)
+    }
+}
+
+/// Runs the command.
+pub fn run(args: &RigArgs) -> anyhow::Result<()> {
+    let options = args.options()?;
+    let start = Instant::now();
+    let mesh = load_mesh(&args.mesh)?;
+    let load_ms = millis(start);
+    let rigged = with_spinner(format!("rigging {}", args.mesh.display()), || {
+        rig(&mesh, &options)
+    })
+    .context("fitting the anatomical control skeleton")?;
+    let clock = Instant::now();
+    write_glb(
+        &args.output,
+        &mesh,
+        &rigged.fit.skeleton,
+        &rigged.skin,
+        &GltfOptions::default(),
+    )?;
+    let info = run_info(&args.mesh, &rigged, load_ms);
+    if let Some(path) = &args.json {
+        write_rig_json(path, &args.mesh, &rigged, Some(info.clone()))?;
+    }
+    if let Some(path) = &args.bvh {
+        write_bvh(path, &rigged.fit.skeleton, &BvhOptions::default())?;
+    }
+    let export_ms = millis(clock);
+    if args.print_json {
+        let mut info = info;
+        info["timings_ms"]["export"] = json!(export_ms);
+        println!("{}", serde_json::to_string_pretty(&info)?);
+    } else {
+        print_summary(args, &rigged, load_ms, export_ms);
+    }
+    for w in &rigged.warnings {
+        eprintln!("skelfit: warning: {w}");
+    }
+    Ok(())
+}
+
+/// Writes the fitted skeleton as skelfit JSON with its `canonical` map and `run` information.
+pub fn write_rig_json(
+    path: &Path,
+    mesh: &Path,
+    rigged: &Rig,
+    run: Option<serde_json::Value>,
+) -> anyhow::Result<()> {
+    let options = JsonOptions {
+        model: super::skeleton::model_name(mesh),
+        canonical: rigged.fit.canonical_names(),
+        run,
+        ..Default::default()
+    };
+    write_skeleton_json(path, &rigged.fit.skeleton, &options)?;
+    Ok(())
+}
+
+/// Run information: template, figure, sizes, stage timings and warnings.
+pub fn run_info(mesh: &Path, rigged: &Rig, load_ms: f64) -> serde_json::Value {
+    let mut timings = serde_json::Map::new();
+    timings.insert("load".into(), json!(load_ms));
+    for (stage, ms) in &rigged.timings {
+        timings.insert(stage.clone(), json!(ms));
+    }
+    let grid = &rigged.solid.grid;
+    let frame = rigged.labelling.frame;
+    json!({
+        "mesh": mesh.display().to_string(),
+        "template": rigged.fit.template,
+        "figure": rigged.labelling.figure.name(),
+        "up": frame.up.to_array(),
+        "forward": frame.forward.to_array(),
+        "grid": grid.dims,
+        "voxel_size": grid.voxel_size,
+        "interior_voxels": rigged.solid.report.interior_voxels,
+        "joints": rigged.fit.skeleton.len(),
+        "canonical_joints": rigged.fit.canonical.len(),
+        "timings_ms": timings,
+        "warnings": rigged.warnings,
+    })
+}
+
+fn print_summary(args: &RigArgs, rigged: &Rig, load_ms: f64, export_ms: f64) {
+    let grid = &rigged.solid.grid;
+    println!("mesh            {}", args.mesh.display());
+    println!(
+        "figure          {} (trunk {:.0} degrees from up), template {}",
+        rigged.labelling.figure.name(),
+        rigged.labelling.trunk_angle,
+        rigged.fit.template
+    );
+    println!(
+        "grid            {} x {} x {} ({} interior voxels of {:.6})",
+        grid.dims[0],
+        grid.dims[1],
+        grid.dims[2],
+        rigged.solid.report.interior_voxels,
+        grid.voxel_size
+    );
+    println!(
+        "skeleton        {} joints, {} canonical",
+        rigged.fit.skeleton.len(),
+        rigged.fit.canonical.len()
+    );
+    let stages: Vec<String> = std::iter::once(format!("load {load_ms:.1}"))
+        .chain(rigged.timings.iter().map(|(s, ms)| format!("{s} {ms:.1}")))
+        .chain(std::iter::once(format!("export {export_ms:.1}")))
+        .collect();
+    println!("timings (ms)    {}", stages.join(", "));
+    println!("wrote           {}", args.output.display());
+    for path in [&args.json, &args.bvh].into_iter().flatten() {
+        println!("wrote           {}", path.display());
+    }
+}

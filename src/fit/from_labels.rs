@@ -1,0 +1,462 @@
+//! From body-part labels to the fit's geometry (dissertation 8.1-8.2): centralised paths over
+//! the discrete medial surface between the labelled parts' extreme points.
+//!
+//! ```text
+//! Labelling ─▶ each part's distal DMS voxel (highest heart value)
+//!           ─▶ limb pairs: left and right of a label/girdle, matched along the body
+//!           ─▶ limb-to-limb paths (weighted Dijkstra, 1/d³), their midpoints = attach points
+//!           ─▶ head-to-tail path: head tip → tail tip, or → the hindmost pair's midpoint
+//!           ─▶ unpaired limbs: path to the head-to-tail path; digits: wrist → digit tip
+//!           ─▶ ends extended to the skin by their inscribed radius; points and radii in mesh units
+//! ```
+
+use super::{AxialPath, DigitInput, FitInput, LimbInput, Side};
+use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part, Side as PartSide};
+use crate::medial::MedialSurface;
+use crate::paths::{DmsGraph, Search};
+use crate::template::LimbKind;
+use glam::DVec3;
+
+/// Options of [`fit_input`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitInputOptions {
+    /// Exponent `k` of the path weight `step / d^k` (`d` the distance to the surface, voxel
+    /// units): centralised paths keep to the thick middle of the figure. Default 3 (ch.5.2.4,
+    /// 8.1: "weighted by 1/d^3").
+    pub weight_exponent: f64,
+    /// Each free path end (head, tail, limb and digit tips) lies inside the figure by about
+    /// its inscribed radius, because the medial surface stops there; it is extended along its
+    /// end direction by this multiple of that radius so that Table 8.1 divides the whole limb.
+    /// Default 1.0 (to the skin); 0 keeps the medial-surface ends (the dissertation).
+    pub end_extension: f64,
+    /// Points at the end of a path used for its end direction. Default 4 voxels.
+    pub end_direction_points: usize,
+    /// Make the roots of a limb pair mirror images of each other in the sagittal plane
+    /// through the pair's attach point (the labelled sections of the two sides start at
+    /// slightly different places). Default true (measured, see `reports/rig/`).
+    pub symmetric_roots: bool,
+}
+
+impl Default for FitInputOptions {
+    fn default() -> Self {
+        Self {
+            weight_exponent: 3.0,
+            end_extension: 1.0,
+            end_direction_points: 4,
+            symmetric_roots: true,
+        }
+    }
+}
+
+/// The fit's input from a labelling and the medial surface it was made from (same grid):
+/// centralised DMS paths between the labelled parts, in mesh units and frame. Returns the input
+/// and what could not be built (a missing head, an unreachable limb), as sentences.
+///
+/// Up and forward are the labelling's frame. Paths run through the labelled (largest) DMS
+/// component only.
+pub fn fit_input(
+    labelling: &Labelling,
+    surface: &MedialSurface,
+    options: &FitInputOptions,
+) -> (FitInput, Vec<String>) {
+    let graph = DmsGraph::new(surface);
+    let paths = Paths {
+        graph: &graph,
+        surface,
+        labelling,
+        options,
+    };
+    let mut warnings = Vec::new();
+    let parts = &labelling.parts;
+
+    // Limb pairs and their limb-to-limb paths.
+    let pairs = limb_pairs(labelling);
+    let mut limbs: Vec<LimbInput> = Vec::new();
+    let mut midpoints: Vec<(usize, usize)> = Vec::new(); // (pair index, DMS position)
+    let mut unpaired: Vec<(usize, LimbKind, usize)> = Vec::new();
+    for (n, pair) in pairs.iter().enumerate() {
+        let (Some(l), Some(r)) = (pair.left, pair.right) else {
+            for part in [pair.left, pair.right].into_iter().flatten() {
+                unpaired.push((part, pair.kind, pair.number));
+            }
+            continue;
+        };
+        let (a, b) = (paths.wrist(l), paths.wrist(r));
+        let Some(path) = paths.centralised(a, b) else {
+            warnings.push(format!(
+                "no medial path joins the left and right {}: left out",
+                parts[l].label.name()
+            ));
+            continue;
+        };
+        let mid = paths.midpoint(&path);
+        midpoints.push((n, path[mid]));
+        let attach = surface.centre(path[mid]);
+        let mut left_half: Vec<usize> = path[..=mid].to_vec();
+        left_half.reverse();
+        let right_half = path[mid..].to_vec();
+        let mut left = paths.limb(l, pair.kind, pair.number, Side::Left, attach, &left_half);
+        let mut right = paths.limb(r, pair.kind, pair.number, Side::Right, attach, &right_half);
+        if options.symmetric_roots {
+            // Bilateral symmetry: each root is the mean of itself and its partner's mirror
+            // image in the sagittal plane halfway between them.
+            let n = labelling.frame.left;
+            if let (Some(a), Some(b)) = (left.root, right.root) {
+                let m = 0.5 * (a + b);
+                let mirror = |p: DVec3| p - n * (2.0 * (p - m).dot(n));
+                let a2 = 0.5 * (a + mirror(b));
+                left.root = Some(a2);
+                right.root = Some(mirror(a2));
+            }
+        }
+        limbs.push(left);
+        limbs.push(right);
+    }
+
+    // Head-to-tail path.
+    let head = labelling.part(Label::Head, None).map(|p| paths.head_tip(p));
+    let start = head.unwrap_or_else(|| {
+        let dir = match labelling.figure {
+            FigureClass::HumanLike => labelling.frame.up,
+            _ => labelling.frame.forward,
+        };
+        warnings.push(
+            "no head was labelled: the head-to-tail path starts at the figure's top (upright) or front voxel"
+                .to_string(),
+        );
+        paths.extreme(&parts[0], dir)
+    });
+    let from_head = paths.search(start);
+    let tail = labelling.part(Label::Tail, None).map(|p| paths.distal(p));
+    let end = tail
+        .filter(|&t| from_head.cost[t].is_finite())
+        .or_else(|| {
+            midpoints
+                .iter()
+                .map(|&(_, p)| p)
+                .filter(|&p| from_head.cost[p].is_finite())
+                .max_by(|&a, &b| from_head.cost[a].total_cmp(&from_head.cost[b]))
+        })
+        .unwrap_or_else(|| {
+            // No tail and no pair: the trunk voxel farthest from the head.
+            parts[0]
+                .voxels
+                .iter()
+                .copied()
+                .filter(|&p| from_head.cost[p].is_finite())
+                .max_by(|&a, &b| {
+                    from_head.cost[a]
+                        .total_cmp(&from_head.cost[b])
+                        .then(b.cmp(&a))
+                })
+                .unwrap_or(start)
+        });
+    let mut axial_positions = from_head.path_to_source(end);
+    axial_positions.reverse(); // head first
+    let (mut points, mut radii) = paths.points(&axial_positions);
+    if head.is_some() {
+        paths.extend_start(&mut points, &mut radii);
+    }
+    if tail.is_some_and(|t| t == end) {
+        paths.extend_end(&mut points, &mut radii);
+    }
+    if points.len() == 1 {
+        // A one-voxel path (a figure without parts): give the fit a segment to work with.
+        points.push(points[0] + labelling.frame.up * surface.grid.voxel_size);
+        radii.push(radii[0]);
+    }
+
+    // Unpaired limbs hang from the head-to-tail path.
+    if !unpaired.is_empty() {
+        let to_axis = paths.search_many(&axial_positions);
+        for (part, kind, number) in unpaired {
+            let tip = paths.wrist(part);
+            let mut path = to_axis.path_to_source(tip);
+            if path.len() < 2 {
+                warnings.push(format!(
+                    "the {} {} does not reach the head-to-tail path: left out",
+                    side_name(parts[part].side),
+                    parts[part].label.name()
+                ));
+                continue;
+            }
+            path.reverse(); // axis first
+            let side = match parts[part].side {
+                Some(PartSide::R) => Side::Right,
+                _ => Side::Left,
+            };
+            let attach = surface.centre(path[0]);
+            limbs.push(paths.limb(part, kind, number, side, attach, &path));
+        }
+    }
+
+    // A labelled jaw: from where it leaves the head to its tip.
+    let jaw = labelling.part(Label::Jaw, None).and_then(|p| {
+        let base = paths.nearest(p, p.attachment);
+        let path = paths.centralised(base, paths.distal(p))?;
+        Some(paths.points(&path).0)
+    });
+
+    let input = FitInput {
+        up: labelling.frame.up,
+        forward: labelling.frame.forward,
+        axial: AxialPath {
+            points,
+            radii,
+            sections: None,
+        },
+        limbs,
+        jaw,
+    };
+    (input, warnings)
+}
+
+fn side_name(side: Option<PartSide>) -> &'static str {
+    match side {
+        Some(PartSide::L) => "left",
+        Some(PartSide::R) => "right",
+        None => "unpaired",
+    }
+}
+
+/// A limb pair: parts of one label and girdle matched left to right along the body.
+struct PairParts {
+    kind: LimbKind,
+    number: usize,
+    left: Option<usize>,
+    right: Option<usize>,
+}
+
+/// Groups the limb parts by label and girdle; within a group, left and right parts are sorted
+/// along the body (forward for animal-like figures, up otherwise, head end first) and matched in
+/// that order; pair numbers count within a kind.
+fn limb_pairs(labelling: &Labelling) -> Vec<PairParts> {
+    let along = match labelling.figure {
+        FigureClass::AnimalLike => labelling.frame.forward,
+        _ => labelling.frame.up,
+    };
+    let mut out = Vec::new();
+    for label in [Label::Arm, Label::Wing, Label::Leg] {
+        for girdle in [Some(LimbPair::Fore), Some(LimbPair::Hind), None] {
+            let kind = match (label, girdle) {
+                (Label::Arm, _) => LimbKind::Arm,
+                (Label::Wing, _) => LimbKind::Wing,
+                (_, Some(LimbPair::Fore)) => LimbKind::ForeLeg,
+                (_, Some(LimbPair::Hind)) => LimbKind::HindLeg,
+                _ => LimbKind::Leg,
+            };
+            let sorted = |side: PartSide| {
+                let mut v: Vec<usize> = (0..labelling.parts.len())
+                    .filter(|&i| {
+                        let p = &labelling.parts[i];
+                        p.label == label && p.limb_pair == girdle && p.side == Some(side)
+                    })
+                    .collect();
+                v.sort_by(|&a, &b| {
+                    let key = |i: usize| -labelling.parts[i].attachment.dot(along);
+                    key(a).total_cmp(&key(b)).then(a.cmp(&b))
+                });
+                v
+            };
+            let (lefts, rights) = (sorted(PartSide::L), sorted(PartSide::R));
+            let count = lefts.len().max(rights.len());
+            let first = out.iter().filter(|p: &&PairParts| p.kind == kind).count();
+            for k in 0..count {
+                out.push(PairParts {
+                    kind,
+                    number: first + k,
+                    left: lefts.get(k).copied(),
+                    right: rights.get(k).copied(),
+                });
+            }
+        }
+    }
+    out
+}
+
+/// Path searches over the DMS of one labelling.
+struct Paths<'a> {
+    graph: &'a DmsGraph,
+    surface: &'a MedialSurface,
+    labelling: &'a Labelling,
+    options: &'a FitInputOptions,
+}
+
+impl Paths<'_> {
+    /// The cost of entering DMS position `q` over a step of `step` voxels.
+    fn weight(&self, q: usize, step: f64) -> f64 {
+        let d = self.surface.distance(q).max(0.5);
+        step / d.powf(self.options.weight_exponent)
+    }
+
+    fn search_many(&self, sources: &[usize]) -> Search {
+        let mut s = Search::new(self.graph.len());
+        s.add_sources(self.graph, sources.iter().copied(), |q, step| {
+            self.weight(q, step)
+        });
+        s
+    }
+
+    fn search(&self, source: usize) -> Search {
+        self.search_many(&[source])
+    }
+
+    /// The centralised path from `a` to `b` (both included, `a` first), `None` when they are
+    /// not connected.
+    fn centralised(&self, a: usize, b: usize) -> Option<Vec<usize>> {
+        let path = self.search(b).path_to_source(a);
+        (!path.is_empty()).then_some(path)
+    }
+
+    /// The part's DMS voxel of highest heart value (its distal extreme); for a limb with
+    /// digits the digits are separate parts, so this is the wrist/ankle.
+    fn distal(&self, part: &Part) -> usize {
+        let hv = &self.labelling.level_graph.heart_values;
+        part.voxels
+            .iter()
+            .copied()
+            .max_by(|&a, &b| hv[a].total_cmp(&hv[b]).then(b.cmp(&a)))
+            .unwrap_or(self.labelling.level_graph.heart)
+    }
+
+    /// The tip of the head: its voxel farthest up for human-like figures, farthest forward for
+    /// animal-like ones (the crown and the snout, 7.3.3's extreme marks), else its distal
+    /// extreme. The distal extreme alone wanders over a round head (chin, nose or crown).
+    fn head_tip(&self, part: &Part) -> usize {
+        match self.labelling.figure {
+            FigureClass::HumanLike => self.extreme(part, self.labelling.frame.up),
+            FigureClass::AnimalLike => self.extreme(part, self.labelling.frame.forward),
+            FigureClass::Unknown => self.distal(part),
+        }
+    }
+
+    /// The distal end of limb part `i` (the wrist/ankle when it has digits).
+    fn wrist(&self, i: usize) -> usize {
+        self.distal(&self.labelling.parts[i])
+    }
+
+    /// The part's DMS voxel farthest along `dir`.
+    fn extreme(&self, part: &Part, dir: DVec3) -> usize {
+        let all: Vec<usize> = (0..self.surface.len()).collect();
+        let voxels = if part.voxels.is_empty() {
+            &all
+        } else {
+            &part.voxels
+        };
+        voxels
+            .iter()
+            .copied()
+            .max_by(|&a, &b| {
+                let (pa, pb) = (self.surface.centre(a), self.surface.centre(b));
+                pa.dot(dir).total_cmp(&pb.dot(dir)).then(b.cmp(&a))
+            })
+            .unwrap_or(self.labelling.level_graph.heart)
+    }
+
+    /// The part's DMS voxel nearest `p`.
+    fn nearest(&self, part: &Part, p: DVec3) -> usize {
+        part.voxels
+            .iter()
+            .copied()
+            .min_by(|&a, &b| {
+                let (da, db) = (
+                    self.surface.centre(a).distance_squared(p),
+                    self.surface.centre(b).distance_squared(p),
+                );
+                da.total_cmp(&db).then(a.cmp(&b))
+            })
+            .unwrap_or(self.labelling.level_graph.heart)
+    }
+
+    /// Index of the point halfway along `path` by length.
+    fn midpoint(&self, path: &[usize]) -> usize {
+        let cum: Vec<f64> = std::iter::once(0.0)
+            .chain(path.windows(2).scan(0.0, |acc, w| {
+                *acc += self
+                    .surface
+                    .centre(w[0])
+                    .distance(self.surface.centre(w[1]));
+                Some(*acc)
+            }))
+            .collect();
+        let half = cum.last().copied().unwrap_or(0.0) / 2.0;
+        cum.iter()
+            .position(|&c| c >= half)
+            .unwrap_or(0)
+            .min(path.len() - 1)
+    }
+
+    /// Points and radii (mesh units) of DMS positions.
+    fn points(&self, path: &[usize]) -> (Vec<DVec3>, Vec<f64>) {
+        let h = self.surface.grid.voxel_size;
+        path.iter()
+            .map(|&p| (self.surface.centre(p), self.surface.distance(p) * h))
+            .unzip()
+    }
+
+    /// Prepends a point beyond `points[0]`, continuing the path's start direction by
+    /// `end_extension` times the start's radius.
+    fn extend_start(&self, points: &mut Vec<DVec3>, radii: &mut Vec<f64>) {
+        let k = self.options.end_direction_points.min(points.len() - 1);
+        let length = self.options.end_extension * radii[0];
+        if k == 0 || length <= 0.0 {
+            return;
+        }
+        let Some(dir) = (points[0] - points[k]).try_normalize() else {
+            return;
+        };
+        points.insert(0, points[0] + dir * length);
+        radii.insert(0, 0.0);
+    }
+
+    /// Appends a point beyond the last one, as [`Self::extend_start`] does at the start.
+    fn extend_end(&self, points: &mut Vec<DVec3>, radii: &mut Vec<f64>) {
+        points.reverse();
+        radii.reverse();
+        self.extend_start(points, radii);
+        points.reverse();
+        radii.reverse();
+    }
+
+    /// A limb from its DMS path (proximal first): the fit's limb input, with digits from the
+    /// wrist/ankle to each digit tip.
+    fn limb(
+        &self,
+        part: usize,
+        kind: LimbKind,
+        number: usize,
+        side: Side,
+        attach: DVec3,
+        path: &[usize],
+    ) -> LimbInput {
+        let p = &self.labelling.parts[part];
+        let (mut points, mut radii) = self.points(path);
+        let wrist = *path.last().unwrap_or(&self.labelling.level_graph.heart);
+        let mut digits = Vec::new();
+        if p.digits.is_empty() {
+            self.extend_end(&mut points, &mut radii);
+        } else {
+            let from_wrist = self.search(wrist);
+            for &d in &p.digits {
+                let mut dp = from_wrist.path_to_source(self.distal(&self.labelling.parts[d]));
+                if dp.len() < 2 {
+                    continue;
+                }
+                dp.reverse();
+                let (mut dpts, mut dr) = self.points(&dp);
+                self.extend_end(&mut dpts, &mut dr);
+                digits.push(DigitInput { path: dpts });
+            }
+        }
+        LimbInput {
+            kind,
+            side,
+            pair: number,
+            attach,
+            path: points,
+            radii,
+            digits,
+            root: Some(p.attachment),
+        }
+    }
+}

@@ -1,0 +1,168 @@
+//! The anatomical rig: mesh → labelled body parts → template fit → skin (dissertation ch.7-8).
+
+use crate::anatomy::{label_pieces, FigureClass, Label, LabelOptions, Labelling, Overrides};
+use crate::distance::{edt, DistanceMap};
+use crate::fit::{fit_input, fit_with_probe, Fit, FitInput, FitInputOptions, FitOptions};
+use crate::medial::dms;
+use crate::mesh::Mesh;
+use crate::skin::{skin_from_bones, Skin, SkinOptions};
+use crate::template::Template;
+use crate::voxel::{voxelize, Solid};
+use std::time::Instant;
+
+/// Which template [`rig`] fits.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum TemplateChoice {
+    /// Chosen from the labelling: human-like → `humanoid`; animal-like → `winged` when wings
+    /// were labelled, else `quadruped`; unknown → by the limbs found (arms → `humanoid`, wings
+    /// → `winged`, otherwise `quadruped`), with a warning.
+    #[default]
+    Auto,
+    /// A built-in template by name (`humanoid`, `quadruped`, `winged`).
+    Builtin(String),
+    /// A template loaded by the caller (e.g. [`Template::load`]).
+    Custom(Box<Template>),
+}
+
+/// All parameters of [`rig`], one options struct per stage.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RigOptions {
+    /// Voxelization, medial surface, heart, level graph, labelling rules and orientation
+    /// (`up`, `forward`; default +Y up, +Z forward).
+    pub label: LabelOptions,
+    /// User corrections of the labels (`skelfit label --labels`), applied before the fit.
+    pub overrides: Option<Overrides>,
+    /// The template. Default [`TemplateChoice::Auto`].
+    pub template: TemplateChoice,
+    /// How the labelled parts become the fit's paths.
+    pub input: FitInputOptions,
+    /// The fit (naming preset, geometric choices of 8.1-8.2).
+    pub fit: FitOptions,
+    /// Regions of influence and weights (8.3).
+    pub skin: SkinOptions,
+}
+
+/// An anatomical rig: the fitted skeleton, the skin, and the pieces it was made from.
+#[derive(Debug, Clone)]
+pub struct Rig {
+    /// The fitted skeleton with its canonical map and fit warnings.
+    pub fit: Fit,
+    /// Per-vertex weights to the fitted skeleton.
+    pub skin: Skin,
+    /// The body-part labelling.
+    pub labelling: Labelling,
+    /// The paths the template was fitted to.
+    pub input: FitInput,
+    /// The voxelized figure.
+    pub solid: Solid,
+    /// Its exact distance map.
+    pub distance: DistanceMap,
+    /// Wall-clock time per stage, `(stage, milliseconds)`, in stage order.
+    pub timings: Vec<(String, f64)>,
+    /// Warnings of every stage (labelling, paths, fit, skin), as sentences.
+    pub warnings: Vec<String>,
+}
+
+/// Rigs `mesh` with an anatomical control skeleton (dissertation ch.7-8): voxelize, exact
+/// distance map, medial surface, body-part labels, centralised paths between the labelled
+/// parts ([`fit_input`]), the template fit ([`fit_with_probe`], dorsal rays through the
+/// voxels), and skin weights from the fitted bones ([`skin_from_bones`]).
+///
+/// Missing body parts are warnings (the fit leaves their joints out); a figure the template does
+/// not suit gets the template's best effort and the warnings say what is missing.
+///
+/// # Errors
+/// Invalid options of any stage (checked before any work), an unknown built-in template, a mesh
+/// that does not voxelize, an empty medial surface, a bad override, or a skeleton that no bone
+/// of which passes inside the figure.
+pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
+    options.label.validate()?;
+    options.label.medial.validate()?;
+    options.label.paths.validate()?;
+    options.fit.validate()?;
+    options.skin.validate()?;
+    let chosen = match &options.template {
+        TemplateChoice::Builtin(name) => Some(Template::builtin(name)?),
+        TemplateChoice::Custom(t) => Some((**t).clone()),
+        TemplateChoice::Auto => None,
+    };
+    let mut timings = Vec::new();
+    let mut clock = Instant::now();
+    let mut lap = |name: &str, timings: &mut Vec<(String, f64)>| {
+        let now = Instant::now();
+        timings.push((name.to_string(), (now - clock).as_secs_f64() * 1e3));
+        clock = now;
+    };
+
+    let solid = voxelize(mesh, &options.label.voxel)?;
+    lap("voxelize", &mut timings);
+    let distance = edt(&solid);
+    lap("distance", &mut timings);
+    let surface = dms(&distance, &options.label.medial)?;
+    lap("medial", &mut timings);
+    let labelling = label_pieces(
+        mesh,
+        &solid,
+        &surface,
+        &options.label,
+        options.overrides.as_ref(),
+    )?;
+    lap("label", &mut timings);
+    let (input, mut path_warnings) = fit_input(&labelling, &surface, &options.input);
+    lap("paths", &mut timings);
+    let mut warnings = labelling.warnings.clone();
+    warnings.append(&mut path_warnings);
+    let template = match chosen {
+        Some(t) => t,
+        None => {
+            let (name, note) = auto_template(&labelling);
+            if let Some(note) = note {
+                warnings.push(note);
+            }
+            Template::builtin(name)?
+        }
+    };
+    let fit = fit_with_probe(&input, &template, &options.fit, Some(&solid))?;
+    warnings.extend(fit.warnings.iter().map(ToString::to_string));
+    lap("fit", &mut timings);
+    let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
+    warnings.extend(skin.warnings.iter().map(ToString::to_string));
+    lap("skin", &mut timings);
+    Ok(Rig {
+        fit,
+        skin,
+        labelling,
+        input,
+        solid,
+        distance,
+        timings,
+        warnings,
+    })
+}
+
+/// The built-in template for a labelled figure and, when the figure class was unknown, a
+/// sentence saying what was chosen and why.
+pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<String>) {
+    let wings = labelling.count(Label::Wing) > 0;
+    match labelling.figure {
+        FigureClass::HumanLike => ("humanoid", None),
+        FigureClass::AnimalLike if wings => ("winged", None),
+        FigureClass::AnimalLike => ("quadruped", None),
+        FigureClass::Unknown => {
+            let name = if labelling.count(Label::Arm) > 0 {
+                "humanoid"
+            } else if wings {
+                "winged"
+            } else {
+                "quadruped"
+            };
+            (
+                name,
+                Some(format!(
+                    "the figure class is unknown (trunk {:.0} degrees from up): fitted the {name} template; choose one with --template if it is wrong",
+                    labelling.trunk_angle
+                )),
+            )
+        }
+    }
+}

@@ -1,0 +1,309 @@
+//! The anatomical rig (`pipeline::rig`, dissertation ch.7-8) on the reference humanoids and
+//! quadrupeds: every canonical joint, joints inside the figure, left/right, skin weights, bad
+//! input (a wrong template, a one-armed figure).
+
+use crate::common;
+use glam::DVec3;
+use skelfit::mesh::{load, Mesh};
+use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice};
+use std::path::Path;
+
+const HUMANOID_KEYS: &[&str] = &[
+    "pelvis",
+    "spine",
+    "chest",
+    "neck",
+    "head",
+    "clavicle_L",
+    "clavicle_R",
+    "shoulder_L",
+    "shoulder_R",
+    "elbow_L",
+    "elbow_R",
+    "wrist_L",
+    "wrist_R",
+    "hip_L",
+    "hip_R",
+    "knee_L",
+    "knee_R",
+    "ankle_L",
+    "ankle_R",
+    "toe_L",
+    "toe_R",
+];
+
+const QUADRUPED_KEYS: &[&str] = &[
+    "pelvis",
+    "spine",
+    "chest",
+    "neck",
+    "head",
+    "shoulder_L",
+    "shoulder_R",
+    "elbow_L",
+    "elbow_R",
+    "wrist_L",
+    "wrist_R",
+    "hip_L",
+    "hip_R",
+    "knee_L",
+    "knee_R",
+    "ankle_L",
+    "ankle_R",
+    "tail_base",
+    "tail_end",
+];
+
+fn rigged(dir: &Path, options: &RigOptions) -> (Mesh, Rig) {
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    let r = rig(&mesh, options).unwrap();
+    (mesh, r)
+}
+
+fn models(kind: &str) -> Vec<std::path::PathBuf> {
+    let Some(root) = common::refdata() else {
+        return Vec::new();
+    };
+    let mut dirs: Vec<_> = std::fs::read_dir(root.join(kind))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("mesh.obj").is_file())
+        .collect();
+    dirs.sort();
+    dirs
+}
+
+/// Every deforming joint lies in an interior voxel or within one voxel of one (joints on the
+/// skin's inner side at a coarse grid).
+fn assert_inside(name: &str, r: &Rig) {
+    let grid = &r.solid.grid;
+    for j in r.fit.skeleton.joints.iter().filter(|j| j.deform) {
+        let c = grid.to_voxel(j.position);
+        let inside = (-1i64..=1).any(|dx| {
+            (-1i64..=1).any(|dy| {
+                (-1i64..=1).any(|dz| {
+                    let v = [
+                        c.x.floor() as i64 + dx,
+                        c.y.floor() as i64 + dy,
+                        c.z.floor() as i64 + dz,
+                    ];
+                    v.iter()
+                        .zip(grid.dims)
+                        .all(|(&a, d)| a >= 0 && (a as usize) < d)
+                        && r.solid.inside[grid.index([v[0] as usize, v[1] as usize, v[2] as usize])]
+                })
+            })
+        });
+        assert!(
+            inside,
+            "{name}: joint {} at {:?} is outside the figure",
+            j.name, j.position
+        );
+    }
+}
+
+/// `_L` joints lie on the figure's left (+X here) of their `_R` twins.
+fn assert_left_right(name: &str, r: &Rig) {
+    let left = r.labelling.frame.left;
+    for (key, &id) in &r.fit.canonical {
+        let Some(base) = key.strip_suffix("_L") else {
+            continue;
+        };
+        let Some(&twin) = r.fit.canonical.get(&format!("{base}_R")) else {
+            continue;
+        };
+        let (l, rr) = (
+            r.fit.skeleton.joint(id).position,
+            r.fit.skeleton.joint(twin).position,
+        );
+        assert!(
+            (l - rr).dot(left) > 0.0,
+            "{name}: {key} {l:?} is not left of {base}_R {rr:?}"
+        );
+    }
+}
+
+fn assert_keys(name: &str, r: &Rig, keys: &[&str]) {
+    let missing: Vec<&&str> = keys
+        .iter()
+        .filter(|k| !r.fit.canonical.contains_key(**k))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "{name}: missing canonical joints {missing:?}; warnings {:?}",
+        r.warnings
+    );
+}
+
+fn assert_skin(name: &str, mesh: &Mesh, r: &Rig) {
+    assert_eq!(r.skin.engine.joints.len(), mesh.positions.len(), "{name}");
+    for (v, w) in r.skin.engine.weights.iter().enumerate() {
+        let sum: f32 = w.iter().sum();
+        assert!(
+            (sum - 1.0).abs() < 1e-3,
+            "{name}: vertex {v} weights sum {sum}"
+        );
+        assert!(w.iter().all(|x| *x >= 0.0), "{name}: vertex {v}");
+    }
+}
+
+#[test]
+fn every_humanoid_gets_every_canonical_joint_inside_and_sided() {
+    for dir in models("humanoid") {
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        let (mesh, r) = rigged(&dir, &RigOptions::default());
+        assert_eq!(r.fit.template, "humanoid", "{name}");
+        assert_keys(&name, &r, HUMANOID_KEYS);
+        assert_inside(&name, &r);
+        assert_left_right(&name, &r);
+        assert_skin(&name, &mesh, &r);
+        assert!(r.fit.skeleton.validate().is_ok(), "{name}");
+    }
+}
+
+#[test]
+fn every_quadruped_gets_every_canonical_joint_inside_and_sided() {
+    for dir in models("quadruped") {
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        let (mesh, r) = rigged(&dir, &RigOptions::default());
+        assert_eq!(r.fit.template, "quadruped", "{name}");
+        assert_keys(&name, &r, QUADRUPED_KEYS);
+        assert_inside(&name, &r);
+        assert_left_right(&name, &r);
+        assert_skin(&name, &mesh, &r);
+        // Fore limbs ahead of hind limbs, head ahead of the tail.
+        let at = |k: &str| r.fit.skeleton.joint(r.fit.canonical[k]).position;
+        let fwd = r.labelling.frame.forward;
+        assert!((at("shoulder_L") - at("hip_L")).dot(fwd) > 0.0, "{name}");
+        assert!((at("head") - at("tail_end")).dot(fwd) > 0.0, "{name}");
+    }
+}
+
+/// The accuracy the issue asks of the humanoid rig without refinement: mean error over pelvis,
+/// neck, head, shoulders, elbows, wrists, hips, knees and ankles of the six MakeHuman bodies
+/// (measured 30.2 mm when written; the bound fails if a change makes it clearly worse).
+#[test]
+fn makehuman_joint_error_stays_within_the_measured_bound() {
+    const SET: &[&str] = &[
+        "pelvis",
+        "neck",
+        "head",
+        "shoulder_L",
+        "shoulder_R",
+        "elbow_L",
+        "elbow_R",
+        "wrist_L",
+        "wrist_R",
+        "hip_L",
+        "hip_R",
+        "knee_L",
+        "knee_R",
+        "ankle_L",
+        "ankle_R",
+    ];
+    let mut errors = Vec::new();
+    for dir in models("humanoid") {
+        let reference = dir.join("rig_game_engine.json");
+        if !reference.is_file() {
+            continue;
+        }
+        let reference = skelfit::eval::load_skeleton(&reference).unwrap();
+        let (_, r) = rigged(&dir, &RigOptions::default());
+        for key in SET {
+            let p = r.fit.skeleton.joint(r.fit.canonical[*key]).position;
+            let q = reference.canonical_joint(key).unwrap().position;
+            errors.push(p.distance(q));
+        }
+    }
+    if errors.is_empty() {
+        return;
+    }
+    let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+    assert!(mean < 0.034, "mean joint error {:.1} mm", mean * 1e3);
+}
+
+#[test]
+fn a_humanoid_template_on_a_quadruped_warns_and_does_not_panic() {
+    let Some(dir) = common::model("quadruped/quaternius_horse") else {
+        return;
+    };
+    let options = RigOptions {
+        template: TemplateChoice::Builtin("humanoid".into()),
+        ..Default::default()
+    };
+    let (_, r) = rigged(&dir, &options);
+    assert_eq!(r.fit.template, "humanoid");
+    assert!(!r.warnings.is_empty());
+    assert!(r.fit.skeleton.validate().is_ok());
+    let Some(dir) = common::model("humanoid/mh_neutral_default") else {
+        return;
+    };
+    let options = RigOptions {
+        template: TemplateChoice::Builtin("quadruped".into()),
+        ..Default::default()
+    };
+    let (_, r) = rigged(&dir, &options);
+    assert!(
+        r.warnings.iter().any(|w| w.contains("tail")),
+        "{:?}",
+        r.warnings
+    );
+}
+
+#[test]
+fn a_one_armed_figure_gets_a_rig_whose_warning_names_the_missing_arm() {
+    let Some(dir) = common::model("humanoid/mh_neutral_default") else {
+        return;
+    };
+    let mut mesh = load(&dir.join("mesh.obj")).unwrap();
+    // Cut the right arm off (the figure's right is -X): an open mesh with a hole at the
+    // shoulder, which the voxelizer closes.
+    let keep: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .copied()
+        .filter(|t| {
+            t.iter().all(|&i| {
+                let p = mesh.positions[i as usize];
+                !(p.x < -0.2 && p.y > 0.9)
+            })
+        })
+        .collect();
+    mesh.triangles = keep;
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    assert!(r.fit.canonical.contains_key("shoulder_L"));
+    assert!(!r.fit.canonical.contains_key("shoulder_R"));
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("arm") && w.contains("right")),
+        "{:?}",
+        r.warnings
+    );
+    assert!(r.fit.skeleton.validate().is_ok());
+}
+
+#[test]
+fn a_sphere_gets_a_best_effort_rig_with_warnings() {
+    let mesh = Mesh::uv_sphere(DVec3::ZERO, 1.0, 24, 48);
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    assert!(!r.warnings.is_empty());
+    assert!(r.fit.skeleton.validate().is_ok());
+}
+
+#[test]
+fn rigs_are_identical_on_one_and_two_threads() {
+    let dir = common::data_dir().join("quadruped/quaternius_horse");
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let r = rig(&mesh, &RigOptions::default()).unwrap();
+            (r.fit.skeleton, r.skin.engine)
+        })
+    };
+    assert_eq!(run(1), run(2));
+}
