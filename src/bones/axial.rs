@@ -8,21 +8,20 @@ use super::shapes::{animal_cranium, human_cranium, mandible, vertebra, Jaw, Skul
 use super::{Articulation, BoneKind};
 use glam::DVec3;
 
-/// Cranium on the head segment, mandible on the jaw segment (or under the cranium). Returns
-/// the jaw hinges made without a jaw joint (they are articulations).
-pub(crate) fn skull(ctx: &mut Context) -> Vec<Articulation> {
-    let mut hinges = Vec::new();
+/// Cranium on the head segment, mandible on the jaw segment (or under the cranium, its hinges
+/// then added to the articulations).
+pub(crate) fn skull(ctx: &mut Context) {
     let (Some(head), Some(end)) = (ctx.body.head, ctx.body.head_end) else {
         ctx.warnings
             .push("no head segment (head and head end joints): no cranium or mandible".into());
-        return hinges;
+        return;
     };
     let (a, b) = (ctx.pos(head), ctx.pos(end));
     let length = a.distance(b);
     let Some(z) = (b - a).try_normalize() else {
         ctx.warnings
             .push("the head segment has zero length: no cranium".into());
-        return hinges;
+        return;
     };
     let o = ctx.options;
     let radius = max_radius(ctx.map, a, b, 24);
@@ -80,7 +79,7 @@ pub(crate) fn skull(ctx: &mut Context) -> Vec<Articulation> {
     let Some(jz) = (chin - hinge).try_normalize() else {
         ctx.warnings
             .push("the jaw segment has zero length: no mandible".into());
-        return hinges;
+        return;
     };
     let jaw_length = hinge.distance(chin);
     let dorsal = jaw_axes.map_or(ctx.dorsal, |ax| ax[1]);
@@ -93,7 +92,7 @@ pub(crate) fn skull(ctx: &mut Context) -> Vec<Articulation> {
     };
     if ctx.body.jaw.is_none() {
         for side in [1.0, -1.0] {
-            hinges.push(Articulation {
+            ctx.articulations.push(Articulation {
                 centre: hinge + jy.cross(jz) * side * jaw.width + jy * jaw.height,
                 radius: 0.35 * jaw.width,
             });
@@ -107,9 +106,8 @@ pub(crate) fn skull(ctx: &mut Context) -> Vec<Articulation> {
         origin: hinge,
         axes: [jy.cross(jz), jy, jz],
         shrink: Shrink::About(DVec3::new(0.0, 0.0, 0.5 * jaw_length)),
-        slide: None,
+        slide: Some((jy, jaw.height)),
     });
-    hinges
 }
 
 /// One vertebra per neck and trunk segment (root → … → head), and per tail segment with the

@@ -3,7 +3,7 @@
 
 use super::settle::{settle, Draft};
 use super::structure::{perpendicular, Body};
-use super::{Bone, BoneOptions};
+use super::{Articulation, Bone, BoneOptions};
 use crate::distance::DistanceMap;
 use crate::fit::Side;
 use crate::skeleton::{JointId, Skeleton};
@@ -19,6 +19,8 @@ pub(crate) struct Context<'a> {
     /// Width of neck and trunk vertebrae (9.1: 1/12 of the largest trunk sphere's diameter).
     pub vertebra_width: f64,
     pub bones: Vec<Bone>,
+    /// Where bones may meet: a sphere per joint, jaw hinges added by the skull.
+    pub articulations: Vec<Articulation>,
     pub warnings: Vec<String>,
 }
 
@@ -35,7 +37,16 @@ impl<'a> Context<'a> {
             .unwrap_or(body.up);
         // The largest sphere within the figure is the trunk's for vertebrate-like figures.
         let largest = map.max_distance() * map.grid.voxel_size;
+        let articulations = skeleton
+            .joints
+            .iter()
+            .map(|j| Articulation {
+                centre: j.position,
+                radius: options.articulation * super::measure::radius_at(map, j.position),
+            })
+            .collect();
         Self {
+            articulations,
             skeleton,
             map,
             options,
@@ -55,7 +66,14 @@ impl<'a> Context<'a> {
     /// Fits the draft inside the figure and keeps it; returns its index in `bones`, `None`
     /// when it could not be fitted (a warning says why).
     pub fn keep(&mut self, draft: Draft) -> Option<usize> {
-        let bone = settle(&draft, self.map, self.options, &mut self.warnings)?;
+        let bone = settle(
+            &draft,
+            self.map,
+            self.options,
+            &self.bones,
+            &self.articulations,
+            &mut self.warnings,
+        )?;
         self.bones.push(bone);
         Some(self.bones.len() - 1)
     }

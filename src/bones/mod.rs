@@ -28,6 +28,7 @@
 
 mod axial;
 mod bone;
+mod collision;
 mod context;
 mod error;
 mod export;
@@ -81,24 +82,16 @@ pub fn bones(fit: &Fit, distance: &DistanceMap, options: &BoneOptions) -> Result
     let mut warnings = Vec::new();
     let body = structure::body(fit, &mut warnings);
     let mut ctx = Context::new(skeleton, distance, options, body, warnings);
-    let hinges = axial::skull(&mut ctx);
+    // Bones sized by their segments first; girdle bones then fit round them.
+    axial::skull(&mut ctx);
     axial::column(&mut ctx);
+    limbs::limbs(&mut ctx);
     let cages = girdles::rib_cages(&mut ctx);
     girdles::scapulae(&mut ctx, &cages);
     girdles::pelvic_girdle(&mut ctx);
-    limbs::limbs(&mut ctx);
-    let mut articulations: Vec<Articulation> = skeleton
-        .joints
-        .iter()
-        .map(|j| Articulation {
-            centre: j.position,
-            radius: options.articulation * measure::radius_at(distance, j.position),
-        })
-        .collect();
-    articulations.extend(hinges);
     Ok(Bones {
         bones: ctx.bones,
-        articulations,
+        articulations: ctx.articulations,
         warnings: ctx.warnings,
     })
 }

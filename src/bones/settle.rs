@@ -1,9 +1,10 @@
 //! Fitting a drafted bone inside the figure: widths come from distance-map values (9.1); a bone
 //! that still pokes out of the skin shrinks step by step about its axis or centre.
 
+use super::collision::overlaps;
 use super::measure::inside_fraction;
 use super::shapes::place;
-use super::{Bone, BoneKind, BoneOptions};
+use super::{Articulation, Bone, BoneKind, BoneOptions};
 use crate::distance::DistanceMap;
 use crate::mesh::Mesh;
 use crate::skeleton::JointId;
@@ -68,23 +69,42 @@ pub(crate) fn settle(
     draft: &Draft,
     map: &DistanceMap,
     options: &BoneOptions,
+    kept: &[Bone],
+    articulations: &[Articulation],
     warnings: &mut Vec<String>,
 ) -> Option<Bone> {
     let offsets = draft.offsets();
     let mut best: Option<(f64, f64, Mesh)> = None;
+    // The first placement inside enough, kept if every placement inside enough touches a bone.
+    let mut first_inside: Option<(f64, f64, Mesh)> = None;
+    let mut clear = false;
     let mut scale = 1.0;
     'search: for _ in 0..=options.max_shrink_steps {
         for &offset in &offsets {
             let mesh = draft.scaled(scale, offset);
             let fraction = inside_fraction(map, &mesh.positions, options.clearance);
-            if best.as_ref().is_none_or(|b| fraction > b.0) {
-                best = Some((fraction, scale, mesh));
-            }
             if fraction >= options.inside_fraction {
-                break 'search;
+                let touches = kept.iter().any(|b| overlaps(&mesh, &b.mesh, articulations));
+                if !touches {
+                    best = Some((fraction, scale, mesh));
+                    clear = true;
+                    break 'search;
+                }
+                if first_inside.is_none() {
+                    first_inside = Some((fraction, scale, mesh));
+                }
+            } else if best.as_ref().is_none_or(|b| fraction > b.0) {
+                best = Some((fraction, scale, mesh));
             }
         }
         scale *= options.shrink_step;
+    }
+    if !clear && first_inside.is_some() {
+        best = first_inside;
+        warnings.push(format!(
+            "{}: overlaps a neighbouring bone outside the joints at every size tried",
+            draft.name
+        ));
     }
     let (fraction, scale, mesh) = best?;
     if fraction < options.min_inside_fraction {
