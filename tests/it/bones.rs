@@ -914,3 +914,43 @@ fn a_snake_gets_a_skull_and_vertebrae_but_no_girdles() {
     };
     assert!(bones(&f, &map, &bad).is_err());
 }
+
+/// `skelfit bones` end to end on the bundled data: a validator-clean armature with bones,
+/// OBJ and SVG.
+#[test]
+fn cli_bones_writes_glb_obj_and_svg() {
+    let Some(dir) = crate::common::model("quadruped/khronos_fox") else {
+        return;
+    };
+    let out = tempfile::tempdir().unwrap();
+    let glb = out.path().join("fox_bones.glb");
+    let obj = out.path().join("fox_bones.obj");
+    let svg = out.path().join("fox_bones.svg");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_skelfit"))
+        .arg("bones")
+        .arg(dir.join("mesh.obj"))
+        .arg("-o")
+        .arg(&glb)
+        .arg("--obj")
+        .arg(&obj)
+        .arg("--svg")
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(
+        status.status.success(),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&status.stdout);
+    assert!(
+        stdout.contains("rib_cage 1") && stdout.contains("pelvis 1"),
+        "{stdout}"
+    );
+    let (doc, ..) = gltf::import(&glb).unwrap();
+    assert!(doc.meshes().count() > 20);
+    assert!(doc.skins().next().is_none());
+    let bones = skelfit::mesh::load(&obj).unwrap();
+    assert!(bones.triangles.len() > 1000);
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+}
