@@ -954,3 +954,28 @@ fn cli_bones_writes_glb_obj_and_svg() {
     assert!(bones.triangles.len() > 1000);
     assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
 }
+
+/// The same properties with the whole pipeline (`pipeline::rig`: labelling → paths → fit)
+/// instead of reference-joint paths; prints the table with
+/// `cargo test --release --test it bones_on_rigged -- --nocapture`.
+#[test]
+fn bones_on_rigged_refdata() {
+    use skelfit::pipeline::{rig, RigOptions};
+    for category in ["humanoid", "quadruped"] {
+        for dir in models(category) {
+            let name = dir.file_name().unwrap().to_string_lossy().to_string();
+            let mesh = skelfit::mesh::load(&dir.join("mesh.obj")).unwrap();
+            let rigged = match rig(&mesh, &RigOptions::default()) {
+                Ok(r) => r,
+                Err(e) => {
+                    println!("{name}: rig failed: {e}");
+                    continue;
+                }
+            };
+            let b = bones(&rigged.fit, &rigged.distance, &BoneOptions::default()).unwrap();
+            let (inside, intersecting) = check(&name, &mesh, &rigged.fit.skeleton, &b);
+            assert!(inside >= 0.98, "{name}: {inside}");
+            assert!(intersecting == 0.0, "{name}: {intersecting}");
+        }
+    }
+}
