@@ -308,7 +308,8 @@ pub(crate) fn pelvic_girdle(ctx: &mut Context) {
     let socket =
         l.2.map(|knee| {
             let (a, b) = (l.3, ctx.pos(knee));
-            let shaft = o.shaft_fraction * median_radius(ctx.map, a, b);
+            let shaft = (o.shaft_fraction * median_radius(ctx.map, a, b))
+                .min(o.max_shaft_ratio * a.distance(b));
             (1.15 * o.epiphysis_scale * shaft).min(0.15 * a.distance(b))
         })
         .unwrap_or(0.3 * half_width)

@@ -34,7 +34,8 @@ fn long(ctx: &Context, from: DVec3, to: DVec3, fraction: f64) -> Option<(LongBon
     Some((
         LongBone {
             length: from.distance(to),
-            radius: fraction * o.shaft_fraction * median_radius(ctx.map, from, to),
+            radius: (fraction * o.shaft_fraction * median_radius(ctx.map, from, to))
+                .min(o.max_shaft_ratio * from.distance(to)),
             epiphysis: o.epiphysis_scale,
             rings: o.rings,
             segments: o.segments,

@@ -21,6 +21,11 @@ pub struct BoneOptions {
     /// Default 0.3 (measured: human humerus shaft ~11 mm in an upper arm of ~45 mm radius is
     /// 0.25; slightly more reads better in previews).
     pub shaft_fraction: f64,
+    /// Largest long-bone shaft radius as a fraction of the bone's length. Default 0.08
+    /// (measured ratios: human femur ~0.03, humerus ~0.04, horse cannon bone ~0.08); it keeps
+    /// bones whose segment runs through the trunk (animal-like shoulders and hips lie inside
+    /// the girdle sphere, 8.2) from taking the trunk's thickness.
+    pub max_shaft_ratio: f64,
     /// Epiphysis (bone end) radius as a multiple of the shaft radius. Default 1.7 (human femur:
     /// condyles ~80 mm wide over a ~27 mm shaft give ~1.5-2).
     pub epiphysis_scale: f64,
@@ -81,6 +86,7 @@ impl Default for BoneOptions {
             vertebra_width: 1.0 / 12.0,
             tail_taper: 0.9,
             shaft_fraction: 0.3,
+            max_shaft_ratio: 0.08,
             epiphysis_scale: 1.7,
             cranium_fraction: 0.85,
             ribcage_fraction: 0.85,
@@ -125,6 +131,7 @@ impl BoneOptions {
         for (name, value) in [
             ("vertebra_width", self.vertebra_width),
             ("shaft_fraction", self.shaft_fraction),
+            ("max_shaft_ratio", self.max_shaft_ratio),
             ("cranium_fraction", self.cranium_fraction),
             ("ribcage_fraction", self.ribcage_fraction),
             ("rib_thickness", self.rib_thickness),
