@@ -203,10 +203,18 @@ pub(crate) fn scapulae(ctx: &mut Context, cage_of: &[Option<usize>]) {
             .copied()
             .flatten()
             .map(|k| &ctx.bones[k].mesh);
+        // Radial from the cage's long axis (the body's cranial direction), so the blade lies
+        // on the cage's side (quadrupeds) or back (upright figures).
+        let axis = if ctx.body.upright {
+            ctx.body.up
+        } else {
+            ctx.body.forward
+        };
         let normal = cage
             .and_then(|m| {
                 let c = m.bounding_box().map(|(a, b)| 0.5 * (a + b))?;
-                perpendicular(middle - c, u)
+                let d = middle - c;
+                perpendicular(d - axis * d.dot(axis), u)
             })
             .or_else(|| perpendicular(ctx.dorsal, u))
             .unwrap_or_else(|| u.any_orthonormal_vector());
