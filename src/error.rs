@@ -42,6 +42,12 @@ pub enum Error {
     /// Generating bone meshes failed.
     #[error(transparent)]
     Bones(#[from] crate::bones::BoneError),
+    /// Reading an outline or building its skeleton or mesh failed.
+    #[error(transparent)]
+    Outline(#[from] crate::outline::OutlineError),
+    /// A level-of-detail operation on a skeleton failed.
+    #[error(transparent)]
+    Lod(#[from] crate::lod::LodError),
     /// Writing a report or picture failed.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),

@@ -12,14 +12,16 @@
 //!                                   └─medial::dms────▶ MedialSurface
 //!                                   └─paths::path_tree─▶ PathTree (heart, extreme points, chains)
 //!                                   └─general::control_skeleton─▶ GeneralSkeleton (Skeleton + segments)
-//! FitInput (labelled paths) + template::Template ──fit::fit──▶ Fit (anatomical Skeleton + canonical map)
+//! MedialSurface ──anatomy::label_pieces──▶ Labelling ──fit::fit_input──▶ FitInput (labelled paths)
+//! FitInput + template::Template ──fit::fit──▶ Fit (anatomical Skeleton + canonical map)
 //! Skeleton + SegmentVoxels ──skin::skin──▶ Skin (per-vertex weights) ──skin::deform──▶ posed Mesh
 //! Fit + DistanceMap ──bones::bones──▶ Bones (procedural bone meshes attached to joints)
 //! Mesh + Skeleton + Skin ──export::write_glb / write_bvh / write_skeleton_json──▶ files
 //! ```
 //!
 //! [`pipeline::general_skeleton`] runs the whole chain from a mesh to a general control
-//! skeleton (dissertation ch.5).
+//! skeleton (dissertation ch.5); [`pipeline::rig`] from a mesh to a skinned anatomical skeleton
+//! from a template (ch.7-8).
 //!
 //! See `ARCHITECTURE.md` in the repository for the whole map, the conventions (units, axes,
 //! determinism, errors) and the seed sections each module implements.
@@ -51,8 +53,10 @@ pub mod eval;
 pub mod export;
 pub mod fit;
 pub mod general;
+pub mod lod;
 pub mod medial;
 pub mod mesh;
+pub mod outline;
 pub mod output;
 pub mod paths;
 pub mod pipeline;

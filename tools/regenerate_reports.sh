@@ -3,6 +3,8 @@
 #   reports/data/      bench of the bundled models (data/), with one HTML page per model
 #   reports/refdata/   bench of the whole reference set (../shared/refdata or $SKELFIT_REFDATA)
 #   reports/studies/   tessellation and rotation studies of the bundled MakeHuman body and horse
+#   reports/rig/       bench of the anatomical rig (skelfit rig) on the whole reference set, and
+#                      its tessellation/rotation studies of the bundled models (reports/rig/studies/)
 #   reports/labels/    body-part labelling accuracy on the reference set
 #   reports/scaling/   time against interior voxel count (mesh to skinned general skeleton)
 # Usage: tools/regenerate_reports.sh   (from anywhere; takes a few minutes)
@@ -23,10 +25,16 @@ for model in humanoid/mh_neutral_default:rig_game_engine.json quadruped/quaterni
     --levels 0.1,0.25,0.5,1,2 --out "$out" --html
   "$BIN" study rotation "$dir/mesh.obj" --reference "$dir/${model##*:}" --method "$METHOD" \
     --n 8 --out "$out" --html
+  rig_out="reports/rig/studies/$(basename "$dir")"
+  "$BIN" study tessellation "$dir/mesh.obj" --reference "$dir/${model##*:}" --method anatomical \
+    --levels 0.1,0.25,0.5,1,2 --out "$rig_out" --html
+  "$BIN" study rotation "$dir/mesh.obj" --reference "$dir/${model##*:}" --method anatomical \
+    --n 8 --out "$rig_out" --html
 done
 
 if [ -f "$REFDATA/README.md" ]; then
   "$BIN" bench "$REFDATA" --rig game_engine --method "$METHOD" --out reports/refdata --html
+  "$BIN" bench "$REFDATA" --rig game_engine --method anatomical --out reports/rig --html
   "$BIN" label --table "$REFDATA" -o reports/labels
 else
   echo "reference data not found at $REFDATA (set SKELFIT_REFDATA): reports/refdata not regenerated" >&2

@@ -10,8 +10,10 @@ mod demo;
 mod eval;
 mod info;
 mod label;
+mod outline;
 mod report;
 mod rig;
+mod simplify;
 mod skeleton;
 mod study;
 mod voxelize;
@@ -49,6 +51,9 @@ enum Command {
     /// write labels.json (plus a coloured PLY and an SVG picture on request), or regenerate the
     /// accuracy table with --table.
     Label(label::LabelArgs),
+    /// Build an animatable skeleton from closed 2D outlines (CSV or SVG; seed 003), inflate
+    /// them into a 3D mesh, skin it and write a .glb (plus an SVG picture and JSON on request).
+    Outline(outline::OutlineArgs),
     /// Fit the anatomical control skeleton of a humanoid, quadruped or winged figure from a
     /// template (dissertation ch.7-8), skin the mesh to it and write a skinned .glb (plus JSON
     /// with the canonical joint map, BVH).
@@ -58,6 +63,9 @@ enum Command {
     /// Fit the general control skeleton of any figure (dissertation ch.5), skin the mesh to it
     /// and write a skinned .glb (plus JSON/BVH on request).
     Skeleton(skeleton::SkeletonArgs),
+    /// Level-of-detail controls on any skeleton JSON (seed 003): simplify branches, merge
+    /// junctions, prune short branches, collapse short bones.
+    Simplify(simplify::SimplifyArgs),
     /// Robustness studies: re-tessellated or rotated variants of a mesh, rigged and compared
     /// with the base rig and the reference.
     Study(study::StudyArgs),
@@ -75,9 +83,11 @@ pub fn main() -> ExitCode {
         Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),
         Command::Label(args) => label::run(args),
+        Command::Outline(args) => outline::run(args),
         Command::Report(args) => report::run(args),
         Command::Rig(args) => rig::run(args),
         Command::Skeleton(args) => skeleton::run(args),
+        Command::Simplify(args) => simplify::run(args),
         Command::Study(args) => study::run(args),
         Command::Voxelize(args) => voxelize::run(args),
     };

@@ -2,6 +2,7 @@
 //! general control skeleton of any figure (dissertation ch.5), skinned and exported.
 
 use super::common::{load_mesh, VoxelArgs};
+use super::simplify::LodArgs;
 use anyhow::Context;
 use clap::Args;
 use serde_json::json;
@@ -50,6 +51,8 @@ pub struct SkeletonArgs {
     /// Put the root joint at the lowest end point instead of a deep segment (ch.5.3).
     #[arg(long)]
     pub root_at_lowest: bool,
+    #[command(flatten)]
+    pub lod: LodArgs,
     /// Print the summary as JSON on stdout.
     #[arg(long = "print-json")]
     pub print_json: bool,
@@ -98,10 +101,11 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     let start = Instant::now();
     let mesh = load_mesh(&args.mesh)?;
     let load_ms = start.elapsed().as_secs_f64() * 1e3;
-    let rig = with_spinner(format!("rigging {}", args.mesh.display()), || {
+    let mut rig = with_spinner(format!("rigging {}", args.mesh.display()), || {
         general_rig(&mesh, &options)
     })
     .context("fitting the general control skeleton")?;
+    apply_lod(&mesh, &mut rig, &args.lod, &options)?;
     let clock = Instant::now();
     write_glb(
         &args.output,
@@ -133,6 +137,34 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     for w in &rig.warnings {
         eprintln!("skelfit: warning: {w}");
     }
+    Ok(())
+}
+
+/// Applies the level-of-detail options (seed 003) to the fitted skeleton and skins the mesh
+/// again to the coarser bones (the chain voxels of merged segments no longer exist).
+fn apply_lod(
+    mesh: &skelfit::mesh::Mesh,
+    rig: &mut GeneralRig,
+    lod: &LodArgs,
+    options: &GeneralRigOptions,
+) -> anyhow::Result<()> {
+    let lod = lod.options();
+    if lod.is_identity() {
+        return Ok(());
+    }
+    let clock = Instant::now();
+    let skeleton = skelfit::lod::level_of_detail(&rig.general.skeleton, &lod)
+        .context("applying level of detail")?;
+    let solid = skelfit::voxel::voxelize(mesh, &options.skeleton.voxel)?;
+    let distance = skelfit::distance::edt(&solid);
+    rig.skin = skelfit::skin::skin_from_bones(mesh, &skeleton, &solid, &distance, &options.skin)
+        .context("skinning the mesh to the simplified skeleton")?;
+    rig.general.skeleton = skeleton;
+    // The chain segments belong to the joints before simplification.
+    rig.general.segments.clear();
+    rig.general
+        .timings
+        .push(("lod".to_string(), clock.elapsed().as_secs_f64() * 1e3));
     Ok(())
 }
 

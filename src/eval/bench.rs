@@ -498,9 +498,70 @@ pub fn bench_counts(results: &[BenchResult]) -> BenchCounts {
     counts
 }
 
+/// Per-joint errors in mesh units: one row per joint key (in first-seen order), one column per
+/// model with per-joint errors, then the models' mean and max rows. Empty when no model has
+/// per-joint errors.
+pub fn joint_model_table(results: &[BenchResult]) -> Table {
+    let evaluated: Vec<(&str, &Evaluation)> = results
+        .iter()
+        .filter_map(|r| {
+            r.evaluation
+                .as_ref()
+                .filter(|e| e.has_joint_errors())
+                .map(|e| (r.model.as_str(), e))
+        })
+        .collect();
+    let mut keys: Vec<&str> = Vec::new();
+    for (_, e) in &evaluated {
+        for j in &e.joints {
+            if !keys.contains(&j.key.as_str()) {
+                keys.push(&j.key);
+            }
+        }
+    }
+    let mut headers = vec!["joint".to_string()];
+    headers.extend(evaluated.iter().map(|(m, _)| m.to_string()));
+    let numeric = std::iter::once(false)
+        .chain(evaluated.iter().map(|_| true))
+        .collect();
+    let cell = |v: Option<f64>| v.map_or_else(|| "–".to_string(), |v| format!("{v:.4}"));
+    let mut rows: Vec<Vec<String>> = keys
+        .iter()
+        .map(|k| {
+            std::iter::once(k.to_string())
+                .chain(
+                    evaluated
+                        .iter()
+                        .map(|(_, e)| cell(e.joints.iter().find(|j| j.key == *k).map(|j| j.error))),
+                )
+                .collect()
+        })
+        .collect();
+    if !rows.is_empty() {
+        for (name, pick) in [("mean", 0usize), ("max", 1)] {
+            rows.push(
+                std::iter::once(format!("**{name}**"))
+                    .chain(evaluated.iter().map(|(_, e)| {
+                        cell(Some(if pick == 0 {
+                            e.summary.mean
+                        } else {
+                            e.summary.max
+                        }))
+                    }))
+                    .collect(),
+            );
+        }
+    }
+    Table {
+        headers,
+        rows,
+        numeric,
+    }
+}
+
 /// The run as a Markdown page: `title`, the caller's `preamble` (e.g. the command that made
 /// it), a summary, the accuracy table, the per-joint table pooled over models (when any model
-/// has per-joint errors), the timing table and the notes.
+/// has per-joint errors), the per-joint and model table in mesh units, the timing table and the notes.
 pub fn bench_markdown(results: &[BenchResult], title: &str, preamble: &str) -> String {
     let evaluations: Vec<Evaluation> = results
         .iter()
@@ -550,6 +611,11 @@ pub fn bench_markdown(results: &[BenchResult], title: &str, preamble: &str) -> S
     if !dataset.keys.is_empty() {
         md.push_str("\n## Per joint, pooled over models\n\n");
         md.push_str(&super::key_table(&dataset.keys).markdown());
+    }
+    let per_model = joint_model_table(results);
+    if !per_model.rows.is_empty() {
+        md.push_str("\n## Per joint and model (mesh units)\n\n");
+        md.push_str(&per_model.markdown());
     }
     md.push_str("\n## Timings (ms)\n\n");
     md.push_str(&timing_table(results).markdown());

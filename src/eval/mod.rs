@@ -63,7 +63,8 @@ mod tests;
 
 pub use bench::{
     bench_counts, bench_csv, bench_markdown, bench_model, bench_table, find_bench_models,
-    stage_names, timing_table, BenchCounts, BenchModel, BenchOptions, BenchResult,
+    joint_model_table, stage_names, timing_table, BenchCounts, BenchModel, BenchOptions,
+    BenchResult,
 };
 pub use bvh::parse_bvh;
 pub use chamfer::{

@@ -175,7 +175,12 @@ pub(crate) fn axial(
     let mut tail_end = None;
     if tail_len >= options.min_tail * seg_s && template.vertebrae.tail.max > 0 {
         let n_tail = template.vertebrae.tail.clamp(count(tail_len)).max(1);
-        tail.extend((0..n_tail).map(|j| spine.at(te + j as f64 * tail_len / n_tail as f64)));
+        tail.extend(
+            (0..n_tail)
+                .map(|j| te + j as f64 * tail_len / n_tail as f64)
+                .filter(|&s| s > root_arc + gap)
+                .map(|s| spine.at(s)),
+        );
         tail_end = Some(spine.at(end));
     } else if template.vertebrae.tail.min > 0 {
         warnings.push(FitWarning::MissingTail);

@@ -153,3 +153,64 @@ fn bad_inputs_exit_one_with_a_clear_error() {
     let out = skelfit(&["voxelize"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn rig_writes_a_skinned_glb_json_with_canonical_map_and_bvh_in_a_preset() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = crate::common::data_dir().join("quadruped/quaternius_horse/mesh.obj");
+    let glb = dir.path().join("horse.glb");
+    let json = dir.path().join("horse.json");
+    let bvh = dir.path().join("horse.bvh");
+    let out = skelfit(&[
+        "rig",
+        mesh.to_str().unwrap(),
+        "-o",
+        glb.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+        "--bvh",
+        bvh.to_str().unwrap(),
+        "--preset",
+        "mixamo",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(&std::fs::read(&glb).unwrap()[0..4], b"glTF");
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(doc["run"]["template"], "quadruped");
+    let canonical = doc["canonical"].as_object().unwrap();
+    assert_eq!(canonical["pelvis"], "mixamorig:Hips");
+    for key in ["tail_base", "tail_end", "shoulder_L", "hip_R"] {
+        assert!(canonical.contains_key(key), "{key} missing: {canonical:?}");
+    }
+    assert!(std::fs::read_to_string(&bvh)
+        .unwrap()
+        .starts_with("HIERARCHY"));
+    // The rig reloads as a reference rig with the same canonical joints.
+    let reloaded = skelfit::eval::load_skeleton(&json).unwrap();
+    assert_eq!(reloaded.canonical.len(), canonical.len());
+}
+
+#[test]
+fn rig_refuses_an_unknown_template_and_a_missing_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("out.glb");
+    let out = skelfit(&[
+        "rig",
+        &bundled_humanoid(),
+        "-o",
+        glb.to_str().unwrap(),
+        "--template",
+        "centaur",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("not a built-in template"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!glb.exists());
+    let out = skelfit(&["rig", "/nonexistent/mesh.obj", "-o", glb.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("skelfit: error:"));
+    assert!(!glb.exists());
+}

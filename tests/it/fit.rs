@@ -137,9 +137,15 @@ fn quadruped() -> FitInput {
     }
 }
 
+/// Fits with the dissertation's limb rules alone: Table 8.1 without moving joints to the bends
+/// of the path (those polylines have corners; `snap_to_bend` has its own test).
 fn run(input: &FitInput, template: &str) -> Fit {
     let t = Template::builtin(template).unwrap();
-    fit(input, &t, &FitOptions::default()).unwrap()
+    let options = FitOptions {
+        snap_to_bend: None,
+        ..Default::default()
+    };
+    fit(input, &t, &options).unwrap()
 }
 
 fn pos(f: &Fit, key: &str) -> DVec3 {
@@ -639,7 +645,11 @@ fn given_sections_and_a_one_segment_manus() {
         .1
         .replace("manus = \"digit\"", "manus = \"segment\"");
     let t = Template::parse(&text, "segment.toml").unwrap();
-    let f = fit(&input, &t, &FitOptions::default()).unwrap();
+    let options = FitOptions {
+        snap_to_bend: None,
+        ..Default::default()
+    };
+    let f = fit(&input, &t, &options).unwrap();
     assert!(
         (pos(&f, "head").y - 1.55).abs() < 0.01,
         "{}",
@@ -1036,4 +1046,34 @@ fn oracle_paths_on_the_fox() {
         errors.iter().sum::<f64>() / errors.len() as f64,
         f.warnings
     );
+}
+
+#[test]
+fn inner_limb_joints_snap_to_a_nearby_bend_of_the_path() {
+    // A humanoid leg whose knee corner lies 10 % of the leg's length below where Table 8.1
+    // puts the knee: the default fit moves the knee onto the corner, `snap_to_bend: None`
+    // keeps the table's place.
+    let t = Template::builtin("humanoid").unwrap();
+    let mut input = humanoid();
+    let leg = &input.limbs[1].path;
+    let total = length(leg);
+    let table = named(&run(&input, "humanoid"), "knee_L");
+    let s_table = arc(leg, table);
+    let corner_s = s_table + 0.1 * total;
+    // Rebuild the left leg as two straight pieces meeting at `corner_s`, bent by 40 degrees.
+    let start = leg[0];
+    let dir = (leg[leg.len() - 1] - start).normalize();
+    let corner = start + dir * corner_s;
+    let bent = (dir + DVec3::Z * 0.8).normalize();
+    let end = corner + bent * (total - corner_s);
+    let new_leg = dense(&[start, corner, end], 0.005);
+    let limb = &mut input.limbs[1];
+    limb.radii = vec![0.05; new_leg.len()];
+    limb.path = new_leg.clone();
+    let snapped = fit(&input, &t, &FitOptions::default()).unwrap();
+    let plain = run(&input, "humanoid");
+    let d_snapped = named(&snapped, "knee_L").distance(corner);
+    let d_plain = named(&plain, "knee_L").distance(corner);
+    assert!(d_snapped < 0.02, "snapped knee {d_snapped} from the corner");
+    assert!(d_plain > 0.05, "table knee {d_plain} from the corner");
 }

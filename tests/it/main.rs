@@ -12,6 +12,7 @@ mod fit;
 mod general;
 mod medial;
 mod mesh;
+mod outline;
 mod rig;
 mod skin;
 mod voxel;
