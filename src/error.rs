@@ -42,6 +42,9 @@ pub enum Error {
     /// Refining a humanoid skeleton by slicing failed.
     #[error(transparent)]
     Refine(#[from] crate::refine::RefineError),
+    /// Generating bone meshes failed.
+    #[error(transparent)]
+    Bones(#[from] crate::bones::BoneError),
     /// Reading an outline or building its skeleton or mesh failed.
     #[error(transparent)]
     Outline(#[from] crate::outline::OutlineError),

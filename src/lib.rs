@@ -15,6 +15,7 @@
 //! MedialSurface ──anatomy::label_pieces──▶ Labelling ──fit::fit_input──▶ FitInput (labelled paths)
 //! FitInput + template::Template ──fit::fit──▶ Fit (anatomical Skeleton + canonical map)
 //! Skeleton + SegmentVoxels ──skin::skin──▶ Skin (per-vertex weights) ──skin::deform──▶ posed Mesh
+//! Fit + DistanceMap ──bones::bones──▶ Bones (procedural bone meshes attached to joints)
 //! Mesh + Skeleton + Skin ──export::write_glb / write_bvh / write_skeleton_json──▶ files
 //! ```
 //!
@@ -45,6 +46,7 @@
 #![warn(missing_docs)]
 
 pub mod anatomy;
+pub mod bones;
 pub mod distance;
 pub mod error;
 pub mod eval;

@@ -4,6 +4,7 @@
 //! chain of causes), 2 invalid command-line usage (printed by clap).
 
 mod bench;
+mod bones;
 mod common;
 mod demo;
 mod eval;
@@ -34,6 +35,9 @@ enum Command {
     /// Rig every model of a refdata-style folder (in parallel), evaluate each against its
     /// reference rig, and write accuracy and timing tables (CSV, Markdown, JSON, HTML).
     Bench(bench::BenchArgs),
+    /// Rig a figure and build its bone meshes (dissertation 9.1): a .glb with every bone as a
+    /// child node of its joint (plus OBJ and an SVG preview on request).
+    Bones(bones::BonesArgs),
     /// Run the main job on the bundled data: statistics, voxelization and distance maps of every
     /// model below data/, results in reports/demo/.
     Demo(demo::DemoArgs),
@@ -74,6 +78,7 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Bench(args) => bench::run(args),
+        Command::Bones(args) => bones::run(args),
         Command::Demo(args) => demo::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),

@@ -73,6 +73,9 @@ pub struct RigArgs {
     /// Slicing-based refinement of humanoid joints (seed 004) after the fit.
     #[arg(long, value_name = "on|off", default_value = "on", value_parser = ["on", "off"])]
     pub refine: String,
+    /// Add bone meshes (dissertation 9.1) to OUT.glb as child nodes of their joints.
+    #[arg(long)]
+    pub bones: bool,
     #[command(flatten)]
     pub voxel: VoxelArgs,
     /// Print the summary as JSON on stdout.
@@ -131,13 +134,26 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     })
     .context("fitting the anatomical control skeleton")?;
     let clock = Instant::now();
-    write_glb(
-        &args.output,
-        &mesh,
-        &rigged.fit.skeleton,
-        &rigged.skin,
-        &GltfOptions::default(),
-    )?;
+    let mut bone_warnings = Vec::new();
+    if args.bones {
+        let made = super::bones::rig_bones(&rigged)?;
+        skelfit::bones::write_bones_glb(
+            &args.output,
+            &rigged.fit.skeleton,
+            &made,
+            Some((&mesh, &rigged.skin)),
+            &GltfOptions::default(),
+        )?;
+        bone_warnings = made.warnings;
+    } else {
+        write_glb(
+            &args.output,
+            &mesh,
+            &rigged.fit.skeleton,
+            &rigged.skin,
+            &GltfOptions::default(),
+        )?;
+    }
     let info = run_info(&args.mesh, &rigged, load_ms);
     if let Some(path) = &args.json {
         write_rig_json(path, &args.mesh, &rigged, Some(info.clone()))?;
@@ -155,6 +171,9 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     }
     for w in &rigged.warnings {
         eprintln!("skelfit: warning: {w}");
+    }
+    for w in &bone_warnings {
+        eprintln!("skelfit: warning: bones: {w}");
     }
     Ok(())
 }

@@ -74,6 +74,39 @@ pub fn glb_bytes(
     skin: &Skin,
     options: &GltfOptions,
 ) -> Result<Vec<u8>, ExportError> {
+    glb_bytes_with(Some((mesh, skin)), skeleton, &[], options)
+}
+
+/// A rigid mesh attached to a joint (a bone, say): written as a child node of the joint's node,
+/// so it poses with the skeleton.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Attachment {
+    /// The joint it moves with.
+    pub joint: crate::skeleton::JointId,
+    /// Name of its node and mesh.
+    pub name: String,
+    /// The mesh in the joint's rest local frame (see
+    /// [`Joint::rest_transform`](crate::skeleton::Joint::rest_transform)).
+    pub mesh: Mesh,
+}
+
+/// [`glb_bytes`] with an optional skinned mesh and rigid `attachments`: each attachment is one
+/// more mesh (`POSITION`, `NORMAL`, indices) on a node that is a child of its joint's node,
+/// after the skinned mesh node and the forest root; joint nodes list their attachment nodes
+/// after their child joints. Without a skinned mesh the file holds the armature (plain nodes,
+/// no skin) and the attachments. With a skinned mesh and no attachments the bytes equal
+/// [`glb_bytes`]'s.
+///
+/// # Errors
+/// As [`glb_bytes`]; [`ExportError::SizeMismatch`] for an attachment on a joint that does not
+/// exist, [`ExportError::EmptyMesh`] or [`ExportError::NonFinite`] for an attachment mesh
+/// without triangles or with a non-finite position.
+pub fn glb_bytes_with(
+    skinned: Option<(&Mesh, &Skin)>,
+    skeleton: &Skeleton,
+    attachments: &[Attachment],
+    options: &GltfOptions,
+) -> Result<Vec<u8>, ExportError> {
     check_skeleton(skeleton)?;
     let joint_count = skeleton.len();
     if joint_count > usize::from(u16::MAX) {
@@ -83,6 +116,240 @@ pub fn glb_bytes(
             detail: format!("{joint_count} joints, JOINTS_0 holds at most 65535"),
         });
     }
+    if let Some((mesh, skin)) = skinned {
+        check_skinned(mesh, skin, joint_count)?;
+    }
+    for a in attachments {
+        if a.joint.0 >= joint_count {
+            return Err(ExportError::SizeMismatch {
+                what: "an attachment's joint index",
+                expected: joint_count,
+                found: a.joint.0 + 1,
+            });
+        }
+        if a.mesh.triangles.is_empty() || a.mesh.positions.is_empty() {
+            return Err(ExportError::EmptyMesh);
+        }
+        if let Some(index) = a.mesh.positions.iter().position(|p| !p.is_finite()) {
+            return Err(ExportError::NonFinite {
+                what: "attachment vertex",
+                index,
+            });
+        }
+    }
+
+    let mut bin = Binary::default();
+    let mut accessors = Vec::new();
+    let mut meshes = Vec::new();
+    if let Some((mesh, skin)) = skinned {
+        let vertices = mesh.positions.len();
+        let (index_view, position_view, normal_view, min, max) = push_geometry(&mut bin, mesh);
+        let joints_view = bin.push(
+            skin.engine
+                .joints
+                .iter()
+                .flatten()
+                .flat_map(|j| j.to_le_bytes()),
+            Some(ARRAY_BUFFER),
+        );
+        let weights_view = bin.push(
+            skin.engine
+                .weights
+                .iter()
+                .flatten()
+                .flat_map(|w| w.to_le_bytes()),
+            Some(ARRAY_BUFFER),
+        );
+        let ibm_view = bin.push(
+            skeleton.joints.iter().flat_map(|j| {
+                let m = DMat4::from(j.rest_transform().inverse());
+                m.as_mat4()
+                    .to_cols_array()
+                    .into_iter()
+                    .flat_map(f32::to_le_bytes)
+            }),
+            None,
+        );
+        let mut position_accessor = accessor(position_view, FLOAT, vertices, "VEC3");
+        position_accessor["min"] = json!(min.map(f64::from));
+        position_accessor["max"] = json!(max.map(f64::from));
+        accessors.extend([
+            accessor(index_view, UNSIGNED_INT, mesh.triangles.len() * 3, "SCALAR"),
+            position_accessor,
+            accessor(normal_view, FLOAT, vertices, "VEC3"),
+            accessor(joints_view, UNSIGNED_SHORT, vertices, "VEC4"),
+            accessor(weights_view, FLOAT, vertices, "VEC4"),
+            accessor(ibm_view, FLOAT, joint_count, "MAT4"),
+        ]);
+        meshes.push(json!({
+            "name": options.mesh_name,
+            "primitives": [{
+                "attributes": {"POSITION": 1, "NORMAL": 2, "JOINTS_0": 3, "WEIGHTS_0": 4},
+                "indices": 0,
+                "mode": 4,
+            }],
+        }));
+    }
+
+    // Attachment node indices per joint, in attachment order.
+    let mut attached: Vec<Vec<usize>> = vec![Vec::new(); joint_count];
+    let mut nodes: Vec<Value> = skeleton
+        .joints
+        .iter()
+        .map(|joint| {
+            let local = match joint.parent {
+                Some(p) => skeleton.joint(p).rest_transform().inverse() * joint.rest_transform(),
+                None => joint.rest_transform(),
+            };
+            let (translation, rotation) = trs(
+                &local,
+                joint.frame,
+                joint.parent.map(|p| skeleton.joint(p).frame),
+            );
+            json!({"name": joint.name, "translation": translation, "rotation": rotation})
+        })
+        .collect();
+    let mut scene_nodes = Vec::new();
+    let mesh_node = skinned.map(|_| {
+        nodes.push(json!({"name": options.mesh_name, "mesh": 0, "skin": 0}));
+        nodes.len() - 1
+    });
+    let roots: Vec<usize> = (0..joint_count)
+        .filter(|&k| skeleton.joints[k].parent.is_none())
+        .collect();
+    // glTF requires the joints of a skin to share a root node: a skeleton with several root
+    // joints hangs them under one plain (identity) node that is not a joint.
+    let skeleton_root = match roots[..] {
+        [root] => root,
+        _ => {
+            nodes.push(json!({"name": FOREST_ROOT_NAME, "children": roots}));
+            nodes.len() - 1
+        }
+    };
+    scene_nodes.push(skeleton_root);
+    scene_nodes.extend(mesh_node);
+    for a in attachments {
+        let vertices = a.mesh.positions.len();
+        let (index_view, position_view, normal_view, min, max) = push_geometry(&mut bin, &a.mesh);
+        let first = accessors.len();
+        let mut position_accessor = accessor(position_view, FLOAT, vertices, "VEC3");
+        position_accessor["min"] = json!(min.map(f64::from));
+        position_accessor["max"] = json!(max.map(f64::from));
+        accessors.extend([
+            accessor(
+                index_view,
+                UNSIGNED_INT,
+                a.mesh.triangles.len() * 3,
+                "SCALAR",
+            ),
+            position_accessor,
+            accessor(normal_view, FLOAT, vertices, "VEC3"),
+        ]);
+        meshes.push(json!({
+            "name": a.name,
+            "primitives": [{
+                "attributes": {"POSITION": first + 1, "NORMAL": first + 2},
+                "indices": first,
+                "mode": 4,
+            }],
+        }));
+        nodes.push(json!({"name": a.name, "mesh": meshes.len() - 1}));
+        attached[a.joint.0].push(nodes.len() - 1);
+    }
+    for (k, extra) in attached.iter().enumerate() {
+        let mut children: Vec<usize> = skeleton
+            .children(crate::skeleton::JointId(k))
+            .iter()
+            .map(|c| c.0)
+            .collect();
+        children.extend(extra);
+        if !children.is_empty() {
+            nodes[k]["children"] = json!(children);
+        }
+    }
+
+    let bin_len = bin.bytes.len();
+    if u32::try_from(bin_len).is_err() {
+        return Err(ExportError::TooLarge {
+            what: "the mesh",
+            format: "GLB",
+            detail: format!("{bin_len} bytes of binary data, a GLB holds under 4 GiB"),
+        });
+    }
+    let mut document = json!({
+        "asset": {"version": "2.0", "generator": options.generator},
+        "scene": 0,
+        "scenes": [{"name": "scene", "nodes": scene_nodes}],
+        "nodes": nodes,
+        "accessors": accessors,
+        "bufferViews": bin.views,
+        "buffers": [{"byteLength": bin_len}],
+    });
+    if !meshes.is_empty() {
+        document["meshes"] = json!(meshes);
+    }
+    if skinned.is_some() {
+        document["skins"] = json!([{
+            "joints": (0..joint_count).collect::<Vec<_>>(),
+            "inverseBindMatrices": 5,
+            "name": "armature",
+            "skeleton": skeleton_root,
+        }]);
+    }
+    if accessors_empty(&document) {
+        if let Some(map) = document.as_object_mut() {
+            map.remove("accessors");
+            map.remove("bufferViews");
+            map.remove("buffers");
+        }
+    }
+    let json_bytes = serde_json::to_vec(&document).map_err(|e| ExportError::TooLarge {
+        what: "the glTF document",
+        format: "JSON",
+        detail: e.to_string(),
+    })?;
+    pack_glb(json_bytes, bin.bytes)
+}
+
+/// Whether the document has no accessors (an armature without meshes).
+fn accessors_empty(document: &Value) -> bool {
+    document["accessors"].as_array().is_some_and(Vec::is_empty)
+}
+
+/// An accessor object.
+fn accessor(view: usize, component: u32, count: usize, kind: &str) -> Value {
+    json!({"bufferView": view, "componentType": component, "count": count, "type": kind})
+}
+
+/// Pushes a mesh's indices, positions and normals; returns their views and the position bounds.
+fn push_geometry(bin: &mut Binary, mesh: &Mesh) -> (usize, usize, usize, [f32; 3], [f32; 3]) {
+    let index_view = bin.push(
+        mesh.triangles
+            .iter()
+            .flatten()
+            .flat_map(|i| i.to_le_bytes()),
+        Some(ELEMENT_ARRAY_BUFFER),
+    );
+    let positions: Vec<[f32; 3]> = mesh
+        .positions
+        .iter()
+        .map(|p| p.as_vec3().to_array())
+        .collect();
+    let (min, max) = bounds(&positions);
+    let position_view = bin.push(
+        positions.iter().flatten().flat_map(|x| x.to_le_bytes()),
+        Some(ARRAY_BUFFER),
+    );
+    let normals = vertex_normals(mesh);
+    let normal_view = bin.push(
+        normals.iter().flatten().flat_map(|x| x.to_le_bytes()),
+        Some(ARRAY_BUFFER),
+    );
+    (index_view, position_view, normal_view, min, max)
+}
+
+/// Checks a skinned mesh against its skin and the skeleton's joint count.
+fn check_skinned(mesh: &Mesh, skin: &Skin, joint_count: usize) -> Result<(), ExportError> {
     let vertices = mesh.positions.len();
     for (what, found) in [
         ("the skin's engine joints", skin.engine.joints.len()),
@@ -129,151 +396,7 @@ pub fn glb_bytes(
             found: usize::from(bad) + 1,
         });
     }
-
-    let mut bin = Binary::default();
-    let index_view = bin.push(
-        mesh.triangles
-            .iter()
-            .flatten()
-            .flat_map(|i| i.to_le_bytes()),
-        Some(ELEMENT_ARRAY_BUFFER),
-    );
-    let positions: Vec<[f32; 3]> = mesh
-        .positions
-        .iter()
-        .map(|p| p.as_vec3().to_array())
-        .collect();
-    let (min, max) = bounds(&positions);
-    let position_view = bin.push(
-        positions.iter().flatten().flat_map(|x| x.to_le_bytes()),
-        Some(ARRAY_BUFFER),
-    );
-    let normals = vertex_normals(mesh);
-    let normal_view = bin.push(
-        normals.iter().flatten().flat_map(|x| x.to_le_bytes()),
-        Some(ARRAY_BUFFER),
-    );
-    let joints_view = bin.push(
-        skin.engine
-            .joints
-            .iter()
-            .flatten()
-            .flat_map(|j| j.to_le_bytes()),
-        Some(ARRAY_BUFFER),
-    );
-    let weights_view = bin.push(
-        skin.engine
-            .weights
-            .iter()
-            .flatten()
-            .flat_map(|w| w.to_le_bytes()),
-        Some(ARRAY_BUFFER),
-    );
-    let ibm_view = bin.push(
-        skeleton.joints.iter().flat_map(|j| {
-            let m = DMat4::from(j.rest_transform().inverse());
-            m.as_mat4()
-                .to_cols_array()
-                .into_iter()
-                .flat_map(f32::to_le_bytes)
-        }),
-        None,
-    );
-
-    let accessor = |view: usize, component: u32, count: usize, kind: &str| json!({"bufferView": view, "componentType": component, "count": count, "type": kind});
-    let mut position_accessor = accessor(position_view, FLOAT, vertices, "VEC3");
-    position_accessor["min"] = json!(min.map(f64::from));
-    position_accessor["max"] = json!(max.map(f64::from));
-    let accessors = vec![
-        accessor(index_view, UNSIGNED_INT, mesh.triangles.len() * 3, "SCALAR"),
-        position_accessor,
-        accessor(normal_view, FLOAT, vertices, "VEC3"),
-        accessor(joints_view, UNSIGNED_SHORT, vertices, "VEC4"),
-        accessor(weights_view, FLOAT, vertices, "VEC4"),
-        accessor(ibm_view, FLOAT, joint_count, "MAT4"),
-    ];
-
-    let mut nodes: Vec<Value> = skeleton
-        .joints
-        .iter()
-        .enumerate()
-        .map(|(k, joint)| {
-            let local = match joint.parent {
-                Some(p) => skeleton.joint(p).rest_transform().inverse() * joint.rest_transform(),
-                None => joint.rest_transform(),
-            };
-            let (translation, rotation) = trs(
-                &local,
-                joint.frame,
-                joint.parent.map(|p| skeleton.joint(p).frame),
-            );
-            let mut node =
-                json!({"name": joint.name, "translation": translation, "rotation": rotation});
-            let children: Vec<usize> = skeleton
-                .children(crate::skeleton::JointId(k))
-                .iter()
-                .map(|c| c.0)
-                .collect();
-            if !children.is_empty() {
-                node["children"] = json!(children);
-            }
-            node
-        })
-        .collect();
-    let mesh_node = nodes.len();
-    nodes.push(json!({"name": options.mesh_name, "mesh": 0, "skin": 0}));
-    let roots: Vec<usize> = (0..joint_count)
-        .filter(|&k| skeleton.joints[k].parent.is_none())
-        .collect();
-    // glTF requires the joints of a skin to share a root node: a skeleton with several root
-    // joints hangs them under one plain (identity) node that is not a joint.
-    let skeleton_root = match roots[..] {
-        [root] => root,
-        _ => {
-            nodes.push(json!({"name": FOREST_ROOT_NAME, "children": roots}));
-            nodes.len() - 1
-        }
-    };
-    let scene_nodes = vec![skeleton_root, mesh_node];
-    let skin_json = json!({
-        "joints": (0..joint_count).collect::<Vec<_>>(),
-        "inverseBindMatrices": 5,
-        "name": "armature",
-        "skeleton": skeleton_root,
-    });
-
-    let bin_len = bin.bytes.len();
-    if u32::try_from(bin_len).is_err() {
-        return Err(ExportError::TooLarge {
-            what: "the mesh",
-            format: "GLB",
-            detail: format!("{bin_len} bytes of binary data, a GLB holds under 4 GiB"),
-        });
-    }
-    let document = json!({
-        "asset": {"version": "2.0", "generator": options.generator},
-        "scene": 0,
-        "scenes": [{"name": "scene", "nodes": scene_nodes}],
-        "nodes": nodes,
-        "meshes": [{
-            "name": options.mesh_name,
-            "primitives": [{
-                "attributes": {"POSITION": 1, "NORMAL": 2, "JOINTS_0": 3, "WEIGHTS_0": 4},
-                "indices": 0,
-                "mode": 4,
-            }],
-        }],
-        "skins": [skin_json],
-        "accessors": accessors,
-        "bufferViews": bin.views,
-        "buffers": [{"byteLength": bin_len}],
-    });
-    let json_bytes = serde_json::to_vec(&document).map_err(|e| ExportError::TooLarge {
-        what: "the glTF document",
-        format: "JSON",
-        detail: e.to_string(),
-    })?;
-    pack_glb(json_bytes, bin.bytes)
+    Ok(())
 }
 
 /// Writes [`glb_bytes`] to `path` atomically ([`crate::output::write_atomic`]).

@@ -2,6 +2,8 @@
 //!
 //! - [`glb_bytes`] / [`write_glb`]: a skinned binary glTF 2.0 file (mesh, engine weights,
 //!   armature with rest frames, inverse bind matrices) that the Khronos validator accepts.
+//! - [`glb_bytes_with`]: the same with rigid [`Attachment`]s (bone meshes) as child nodes of
+//!   joints, with or without the skinned mesh.
 //! - [`skeleton_json`] / [`write_skeleton_json`]: skelfit's own `skelfit-skeleton-v1` JSON,
 //!   read back by [`crate::eval::load_skeleton`].
 //! - [`bvh_text`] / [`write_bvh`]: a BVH hierarchy with one rest frame.
@@ -21,6 +23,6 @@ mod obj;
 pub use bvh::{bvh_text, write_bvh, BvhOptions};
 pub use error::ExportError;
 use error::{check_skeleton, io_error};
-pub use gltf::{glb_bytes, write_glb, GltfOptions, FOREST_ROOT_NAME};
+pub use gltf::{glb_bytes, glb_bytes_with, write_glb, Attachment, GltfOptions, FOREST_ROOT_NAME};
 pub use json::{skeleton_json, write_skeleton_json, JsonOptions, SKELETON_FORMAT};
 pub use obj::{obj_text, write_obj};

@@ -2,6 +2,7 @@
 
 mod anatomy;
 mod bench;
+mod bones;
 mod cli;
 mod common;
 mod distance;

@@ -1,0 +1,93 @@
+//! `skelfit bones MESH -o BONES.glb [--obj BONES.obj] [--svg BONES.svg] [--with-skin]` plus the
+//! options of `skelfit rig`: rig the figure, generate its bone meshes (dissertation 9.1) and
+//! write them as child nodes of the armature's joints.
+
+use super::common::millis;
+use super::rig::RigArgs;
+use super::skeleton::with_spinner;
+use anyhow::Context;
+use clap::Args;
+use skelfit::bones::{bones, bones_svg, write_bones_glb, write_bones_obj, BoneOptions, Bones};
+use skelfit::export::GltfOptions;
+use skelfit::pipeline::{rig, Rig};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Arguments of `skelfit bones`: those of `skelfit rig` (`-o` names the bones .glb: the
+/// armature with every bone mesh as a child node of its joint) and the extra outputs.
+#[derive(Debug, Args)]
+pub struct BonesArgs {
+    #[command(flatten)]
+    pub rig: RigArgs,
+    /// Also write every bone, merged at the rest pose, as OBJ.
+    #[arg(long, value_name = "BONES.obj")]
+    pub obj: Option<PathBuf>,
+    /// Also write an SVG preview (front, side and top views over the skin's silhouette).
+    #[arg(long, value_name = "BONES.svg")]
+    pub svg: Option<PathBuf>,
+    /// Put the skinned mesh into the .glb too.
+    #[arg(long = "with-skin")]
+    pub with_skin: bool,
+}
+
+/// Bones of a rig with the default options.
+pub fn rig_bones(rigged: &Rig) -> anyhow::Result<Bones> {
+    bones(&rigged.fit, &rigged.distance, &BoneOptions::default()).context("generating bone meshes")
+}
+
+/// Runs the command.
+pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
+    let options = args.rig.options()?;
+    let start = Instant::now();
+    let mesh = super::common::load_mesh(&args.rig.mesh)?;
+    let load_ms = millis(start);
+    let rigged = with_spinner(format!("rigging {}", args.rig.mesh.display()), || {
+        rig(&mesh, &options)
+    })
+    .context("fitting the anatomical control skeleton")?;
+    let clock = Instant::now();
+    let made = rig_bones(&rigged)?;
+    let bones_ms = millis(clock);
+    let skinned = args.with_skin.then_some((&mesh, &rigged.skin));
+    write_bones_glb(
+        &args.rig.output,
+        &rigged.fit.skeleton,
+        &made,
+        skinned,
+        &GltfOptions::default(),
+    )?;
+    if let Some(path) = &args.obj {
+        write_bones_obj(path, &made)?;
+    }
+    if let Some(path) = &args.svg {
+        skelfit::output::write_atomic(path, bones_svg(&made, Some(&mesh), 360.0).as_bytes())
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+    for b in &made.bones {
+        *kinds.entry(b.kind.as_str()).or_default() += 1;
+    }
+    let list: Vec<String> = kinds.iter().map(|(k, n)| format!("{k} {n}")).collect();
+    println!("mesh            {}", args.rig.mesh.display());
+    println!(
+        "skeleton        {} joints, template {}",
+        rigged.fit.skeleton.len(),
+        rigged.fit.template
+    );
+    println!("bones           {}: {}", made.bones.len(), list.join(", "));
+    println!("timings (ms)    load {load_ms:.1}, bones {bones_ms:.1}");
+    for path in [Some(&args.rig.output), args.obj.as_ref(), args.svg.as_ref()]
+        .into_iter()
+        .flatten()
+    {
+        println!("wrote           {}", path.display());
+    }
+    for w in &rigged.warnings {
+        eprintln!("skelfit: warning: {w}");
+    }
+    for w in &made.warnings {
+        eprintln!("skelfit: warning: bones: {w}");
+    }
+    Ok(())
+}
