@@ -63,8 +63,10 @@ impl Draft {
 
 /// Places `draft`, shrinking it by [`BoneOptions::shrink_step`] (and at each size trying the
 /// slide offsets) until at least [`BoneOptions::inside_fraction`] of its vertices lie in
-/// interior voxels. After [`BoneOptions::max_shrink_steps`] the best placement is kept with a
-/// warning, or left out (`None`, with a warning) below [`BoneOptions::min_inside_fraction`].
+/// interior voxels without overlapping a `kept` bone outside the articulations. After
+/// [`BoneOptions::max_shrink_steps`] the best placement is kept with a warning, or left out
+/// (`None`, with a warning) below [`BoneOptions::min_inside_fraction`] or when every placement
+/// inside enough overlaps a kept bone.
 pub(crate) fn settle(
     draft: &Draft,
     map: &DistanceMap,
@@ -75,8 +77,8 @@ pub(crate) fn settle(
 ) -> Option<Bone> {
     let offsets = draft.offsets();
     let mut best: Option<(f64, f64, Mesh)> = None;
-    // The first placement inside enough, kept if every placement inside enough touches a bone.
-    let mut first_inside: Option<(f64, f64, Mesh)> = None;
+    // Whether some placement was inside enough but touched a kept bone.
+    let mut touching = false;
     let mut clear = false;
     let mut scale = 1.0;
     'search: for _ in 0..=options.max_shrink_steps {
@@ -90,21 +92,21 @@ pub(crate) fn settle(
                     clear = true;
                     break 'search;
                 }
-                if first_inside.is_none() {
-                    first_inside = Some((fraction, scale, mesh));
-                }
+                touching = true;
             } else if best.as_ref().is_none_or(|b| fraction > b.0) {
                 best = Some((fraction, scale, mesh));
             }
         }
         scale *= options.shrink_step;
     }
-    if !clear && first_inside.is_some() {
-        best = first_inside;
+    if !clear && touching {
+        // Bones must not intersect outside the joints: a bone that overlaps a neighbour at
+        // every size and offset is left out rather than kept intersecting.
         warnings.push(format!(
-            "{}: overlaps a neighbouring bone outside the joints at every size tried",
+            "{}: left out, it overlaps a neighbouring bone outside the joints at every size tried",
             draft.name
         ));
+        return None;
     }
     let (fraction, scale, mesh) = best?;
     if fraction < options.min_inside_fraction {

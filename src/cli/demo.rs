@@ -4,7 +4,8 @@
 //! prints the mesh statistics, voxelizes it, computes its distance map, fits the general control
 //! skeleton and the anatomical skeleton (template chosen from the labelled figure) and skins the
 //! mesh to each, and writes `<out>/<model>/{info.json, voxelize.json, slices/*.png, general.glb,
-//! general.json, general.bvh, rig.glb, rig.json, rig.bvh}`; with a reference rig beside the mesh
+//! general.json, general.bvh, rig.glb, rig.json, rig.bvh, bones.glb, bones.svg}` (bones.glb:
+//! the rig with bone meshes as child nodes of their joints, dissertation 9.1); with a reference rig beside the mesh
 //! (`rig_game_engine.json`, else the only `rig_*.json`) it also prints the anatomical rig's
 //! per-joint error; then a summary table.
 
@@ -213,6 +214,26 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
         &rigged.fit.skeleton,
         &BvhOptions::default(),
     )?;
+    let made = super::bones::rig_bones(&rigged)?;
+    skelfit::bones::write_bones_glb(
+        &out.join("bones.glb"),
+        &rigged.fit.skeleton,
+        &made,
+        Some((&mesh, &rigged.skin)),
+        &GltfOptions::default(),
+    )?;
+    write_file(
+        &out.join("bones.svg"),
+        skelfit::bones::bones_svg(&made, Some(&mesh), 360.0).as_bytes(),
+    )?;
+    println!(
+        "bone meshes          {} bones -> {}",
+        made.bones.len(),
+        out.join("bones.glb").display()
+    );
+    for w in &made.warnings {
+        eprintln!("skelfit: warning: bones: {w}");
+    }
     println!(
         "anatomical rig       {} template, {} joints ({} canonical) in {:.1} ms -> {}",
         rigged.fit.template,
