@@ -179,11 +179,10 @@ fn every_quadruped_gets_every_canonical_joint_inside_and_sided() {
     }
 }
 
-/// The accuracy the issue asks of the humanoid rig without refinement: mean error over pelvis,
-/// neck, head, shoulders, elbows, wrists, hips, knees and ankles of the six MakeHuman bodies
-/// (measured 30.2 mm when written; the bound fails if a change makes it clearly worse).
-#[test]
-fn makehuman_joint_error_stays_within_the_measured_bound() {
+/// Mean error (mesh units) over pelvis, neck, head, shoulders, elbows, wrists, hips, knees and
+/// ankles of the MakeHuman bodies (those with `rig_game_engine.json`), printing each model's
+/// mean; `None` without reference data.
+fn makehuman_mean_error(options: &RigOptions) -> Option<f64> {
     const SET: &[&str] = &[
         "pelvis",
         "neck",
@@ -208,18 +207,43 @@ fn makehuman_joint_error_stays_within_the_measured_bound() {
             continue;
         }
         let reference = skelfit::eval::load_skeleton(&reference).unwrap();
-        let (_, r) = rigged(&dir, &RigOptions::default());
-        for key in SET {
-            let p = r.fit.skeleton.joint(r.fit.canonical[*key]).position;
-            let q = reference.canonical_joint(key).unwrap().position;
-            errors.push(p.distance(q));
-        }
+        let (_, r) = rigged(&dir, options);
+        let model: Vec<f64> = SET
+            .iter()
+            .map(|key| {
+                let p = r.fit.skeleton.joint(r.fit.canonical[*key]).position;
+                p.distance(reference.canonical_joint(key).unwrap().position)
+            })
+            .collect();
+        let mean = model.iter().sum::<f64>() / model.len() as f64;
+        let max = model.iter().copied().fold(0.0, f64::max);
+        println!(
+            "{}: mean {:.1} mm, max {:.1} mm",
+            dir.file_name().unwrap().to_string_lossy(),
+            mean * 1e3,
+            max * 1e3
+        );
+        errors.extend(model);
     }
-    if errors.is_empty() {
-        return;
+    (!errors.is_empty()).then(|| errors.iter().sum::<f64>() / errors.len() as f64)
+}
+
+/// The humanoid rig without refinement (issue 5's target is 30 mm; measured 29.7 mm on the six
+/// MakeHuman bodies when written) and with it (the default; measured 16.0 mm). The bounds fail
+/// if a change makes either clearly worse. Per-model numbers:
+/// `cargo test --release --test it makehuman_joint_error -- --nocapture`.
+#[test]
+fn makehuman_joint_error_stays_within_the_measured_bounds() {
+    let mut off = RigOptions::default();
+    off.refine.in_rig = false;
+    if let Some(mean) = makehuman_mean_error(&off) {
+        println!("without refinement: mean {:.1} mm", mean * 1e3);
+        assert!(mean < 0.033, "mean joint error {:.1} mm", mean * 1e3);
     }
-    let mean = errors.iter().sum::<f64>() / errors.len() as f64;
-    assert!(mean < 0.034, "mean joint error {:.1} mm", mean * 1e3);
+    if let Some(mean) = makehuman_mean_error(&RigOptions::default()) {
+        println!("with refinement: mean {:.1} mm", mean * 1e3);
+        assert!(mean < 0.019, "mean joint error {:.1} mm", mean * 1e3);
+    }
 }
 
 #[test]
