@@ -8,29 +8,8 @@ use skelfit::mesh::{load, Mesh};
 use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice};
 use std::path::Path;
 
-const HUMANOID_KEYS: &[&str] = &[
-    "pelvis",
-    "spine",
-    "chest",
-    "neck",
-    "head",
-    "clavicle_L",
-    "clavicle_R",
-    "shoulder_L",
-    "shoulder_R",
-    "elbow_L",
-    "elbow_R",
-    "wrist_L",
-    "wrist_R",
-    "hip_L",
-    "hip_R",
-    "knee_L",
-    "knee_R",
-    "ankle_L",
-    "ankle_R",
-    "toe_L",
-    "toe_R",
-];
+/// A humanoid rig has every canonical key (`CANONICAL_KEYS`: pelvis to toes, no tail).
+const HUMANOID_KEYS: &[&str] = skelfit::eval::CANONICAL_KEYS;
 
 const QUADRUPED_KEYS: &[&str] = &[
     "pelvis",
@@ -183,23 +162,8 @@ fn every_quadruped_gets_every_canonical_joint_inside_and_sided() {
 /// ankles of the MakeHuman bodies (those with `rig_game_engine.json`), printing each model's
 /// mean; `None` without reference data.
 fn makehuman_mean_error(options: &RigOptions) -> Option<f64> {
-    const SET: &[&str] = &[
-        "pelvis",
-        "neck",
-        "head",
-        "shoulder_L",
-        "shoulder_R",
-        "elbow_L",
-        "elbow_R",
-        "wrist_L",
-        "wrist_R",
-        "hip_L",
-        "hip_R",
-        "knee_L",
-        "knee_R",
-        "ankle_L",
-        "ankle_R",
-    ];
+    // The 15-joint set, which is also the set refinement places.
+    const SET: [&str; 15] = skelfit::refine::REFINED_KEYS;
     let mut errors = Vec::new();
     for dir in models("humanoid") {
         let reference = dir.join("rig_game_engine.json");
