@@ -335,22 +335,16 @@ impl Paths<'_> {
         self.distal(&self.labelling.parts[i])
     }
 
-    /// The part's DMS voxel farthest along `dir`.
+    /// The part's DMS voxel farthest along `dir` (any DMS voxel for a part without voxels).
     fn extreme(&self, part: &Part, dir: DVec3) -> usize {
-        let all: Vec<usize> = (0..self.surface.len()).collect();
-        let voxels = if part.voxels.is_empty() {
-            &all
+        let along = |p: usize| self.surface.centre(p).dot(dir);
+        let farther = |a: &usize, b: &usize| along(*a).total_cmp(&along(*b)).then(b.cmp(a));
+        let found = if part.voxels.is_empty() {
+            (0..self.surface.len()).max_by(farther)
         } else {
-            &part.voxels
+            part.voxels.iter().copied().max_by(farther)
         };
-        voxels
-            .iter()
-            .copied()
-            .max_by(|&a, &b| {
-                let (pa, pb) = (self.surface.centre(a), self.surface.centre(b));
-                pa.dot(dir).total_cmp(&pb.dot(dir)).then(b.cmp(&a))
-            })
-            .unwrap_or(self.labelling.level_graph.heart)
+        found.unwrap_or(self.labelling.level_graph.heart)
     }
 
     /// The part's DMS voxel nearest `p`.
