@@ -35,6 +35,11 @@ pub struct FitInputOptions {
     /// through the pair's attach point (the labelled sections of the two sides start at
     /// slightly different places). Default true (measured, see `reports/rig/`).
     pub symmetric_roots: bool,
+    /// A limb whose path is shorter than this many times its median inscribed radius is named
+    /// in a warning: it is a stub (a box's corner, a bump), not a limb, and the labels should
+    /// be checked. Default 4 (the reference limbs measure 10-20: a fox's leg about 10, a human
+    /// arm about 17; a cube's corners about 3.5).
+    pub min_limb_slenderness: f64,
 }
 
 impl Default for FitInputOptions {
@@ -44,6 +49,7 @@ impl Default for FitInputOptions {
             end_extension: 1.0,
             end_direction_points: 4,
             symmetric_roots: true,
+            min_limb_slenderness: 4.0,
         }
     }
 }
@@ -187,6 +193,21 @@ pub fn fit_input(
             };
             let attach = surface.centre(path[0]);
             limbs.push(paths.limb(part, kind, number, side, attach, &path));
+        }
+    }
+
+    for limb in &limbs {
+        let length: f64 = limb.path.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let mut radii = limb.radii.clone();
+        radii.sort_by(f64::total_cmp);
+        let median = radii.get(radii.len() / 2).copied().unwrap_or(0.0);
+        if median > 0.0 && length < options.min_limb_slenderness * median {
+            warnings.push(format!(
+                "the {} {} is only {:.1} times as long as it is thick: a stub rather than a limb; check the labels (skelfit label) or choose another template",
+                limb.side.as_str(),
+                limb.kind.as_str().replace('_', " "),
+                length / median
+            ));
         }
     }
 

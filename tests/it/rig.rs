@@ -295,3 +295,19 @@ fn rigs_are_identical_on_one_and_two_threads() {
     };
     assert_eq!(run(1), run(2));
 }
+
+#[test]
+fn a_box_gets_stub_warnings_instead_of_a_silent_quadruped() {
+    // The medial surface of a box reaches its eight corners, which labelling takes for limbs,
+    // head and tail; the rig says that those "limbs" are stubs.
+    let mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("a stub rather than a limb")),
+        "{:?}",
+        r.warnings
+    );
+    assert!(r.fit.skeleton.validate().is_ok());
+}
