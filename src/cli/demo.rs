@@ -13,7 +13,9 @@ use super::common::{write_file, VoxelArgs};
 use super::voxelize::{print_text, summarize};
 use anyhow::Context;
 use clap::Args;
-use skelfit::eval::{evaluate, load_skeleton, EvalOptions, JointPairing, ReferenceRig};
+use skelfit::eval::{
+    evaluate, find_bench_models, load_skeleton, EvalOptions, JointPairing, ReferenceRig,
+};
 use skelfit::export::{
     write_bvh, write_glb, write_skeleton_json, BvhOptions, GltfOptions, JsonOptions,
 };
@@ -281,22 +283,9 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
     })
 }
 
-/// The reference rig beside a mesh: `rig_game_engine.json`, else the only `rig_*.json`.
+/// The reference rig beside a mesh: `rig_game_engine.json`, else the only `rig_*.json` (the
+/// rule of `skelfit bench`, [`find_bench_models`]).
 fn reference_beside(mesh_path: &Path) -> Option<PathBuf> {
-    let dir = mesh_path.parent()?;
-    let preferred = dir.join("rig_game_engine.json");
-    if preferred.is_file() {
-        return Some(preferred);
-    }
-    let mut rigs: Vec<PathBuf> = std::fs::read_dir(dir)
-        .ok()?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("rig_") && n.ends_with(".json"))
-        })
-        .collect();
-    rigs.sort();
-    (rigs.len() == 1).then(|| rigs.remove(0))
+    let models = find_bench_models(mesh_path.parent()?, "game_engine").ok()?;
+    models.into_iter().next()?.reference
 }

@@ -755,23 +755,8 @@ fn oracle_paths_on_makehuman() {
     let Some(root) = crate::common::refdata() else {
         return;
     };
-    let set = [
-        "pelvis",
-        "neck",
-        "head",
-        "shoulder_L",
-        "shoulder_R",
-        "elbow_L",
-        "elbow_R",
-        "wrist_L",
-        "wrist_R",
-        "hip_L",
-        "hip_R",
-        "knee_L",
-        "knee_R",
-        "ankle_L",
-        "ankle_R",
-    ];
+    // The 15-joint set (the joints refinement places).
+    let set = skelfit::refine::REFINED_KEYS;
     let mut all = Vec::new();
     for model in [
         "mh_child_10y",
