@@ -40,10 +40,7 @@ pub struct RigOptions {
     /// The fit (naming preset, geometric choices of 8.1-8.2).
     pub fit: FitOptions,
     /// Slicing-based refinement of humanoid joints after the fit (seed 004; on by default,
-    /// `in_rig: false` switches it off). Default: [`RefineOptions::default`] keeping the
-    /// fit's knees (`keep`), which the fit puts on the bend of the leg path: on the six
-    /// MakeHuman bodies its knees were 25 mm from the reference on average, the refined ones
-    /// 31 mm (`skelfit bench ../shared/refdata/humanoid --method anatomical`).
+    /// `in_rig: false` switches it off). Default: [`RefineOptions::default`].
     pub refine: RefineOptions,
     /// Regions of influence and weights (8.3).
     pub skin: SkinOptions,
@@ -57,10 +54,7 @@ impl Default for RigOptions {
             template: TemplateChoice::Auto,
             input: FitInputOptions::default(),
             fit: FitOptions::default(),
-            refine: RefineOptions {
-                keep: vec!["knee_L".into(), "knee_R".into()],
-                ..RefineOptions::default()
-            },
+            refine: RefineOptions::default(),
             skin: SkinOptions::default(),
         }
     }

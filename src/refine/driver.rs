@@ -4,8 +4,10 @@ use super::carry::carry;
 use super::frame::{frame_from_head, head_slices, BodyFrame};
 use super::head::head_joint;
 use super::limb::trace_limb;
-use super::limb_joints::{ankle, arc_near, bend, wrist};
-use super::shoulder::{armpit, shoulder, upper_arm_line};
+use super::limb_joints::{
+    ankle, arc_near, bend, centre_in_depth, sole_under, transverse_point, wrist, BendRule,
+};
+use super::shoulder::{armpit, shoulder, upper_arm_line, upper_arm_radius};
 use super::spine::{spine, Spine};
 use super::torso::{hips, torso_points, TorsoBounds, TorsoPoints};
 use super::{RefineError, RefineOptions};
@@ -32,6 +34,13 @@ pub const REFINED_KEYS: [&str; 15] = [
     "ankle_L",
     "ankle_R",
 ];
+
+/// The sole under an ankle is searched within this fraction of height across the body.
+const SOLE_REACH: f64 = 0.06;
+
+/// Heights tried in turn as the bottom of the gap under the armpit, as fractions of the way
+/// from the waist to the rough shoulder (the armpit is about 0.7 of the way up).
+const ARMPIT_LEVELS: [f64; 3] = [0.0, 0.2, 0.4];
 
 /// Lateral positions tried per side when searching the armpit.
 const ARMPIT_SAMPLES: usize = 120;
@@ -196,18 +205,32 @@ pub fn refine(
         let shoulder_point = waist.and_then(|w| {
             let outer = (el - centre).dot(frame.left) * sign;
             let ss = arc_near(&profile, sh);
-            let line = upper_arm_line(&profile, ss + 0.2 * (se - ss), ss + 0.7 * (se - ss))?;
-            let pit = armpit(
-                mesh,
-                &frame,
-                frame_point(&frame, line.0, centre),
-                sign,
-                0.0,
-                outer,
-                w,
-                ARMPIT_SAMPLES,
-            )?;
-            shoulder(&frame, line, pit, sign)
+            // The middle of the upper arm; the whole of it when the trace skipped that part
+            // (a sphere that met the torso near the shoulder jumps down the arm).
+            let line = [(0.2, 0.7), (0.0, 1.0)].iter().find_map(|&(a, b)| {
+                upper_arm_line(&profile, ss + a * (se - ss), ss + b * (se - ss))
+            })?;
+            // Arms that touch the body at the waist (heavy bodies) still leave a gap higher
+            // up: the gap's reference height climbs towards the shoulder until one is found.
+            let pit = ARMPIT_LEVELS.iter().find_map(|&k| {
+                armpit(
+                    mesh,
+                    &frame,
+                    frame_point(&frame, line.0, centre),
+                    sign,
+                    0.0,
+                    outer,
+                    w + k * (frame.h(sh) - w),
+                    ARMPIT_SAMPLES,
+                )
+            })?;
+            let radius = upper_arm_radius(&profile, ss, se)?;
+            let s =
+                shoulder(&frame, line, pit, sign)? - line.1 * (options.shoulder_proximal * radius);
+            Some(match options.shoulder_depth {
+                Some(depth) => centre_in_depth(mesh, &frame, s, depth).unwrap_or(s),
+                None => s,
+            })
         });
         match shoulder_point {
             Some(s) => {
@@ -263,7 +286,10 @@ pub fn refine(
         Some((l, r)) => {
             found.insert("hip_L", l);
             found.insert("hip_R", r);
-            found.insert("pelvis", (l + r) * 0.5);
+            found.insert(
+                "pelvis",
+                (l + r) * 0.5 + frame.up * (options.pelvis_above_hips * height),
+            );
         }
         None => warnings.push("hip_L, hip_R, pelvis: no transverse slice at hip height".into()),
     }
@@ -295,6 +321,11 @@ pub fn refine(
         let from = sk + options.ankle_search_from * (sa - sk);
         match ankle(&profile, from, options.curvature_window * height, step) {
             Some(a) => {
+                let a = match options.ankle_height {
+                    Some(f) => sole_under(mesh, &frame, a, SOLE_REACH * height)
+                        .map_or(a, |sole| frame.at_height(a, sole + f * height)),
+                    None => a,
+                };
                 found.insert(if side == "L" { "ankle_L" } else { "ankle_R" }, a);
             }
             None => warnings.push(format!(
@@ -305,8 +336,15 @@ pub fn refine(
             .get(if side == "L" { "ankle_L" } else { "ankle_R" })
             .copied()
             .unwrap_or(ank);
-        match bend(&profile, hip, distal, options.leg_ratio, step, options) {
-            Some((k, _)) => {
+        let knee = match bend(&profile, hip, distal, options.leg_ratio, step, options) {
+            Some((k, BendRule::Ratio)) => options.knee_depth.map_or(Some(k), |depth| {
+                let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+                transverse_point(mesh, &frame, k, h, depth).or(Some(k))
+            }),
+            other => other.map(|(k, _)| k),
+        };
+        match knee {
+            Some(k) => {
                 found.insert(if side == "L" { "knee_L" } else { "knee_R" }, k);
             }
             None => warnings.push(format!("knee_{side}: no knee on the leg's centroid curve")),
@@ -325,7 +363,7 @@ pub fn refine(
             }
         }
         (None, Some(t)) => {
-            found.insert("neck", (t.throat + t.neck) * 0.5);
+            found.insert("neck", t.neck.lerp(t.throat, options.neck_depth));
             warnings.push("spine: the spine curve's control points are out of order; spine joints carried along".into());
         }
         (None, None) => {

@@ -1,8 +1,10 @@
 //! Ankles, wrists, knees and elbows on a limb's centroid curve (seed 004, 3.3).
 
+use super::frame::BodyFrame;
 use super::geometry::angle_at;
 use super::limb::{LimbProfile, LimbSlice};
 use super::RefineOptions;
+use crate::mesh::{slice_plane, Mesh};
 use glam::DVec3;
 
 /// Arc length on `profile` of the slice nearest `p`.
@@ -101,4 +103,77 @@ pub fn bend(
         .filter(|s| (s.arc - target).abs() <= half)
         .min_by(|a, b| a.perimeter.total_cmp(&b.perimeter))?;
     Some((best.centre, BendRule::Ratio))
+}
+
+/// Height of the sole under `ankle`: the lowest mesh vertex within `reach` of it across the
+/// body (measured perpendicular to `frame.up`), so a raised foot has its own sole.
+pub fn sole_under(mesh: &Mesh, frame: &BodyFrame, ankle: DVec3, reach: f64) -> Option<f64> {
+    mesh.positions
+        .iter()
+        .filter(|p| {
+            let d = **p - ankle;
+            (d - frame.up * d.dot(frame.up)).length() <= reach
+        })
+        .map(|p| frame.h(*p))
+        .min_by(f64::total_cmp)
+}
+
+/// The point inside the transverse cross-section at height `h` nearest `near`: the closed loop
+/// of the slice whose centroid is nearest `near`, taken at its centroid across the body
+/// (`frame.left`) and at `depth` of its back-to-front extent along `frame.forward` (0 the back,
+/// 1 the front). `None` when the plane misses the mesh there.
+pub fn transverse_point(
+    mesh: &Mesh,
+    frame: &BodyFrame,
+    near: DVec3,
+    h: f64,
+    depth: f64,
+) -> Option<DVec3> {
+    let origin = frame.at_height(near, h);
+    let loops = slice_plane(mesh, origin, frame.up);
+    let (l, c) = loops
+        .iter()
+        .filter(|l| l.closed)
+        .filter_map(|l| Some((l, l.centroid()?)))
+        .min_by(|a, b| {
+            a.1.distance_squared(origin)
+                .total_cmp(&b.1.distance_squared(origin))
+        })?;
+    let (back, front) = l
+        .points
+        .iter()
+        .map(|p| p.dot(frame.forward))
+        .fold((f64::MAX, f64::MIN), |(lo, hi), f| (lo.min(f), hi.max(f)));
+    let f = back + depth * (front - back);
+    let p = c + frame.forward * (f - c.dot(frame.forward));
+    Some(frame.at_height(p, h))
+}
+
+/// `p` moved along `frame.forward` to `depth` of the body's extent there (0 the back, 1 the
+/// front): the sagittal slice through `p` (normal `frame.left`) is cut by the line through `p`
+/// along `frame.forward`, and the interval between consecutive crossings that contains `p`
+/// (or, when `p` lies outside the surface, the nearest one) is the extent. `None` when the
+/// line misses the mesh.
+pub fn centre_in_depth(mesh: &Mesh, frame: &BodyFrame, p: DVec3, depth: f64) -> Option<DVec3> {
+    let h0 = frame.h(p);
+    let mut crossings: Vec<f64> = slice_plane(mesh, p, frame.left)
+        .iter()
+        .flat_map(|l| l.segments())
+        .filter(|(a, b)| (frame.h(*a) < h0) != (frame.h(*b) < h0))
+        .map(|(a, b)| {
+            let t = (h0 - frame.h(a)) / (frame.h(b) - frame.h(a));
+            a.lerp(b, t).dot(frame.forward)
+        })
+        .filter(|f| f.is_finite())
+        .collect();
+    crossings.sort_by(f64::total_cmp);
+    let f0 = p.dot(frame.forward);
+    let (lo, hi) = crossings
+        .chunks_exact(2)
+        .map(|c| (c[0], c[1]))
+        .min_by(|a, b| {
+            let gap = |(lo, hi): (f64, f64)| (lo - f0).max(f0 - hi).max(0.0);
+            gap(*a).total_cmp(&gap(*b))
+        })?;
+    Some(p + frame.forward * (lo + depth * (hi - lo) - f0))
 }

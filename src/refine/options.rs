@@ -59,9 +59,29 @@ pub struct RefineOptions {
     /// leg is searched (Dellas et al. 2007 via seed 004, 3.3). Default 0.49: thigh / (thigh +
     /// shank) of the MakeHuman reference rigs (measurement).
     pub leg_ratio: f64,
+    /// When set, the knee of a straight leg is placed in the transverse cross-section at
+    /// `leg_ratio` of the way from the ankle's height to the hip's, at its centroid across the
+    /// body and at this fraction of its depth from the back (0) to the front (1), instead of on
+    /// the sphere slices' centroid curve. Default `Some(0.5)`: the femoral condyles fill the
+    /// knee's depth and the MakeHuman knees lie at 0.47-0.60 of it (measurement), while the
+    /// sphere slices' centroids, tilted into the calf, were 10-20 mm behind them.
+    pub knee_depth: Option<f64>,
     /// Upper arm's share of the shoulder-wrist length for a straight arm. Default 0.54:
     /// humerus / (humerus + ulna) of adult anthropometry (~0.31 m / 0.26 m).
     pub arm_ratio: f64,
+    /// When set, the shoulder found from the armpit is moved along the body's forward to this
+    /// fraction of the body's depth through it (0 the back, 1 the front; the sagittal slice
+    /// through the joint). Default `Some(0.5)`: the humeral head sits mid-way between the front
+    /// and back of the shoulder (the MakeHuman shoulders at 0.48-0.54 of it, measurement),
+    /// while the arm line's cut was 0-14 mm behind it.
+    pub shoulder_depth: Option<f64>,
+    /// The shoulder is moved proximally along the upper arm's line from the armpit plane's cut
+    /// by this multiple of the upper arm's radius (median slice perimeter / 2π). Default 0.5:
+    /// the humeral head's centre lies above the plane through the armpit; without the move the
+    /// MakeHuman shoulders came out 3-29 mm too far down the arm, with it 1-34 mm (mean error
+    /// 14.5 mm against 18; 1.0 overshoots on slim bodies; measurement with
+    /// `skelfit bench --method anatomical`).
+    pub shoulder_proximal: f64,
     /// Half-width of the minimal-perimeter search around the ratio point, fraction of the limb
     /// length. Default 0.02: a wider window pulls the knee to the thin part below the patella,
     /// 3-4 cm under the MakeHuman knees (measurement).
@@ -69,23 +89,41 @@ pub struct RefineOptions {
     /// The ankle is searched on the part of the leg curve below this fraction of the rough
     /// knee-ankle segment. Default 0.6.
     pub ankle_search_from: f64,
+    /// When set, the ankle found on the leg's centroid curve is moved along the body's up to
+    /// this fraction of height above its sole (the lowest mesh point under it). Default
+    /// `Some(0.042)`: the ankle joint (talocrural axis) is at 0.040-0.043 of stature on all six
+    /// MakeHuman reference rigs (measurement), close to the classical anthropometric 0.039 of
+    /// Drillis and Contini (1966). The seed's curvature maximum alone was 11-24 mm off in
+    /// height on those bodies; `None` keeps it.
+    pub ankle_height: Option<f64>,
     /// The wrist is searched on the part of the arm curve beyond this fraction of the rough
     /// elbow-wrist segment. Default 0.5.
     pub wrist_search_from: f64,
     /// Curvature on the leg's centroid curve is measured over this arc-length window, fraction
     /// of height. Default 0.03 (5 cm).
     pub curvature_window: f64,
-    /// Height of the hip slice above the crotch, fraction of height. Default 0.05. The seed
+    /// Height of the hip slice above the crotch, fraction of height. Default 0.057. The seed
     /// (3.3) averages the crotch and sacroiliac heights; on the MakeHuman bodies the buttocks'
-    /// flat bulge made the sacroiliac height unstable (the hip joints lay at 0.6-1.2 of the
-    /// way from crotch to sacroiliac point), while the hips lay 0.044-0.058 of height above
-    /// the crotch on all six (measurement, reports/refine).
+    /// flat bulge made the sacroiliac height unstable (the hip joints lay at 0.7-1.1 of the way
+    /// from crotch to sacroiliac point), while they lay 0.049-0.068 of height above the crotch
+    /// (mean 0.058, measurement; bodies whose thighs touch have the lowest crotch).
     pub hip_above_crotch: f64,
+    /// The pelvis (root) joint lies this fraction of height above the midpoint of the hips.
+    /// Default 0.006: the pelvis's centre is above the hip sockets, which sit low on it; the
+    /// MakeHuman root joints are 0.003-0.010 of height above the hips' midpoint (mean 0.006,
+    /// measurement).
+    pub pelvis_above_hips: f64,
     /// The back's neck point and the throat are searched no higher than this fraction of the
     /// way from the shoulders to the head joint. Default 0.5: the back of the neck rises
     /// forward up to the skull, so the seed's local maximum (3.2) is reached only at the
     /// window's end; C7/T1 of the MakeHuman rigs lies at 0.51-0.52 of the way (measurement).
     pub neck_window: f64,
+    /// C7/T1 (the `neck` joint) lies this fraction of the way from the back of the neck to the
+    /// throat, on the segment between the two silhouette points. Default 0.3: the cervical
+    /// vertebral bodies sit in the posterior part of the neck, the larynx and trachea in front
+    /// of them; the MakeHuman C7/T1 joints lie 0.18-0.40 of the way (mean 0.29, measurement).
+    /// The seed's midpoint (0.5) put the neck 11-25 mm in front of those.
+    pub neck_depth: f64,
     /// Resampling step of the median silhouette before its cubic B-spline, fraction of height.
     /// Default 0.004.
     pub silhouette_step: f64,
@@ -130,13 +168,19 @@ impl Default for RefineOptions {
             keep: Vec::new(),
             straight_degrees: 165.0,
             leg_ratio: 0.49,
+            knee_depth: Some(0.5),
             arm_ratio: 0.54,
+            shoulder_depth: Some(0.5),
+            shoulder_proximal: 0.5,
             ratio_window: 0.02,
             ankle_search_from: 0.6,
+            ankle_height: Some(0.042),
             wrist_search_from: 0.5,
             curvature_window: 0.03,
-            hip_above_crotch: 0.05,
+            hip_above_crotch: 0.057,
+            pelvis_above_hips: 0.006,
             neck_window: 0.6,
+            neck_depth: 0.3,
             silhouette_step: 0.004,
             thoracic_depth: 0.035,
             lumbar_depth: 0.04,

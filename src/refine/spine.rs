@@ -51,7 +51,7 @@ pub fn spine(
 ) -> Option<Spine> {
     let height = frame.height();
     let median = |p: DVec3| p - frame.left * (p - centre).dot(frame.left);
-    let c7 = (torso.throat + torso.neck) * 0.5;
+    let c7 = torso.neck.lerp(torso.throat, options.neck_depth);
     let t6 = torso.back + frame.forward * (options.thoracic_depth * height);
     let l3 = torso.lumbar + frame.forward * (options.lumbar_depth * height);
     let sacrum = torso.sacroiliac + frame.forward * (options.sacral_depth * height);
