@@ -48,6 +48,10 @@ pub struct LabelArgs {
     /// inscribed radius, in [0, 1] (default 0).
     #[arg(long, value_name = "F")]
     pub radius_weight: Option<f64>,
+    /// Keep the neck (trunk between the arms' or fore legs' junction and the head's) in the
+    /// trunk in the per-vertex labels; by default it goes to the head.
+    #[arg(long)]
+    pub neck_in_trunk: bool,
     /// Regenerate the accuracy table over the reference models below this folder
     /// (`<kind>/<model>/mesh.obj` + `rig_*.json`); writes labels.md and labels.json to -o.
     #[arg(long, value_name = "REFDATA", conflicts_with_all = ["mesh", "labels", "ply", "svg"])]
@@ -75,6 +79,7 @@ impl LabelArgs {
         if let Some(w) = self.radius_weight {
             options.level.radius_weight = w;
         }
+        options.rules.neck_in_head = !self.neck_in_trunk;
         if let Some(b) = self.bins {
             options.level.bins = b;
         }
