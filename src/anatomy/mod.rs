@@ -9,8 +9,9 @@
 //! - [`label_graph`] (`rules.rs`): the trunk from the major junctions and its slope
 //!   (human-like/animal-like), legs, wings, tail, head, arms, leftovers (ch.7.3.3);
 //! - [`Overrides`] (`overrides.rs`): a JSON file of user corrections;
-//! - `build.rs`: parts with girdles and digits; `project.rs`: labels per interior voxel and
-//!   per mesh vertex; [`reference_regions`] (`reference.rs`): the body region of each mesh
+//! - `build.rs`: parts with girdles and digits; `neck.rs`: the trunk pieces between the
+//!   pectoral limbs' and the head's junctions, which the per-vertex labels give to the head;
+//!   `project.rs`: labels per interior voxel and per mesh vertex; [`reference_regions`] (`reference.rs`): the body region of each mesh
 //!   vertex from a reference rig, for the accuracy table; `output.rs`: labels.json, PLY, SVG.
 //!
 //! Determinism: the heart comes from deterministic sources and every step is sequential or
