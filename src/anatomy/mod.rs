@@ -9,8 +9,9 @@
 //! - [`label_graph`] (`rules.rs`): the trunk from the major junctions and its slope
 //!   (human-like/animal-like), legs, wings, tail, head, arms, leftovers (ch.7.3.3);
 //! - [`Overrides`] (`overrides.rs`): a JSON file of user corrections;
-//! - `build.rs`: parts with girdles and digits; `project.rs`: labels per interior voxel and
-//!   per mesh vertex; [`reference_regions`] (`reference.rs`): the body region of each mesh
+//! - `build.rs`: parts with girdles and digits; `neck.rs`: the trunk pieces between the
+//!   pectoral limbs' and the head's junctions, which the per-vertex labels give to the head;
+//!   `project.rs`: labels per interior voxel and per mesh vertex; [`reference_regions`] (`reference.rs`): the body region of each mesh
 //!   vertex from a reference rig, for the accuracy table; `output.rs`: labels.json, PLY, SVG.
 //!
 //! Determinism: the heart comes from deterministic sources and every step is sequential or
@@ -31,6 +32,7 @@ mod build;
 mod error;
 mod frame;
 mod level_graph;
+mod neck;
 mod options;
 mod output;
 mod overrides;
@@ -47,7 +49,7 @@ pub use output::{labels_json, labels_ply, labels_svg, part_colour};
 pub use overrides::{Overrides, SectionOverride};
 pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
 pub use project::NO_PART;
-pub use reference::{agreement, reference_regions, Agreement, Region};
+pub use reference::{agreement, part_region, reference_regions, Agreement, Region};
 pub use rules::{label_graph, Assignment, Draft};
 
 use crate::distance::edt;
@@ -233,8 +235,21 @@ fn label_in_frame(
             }
         })
         .collect();
+    // The interior-voxel and mesh-vertex labels give the neck to the head; the parts (and
+    // `voxel_parts`, which the anatomical fit reads) keep it in the trunk.
+    let mut region_parts = voxel_parts.clone();
+    if options.rules.neck_in_head {
+        if let Some(head) = parts.iter().position(|p| p.label == Label::Head) {
+            let neck = neck::neck_vertices(&graph, &parts, &vertex_parts);
+            for v in neck {
+                for &p in &graph.vertices[v].voxels {
+                    region_parts[p] = head as u32;
+                }
+            }
+        }
+    }
     let interior =
-        project::interior_parts(solid, surface, &voxel_parts, options.level.radius_weight);
+        project::interior_parts(solid, surface, &region_parts, options.level.radius_weight);
     let mut mesh_parts = project::mesh_parts(mesh, solid, &interior);
     for p in &mut mesh_parts {
         if *p == NO_PART {

@@ -55,10 +55,11 @@ fn one(labels: &Labelling, label_: Label, side: Option<Side>, pair: Option<LimbP
 }
 
 /// Minimum per-vertex agreement (%) asserted per humanoid: 95 as the issue asks, except where
-/// we measured less (see reports/labels/labels.md): CesiumMan's neck and shoulders are labelled
-/// trunk down to its head junction, while its rig starts the neck lower.
+/// we measured less (see reports/labels/labels.md): CesiumMan measures 94.95 % (74.0 % before
+/// the neck went to the head, `RuleOptions::neck_in_head`); what remains are a few vertices at
+/// each limb's root.
 const HUMANOIDS: &[(&str, f64)] = &[
-    ("gltf_cesium_man", 72.0),
+    ("gltf_cesium_man", 94.5),
     ("mh_child_10y", 95.0),
     ("mh_female_thin_short", 95.0),
     ("mh_female_young_average", 95.0),
@@ -99,13 +100,15 @@ fn humanoids_have_a_head_a_trunk_two_arms_and_two_legs() {
 /// Minimum per-vertex agreement (%) per quadruped, as measured (reports/labels/labels.md):
 /// below the issue's 95 % on these low-poly models, where a few vertices at each limb's root
 /// are a large share (the Quaternius rigs start the legs inside the body, e.g. the horse's
-/// hind leg bone begins at the top of the haunch).
+/// hind leg bone begins at the top of the haunch; the triceratops' `FrontLeg.*`/`BackLeg.*`
+/// bones run from the body's midline to the shoulders and hips, so its chest and belly count
+/// as legs). The triceratops measured 88.1 % before the neck went to the head (91.1 % after).
 const QUADRUPEDS: &[(&str, f64)] = &[
     ("khronos_fox", 89.0),
     ("quaternius_alpaca", 92.0),
     ("quaternius_deer", 91.0),
     ("quaternius_horse", 93.0),
-    ("quaternius_triceratops", 86.0),
+    ("quaternius_triceratops", 90.0),
     ("quaternius_wolf", 90.0),
 ];
 
@@ -145,6 +148,32 @@ fn quadrupeds_have_a_head_a_trunk_four_legs_and_a_tail() {
         println!("{name}: {percent:.1} % of vertices agree");
         assert!(percent >= minimum, "{name}: {percent:.1} % < {minimum} %");
     }
+}
+
+/// Regression: CesiumMan's hair (protrusions behind the head, merged into the trunk beyond the
+/// arms' junction) and neck were labelled trunk, 512 of its 1388 head vertices.
+#[test]
+fn cesium_man_neck_and_back_of_head_are_labelled_head() {
+    let Some(dir) = common::model("humanoid/gltf_cesium_man") else {
+        return;
+    };
+    let (mesh, labels) = labelled(&dir, &LabelOptions::default());
+    let rig = load_skeleton(&dir.join("rig_gltf.json")).unwrap();
+    let a = agreement(&labels, &reference_regions(&rig, &mesh));
+    let (_, n, k) = a.per_region.iter().find(|r| r.0 == "head").unwrap().clone();
+    println!("cesium_man head: {k}/{n}");
+    assert!(k as f64 >= 0.99 * n as f64, "head {k}/{n}");
+    // The parts (which the anatomical fit reads) keep the neck in the trunk.
+    let mut options = LabelOptions::default();
+    options.rules.neck_in_head = false;
+    let kept = label(&mesh, &options).unwrap();
+    assert_eq!(kept.voxel_parts, labels.voxel_parts);
+    let a = agreement(&kept, &reference_regions(&rig, &mesh));
+    let (_, _, k_kept) = a.per_region.iter().find(|r| r.0 == "head").unwrap().clone();
+    assert!(
+        k_kept < k,
+        "head {k_kept} without the neck rule, {k} with it"
+    );
 }
 
 /// Labels as comparable tuples.
