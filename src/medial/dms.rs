@@ -37,9 +37,11 @@ const USEFUL_THRESHOLDS: std::ops::RangeInclusive<f64> = 0.25..=1.0;
 /// 3. the labelled voxels are collected into a [`MedialSurface`].
 ///
 /// Each group's DMS voxels stay 26-connected throughout, so the DMS of a 26-connected figure
-/// is 26-connected. The time is `O(n lg* n)` in the `n` interior voxels (plus linear scans of
-/// the grid); working memory is about 24 bytes per grid voxel. The computation is sequential,
-/// so the result is the same on any number of threads.
+/// is 26-connected. The time is `O(n lg n)` in the `n` interior voxels (path halving without
+/// ranks; linear in practice) plus linear scans of the grid; working memory is an 8-byte
+/// record per grid voxel (plus the output's 4-byte lookup). The processing is sequential
+/// (only the per-voxel distance levels are computed in parallel), so the result is the same
+/// on any number of threads.
 ///
 /// Interpretation choices where ch.4 leaves room (see also [`MedialOptions`]):
 /// - "1" voxels (ch.4.4) are those with squared distance exactly 1. With
