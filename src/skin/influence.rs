@@ -266,8 +266,9 @@ pub fn influence(
 ///
 /// The spheres of neighbouring chain voxels overlap almost entirely, so instead of visiting
 /// every voxel of every sphere (`O(r^3)` per chain voxel) each sphere contributes one x-span per
-/// grid row it crosses (`O(r^2)`); a segment's spans are sorted and merged, and the union is
-/// visited once.
+/// grid row it crosses (`O(r^2)`), set as a run of bits in a bit mask over the segment's
+/// bounding box (a word or two per span); the union is then read off the mask once, in voxel
+/// order.
 fn coverage(
     solid: &Solid,
     distance: &DistanceMap,
@@ -279,15 +280,35 @@ fn coverage(
     segments
         .par_iter()
         .map(|segment| {
-            // (row = y + ny z, first x, last x), inclusive.
-            let mut spans: Vec<(u32, u32, u32)> = Vec::new();
-            for &c in &segment.voxels {
-                let radius_sq = distance.squared[c] as f64 * sphere_scale * sphere_scale;
-                if radius_sq <= 0.0 {
-                    continue;
-                }
+            // The spheres: centre and squared radius, with the bounding box of them all.
+            let spheres: Vec<([i64; 3], f64)> = segment
+                .voxels
+                .iter()
+                .map(|&c| {
+                    let radius_sq = distance.squared[c] as f64 * sphere_scale * sphere_scale;
+                    (grid.coords(c).map(|v| v as i64), radius_sq)
+                })
+                .filter(|&(_, radius_sq)| radius_sq > 0.0)
+                .collect();
+            if spheres.is_empty() {
+                return Vec::new();
+            }
+            let mut low = [i64::MAX; 3];
+            let mut high = [i64::MIN; 3];
+            for &(c, radius_sq) in &spheres {
                 let r = radius_sq.sqrt().ceil() as i64;
-                let [cx, cy, cz] = grid.coords(c).map(|v| v as i64);
+                for a in 0..3 {
+                    low[a] = low[a].min((c[a] - r).max(0));
+                    high[a] = high[a].max((c[a] + r).min(grid.dims[a] as i64 - 1));
+                }
+            }
+            let words = ((high[0] - low[0] + 1) as usize).div_ceil(64);
+            let rows_y = (high[1] - low[1] + 1) as usize;
+            let rows = rows_y * (high[2] - low[2] + 1) as usize;
+            let mut mask = vec![0u64; rows * words];
+            for &(c, radius_sq) in &spheres {
+                let r = radius_sq.sqrt().ceil() as i64;
+                let [cx, cy, cz] = c;
                 for z in (cz - r).max(0)..=(cz + r).min(nz - 1) {
                     let dz = z - cz;
                     for y in (cy - r).max(0)..=(cy + r).min(ny - 1) {
@@ -309,41 +330,47 @@ fn coverage(
                         }
                         let (x0, x1) = ((cx - w).max(0), (cx + w).min(nx - 1));
                         if x0 <= x1 {
-                            spans.push(((y + ny * z) as u32, x0 as u32, x1 as u32));
+                            let row = (y - low[1]) as usize + rows_y * (z - low[2]) as usize;
+                            let bits = &mut mask[row * words..(row + 1) * words];
+                            set_bits(bits, (x0 - low[0]) as usize, (x1 - low[0]) as usize);
                         }
                     }
                 }
             }
-            spans.sort_unstable();
             let mut covered: Vec<u32> = Vec::new();
-            let mut emit = |row: u32, x0: u32, x1: u32| {
-                let base = row as usize * grid.dims[0];
-                for x in x0..=x1 {
-                    let v = base + x as usize;
-                    if solid.inside[v] {
-                        covered.push(v as u32);
+            for (row, bits) in mask.chunks_exact(words).enumerate() {
+                let (y, z) = (low[1] as usize + row % rows_y, low[2] as usize + row / rows_y);
+                let base = grid.index([low[0] as usize, y, z]);
+                for (k, &word) in bits.iter().enumerate() {
+                    let mut word = word;
+                    while word != 0 {
+                        let v = base + 64 * k + word.trailing_zeros() as usize;
+                        word &= word - 1;
+                        if solid.inside[v] {
+                            covered.push(v as u32);
+                        }
                     }
                 }
-            };
-            let mut current: Option<(u32, u32, u32)> = None;
-            for &(row, x0, x1) in &spans {
-                current = match current {
-                    Some((r, a, b)) if r == row && x0 <= b.saturating_add(1) => {
-                        Some((r, a, b.max(x1)))
-                    }
-                    Some((r, a, b)) => {
-                        emit(r, a, b);
-                        Some((row, x0, x1))
-                    }
-                    None => Some((row, x0, x1)),
-                };
-            }
-            if let Some((r, a, b)) = current {
-                emit(r, a, b);
             }
             covered
         })
         .collect()
+}
+
+/// Sets bits `first..=last` of a bit string stored in little-endian words.
+fn set_bits(words: &mut [u64], first: usize, last: usize) {
+    let (a, b) = (first / 64, last / 64);
+    let low = u64::MAX << (first % 64);
+    let high = u64::MAX >> (63 - last % 64);
+    if a == b {
+        words[a] |= low & high;
+    } else {
+        words[a] |= low;
+        for word in &mut words[a + 1..b] {
+            *word = u64::MAX;
+        }
+        words[b] |= high;
+    }
 }
 
 /// Assigns each distinct set an index in order of first appearance.
@@ -437,6 +464,18 @@ mod tests {
             .sets
             .iter()
             .all(|s| [&[0][..], &[1], &[0, 1]].contains(&s.as_slice())));
+    }
+
+    #[test]
+    fn set_bits_sets_exactly_the_range() {
+        for (first, last) in [(0, 0), (3, 9), (0, 63), (63, 64), (5, 130), (64, 127), (70, 191)] {
+            let mut words = [0u64; 3];
+            set_bits(&mut words, first, last);
+            for bit in 0..192 {
+                let set = words[bit / 64] >> (bit % 64) & 1 == 1;
+                assert_eq!(set, (first..=last).contains(&bit), "{first}..={last} bit {bit}");
+            }
+        }
     }
 
     #[test]
