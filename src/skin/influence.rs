@@ -3,12 +3,15 @@
 use super::{SegmentVoxels, SkinError, SkinOptions};
 use crate::distance::DistanceMap;
 use crate::mesh::Mesh;
-use crate::voxel::{Grid, Solid};
+use crate::voxel::{Grid, Neighbour, Solid};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// Marker of a voxel without an influence set.
 const NONE: u32 = u32::MAX;
+
+/// Marker of a voxel queued for the propagation layer being labelled (set ids are below it).
+const QUEUED: u32 = u32::MAX - 1;
 
 /// Propagation layers smaller than this run on the calling thread: the thread-pool overhead
 /// would exceed the work (layers through hands and feet are a few hundred voxels each). Both
@@ -133,6 +136,8 @@ pub fn influence(
     }
 
     let mut target: Vec<bool> = (0..grid.len())
+        .into_par_iter()
+        .with_min_len(1 << 16)
         .map(|i| solid.inside[i] || solid.surface.get(i).copied().unwrap_or(false))
         .collect();
     for &p in &mesh.positions {
@@ -141,56 +146,32 @@ pub fn influence(
         }
     }
 
-    let neighbours = options.connectivity.neighbours();
-    let [nx, ny, nz] = grid.dims;
-    let deltas: Vec<isize> = neighbours
-        .iter()
-        .map(|n| {
-            let [ox, oy, oz] = n.offset.map(|o| o as isize);
-            ox + nx as isize * (oy + ny as isize * oz)
-        })
-        .collect();
-    // Neighbour indices of voxel `u`: linear deltas away from the grid border, checked
-    // offsets on it (padding keeps mesh voxels off the border, so the slow path is rare).
-    let neighbours_of = |u: usize, out: &mut Vec<usize>| {
-        out.clear();
-        let [x, y, z] = grid.coords(u);
-        if x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz {
-            out.extend(deltas.iter().map(|&d| u.wrapping_add_signed(d)));
-        } else {
-            out.extend(
-                neighbours
-                    .iter()
-                    .filter_map(|n| grid.offset([x, y, z], n.offset)),
-            );
-        }
-    };
+    let around = Neighbourhood::new(grid, options.connectivity.neighbours());
     // The first layer is found from the unlabelled side: the covered voxels are most of the
     // interior, the uncovered targets a thin shell, so scanning the shell is far cheaper.
     let mut next: Vec<usize> = (0..grid.len())
         .into_par_iter()
         .with_min_len(4096)
-        .filter(|&u| target[u] && set_of[u] == NONE)
-        .filter(|&u| {
-            let mut around = Vec::with_capacity(26);
-            neighbours_of(u, &mut around);
-            around.iter().any(|&w| set_of[w] != NONE)
-        })
+        .filter(|&u| target[u] && set_of[u] == NONE && around.any(u, |w| set_of[w] != NONE))
         .collect();
+    // Voxels of the layer being labelled are marked QUEUED: unlabelled for the unions, and
+    // not to be queued again.
+    for &u in &next {
+        set_of[u] = QUEUED;
+    }
     while !next.is_empty() {
         // The new set of `u`: the union of its labelled neighbours' sets, as an existing set
         // id when all of them share one (the common case), else as a new list.
-        let union = |u: usize, around: &mut Vec<usize>| -> Result<u32, Vec<u32>> {
-            neighbours_of(u, around);
+        let union = |u: usize| -> Result<u32, Vec<u32>> {
             let mut ids = [NONE; 26];
             let mut count = 0;
-            for &w in around.iter() {
+            around.for_each(u, |w| {
                 let id = set_of[w];
-                if id != NONE && !ids[..count].contains(&id) {
+                if id < QUEUED && !ids[..count].contains(&id) {
                     ids[count] = id;
                     count += 1;
                 }
-            }
+            });
             if count == 1 {
                 return Ok(ids[0]);
             }
@@ -204,12 +185,9 @@ pub fn influence(
             Err(set)
         };
         let unions: Vec<Result<u32, Vec<u32>>> = if next.len() < SEQUENTIAL_LAYER {
-            let mut around = Vec::with_capacity(26);
-            next.iter().map(|&u| union(u, &mut around)).collect()
+            next.iter().map(|&u| union(u)).collect()
         } else {
-            next.par_iter()
-                .map_init(|| Vec::with_capacity(26), |around, &u| union(u, around))
-                .collect()
+            next.par_iter().with_min_len(1024).map(|&u| union(u)).collect()
         };
         for (&u, set) in next.iter().zip(unions) {
             set_of[u] = match set {
@@ -217,41 +195,21 @@ pub fn influence(
                 Err(set) => interner.id(&set),
             };
         }
-        // The next layer: unlabelled targets next to this one.
-        let grow = |v: usize, around: &mut Vec<usize>, out: &mut Vec<usize>| {
-            neighbours_of(v, around);
-            out.extend(
-                around
-                    .iter()
-                    .copied()
-                    .filter(|&u| target[u] && set_of[u] == NONE),
-            );
-        };
-        let mut grown: Vec<usize> = if next.len() < SEQUENTIAL_LAYER {
-            let (mut around, mut out) = (Vec::with_capacity(26), Vec::new());
-            for &v in &next {
-                grow(v, &mut around, &mut out);
-            }
-            out
-        } else {
-            next.par_iter()
-                .fold(
-                    || (Vec::with_capacity(26), Vec::new()),
-                    |(mut around, mut out), &v| {
-                        grow(v, &mut around, &mut out);
-                        (around, out)
-                    },
-                )
-                .map(|(_, out)| out)
-                .flatten_iter()
-                .collect()
-        };
+        // The next layer: unlabelled targets next to this one, each queued once.
+        let mut grown = Vec::new();
+        for &v in &next {
+            around.for_each(v, |u| {
+                if target[u] && set_of[u] == NONE {
+                    set_of[u] = QUEUED;
+                    grown.push(u);
+                }
+            });
+        }
         if grown.len() < SEQUENTIAL_LAYER {
             grown.sort_unstable();
         } else {
             grown.par_sort_unstable();
         }
-        grown.dedup();
         next = grown;
     }
     Ok(Influence {
@@ -370,6 +328,59 @@ fn set_bits(words: &mut [u64], first: usize, last: usize) {
             *word = u64::MAX;
         }
         words[b] |= high;
+    }
+}
+
+/// The neighbours of a voxel in one connectivity: linear index deltas away from the grid
+/// border, checked offsets on it (padding keeps mesh voxels off the border, so the slow path
+/// is rare).
+struct Neighbourhood {
+    grid: Grid,
+    neighbours: &'static [Neighbour],
+    deltas: Vec<isize>,
+}
+
+impl Neighbourhood {
+    fn new(grid: Grid, neighbours: &'static [Neighbour]) -> Self {
+        let [nx, ny, _] = grid.dims.map(|d| d as isize);
+        let deltas = neighbours
+            .iter()
+            .map(|n| {
+                let [ox, oy, oz] = n.offset.map(|o| o as isize);
+                ox + nx * (oy + ny * oz)
+            })
+            .collect();
+        Self {
+            grid,
+            neighbours,
+            deltas,
+        }
+    }
+
+    /// Calls `f` with each neighbour index of voxel `u`, in the connectivity's order.
+    #[inline]
+    fn for_each(&self, u: usize, mut f: impl FnMut(usize)) {
+        let [x, y, z] = self.grid.coords(u);
+        let [nx, ny, nz] = self.grid.dims;
+        if x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz {
+            for &d in &self.deltas {
+                f(u.wrapping_add_signed(d));
+            }
+        } else {
+            for n in self.neighbours {
+                if let Some(w) = self.grid.offset([x, y, z], n.offset) {
+                    f(w);
+                }
+            }
+        }
+    }
+
+    /// Whether `pred` holds for some neighbour of voxel `u`.
+    #[inline]
+    fn any(&self, u: usize, mut pred: impl FnMut(usize) -> bool) -> bool {
+        let mut found = false;
+        self.for_each(u, |w| found = found || pred(w));
+        found
     }
 }
 
