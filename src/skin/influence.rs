@@ -6,12 +6,16 @@ use crate::mesh::Mesh;
 use crate::voxel::{Grid, Neighbour, Solid};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicU8, Ordering};
 
 /// Marker of a voxel without an influence set.
 const NONE: u32 = u32::MAX;
 
-/// Marker of a voxel queued for the propagation layer being labelled (set ids are below it).
-const QUEUED: u32 = u32::MAX - 1;
+/// Propagation states: not to be reached (not a target, or covered), not reached yet,
+/// queued into a layer.
+const BLOCKED: u8 = 0;
+const OPEN: u8 = 1;
+const TAKEN: u8 = 2;
 
 /// Propagation layers smaller than this run on the calling thread: the thread-pool overhead
 /// would exceed the work (layers through hands and feet are a few hundred voxels each). Both
@@ -135,14 +139,27 @@ pub fn influence(
         }
     }
 
-    let mut target: Vec<bool> = (0..grid.len())
+    // Propagation state per voxel: OPEN for targets no layer has reached yet (uncovered
+    // voxels that are interior, on the surface or hold a vertex), BLOCKED for the rest. A
+    // voxel is TAKEN when it is queued into a layer, by exactly one thread.
+    let state: Vec<AtomicU8> = (0..grid.len())
         .into_par_iter()
         .with_min_len(1 << 16)
-        .map(|i| solid.inside[i] || solid.surface.get(i).copied().unwrap_or(false))
+        .map(|i| {
+            let target = solid.inside[i] || solid.surface.get(i).copied().unwrap_or(false);
+            AtomicU8::new(if target && set_of[i] == NONE {
+                OPEN
+            } else {
+                BLOCKED
+            })
+        })
         .collect();
     for &p in &mesh.positions {
         if let Some(c) = grid.voxel_at(p) {
-            target[grid.index(c)] = true;
+            let i = grid.index(c);
+            if set_of[i] == NONE {
+                state[i].store(OPEN, Ordering::Relaxed);
+            }
         }
     }
 
@@ -152,24 +169,34 @@ pub fn influence(
     let mut next: Vec<usize> = (0..grid.len())
         .into_par_iter()
         .with_min_len(4096)
-        .filter(|&u| target[u] && set_of[u] == NONE && around.any(u, |w| set_of[w] != NONE))
+        .filter(|&u| {
+            state[u].load(Ordering::Relaxed) == OPEN && around.any(u, |w| set_of[w] != NONE)
+        })
         .collect();
-    // Voxels of the layer being labelled are marked QUEUED: unlabelled for the unions, and
-    // not to be queued again.
     for &u in &next {
-        set_of[u] = QUEUED;
+        state[u].store(TAKEN, Ordering::Relaxed);
     }
     while !next.is_empty() {
-        // The new set of `u`: the union of its labelled neighbours' sets, as an existing set
-        // id when all of them share one (the common case), else as a new list.
-        let union = |u: usize| -> Result<u32, Vec<u32>> {
+        // One pass over each voxel's neighbours: its new set, the union of its labelled
+        // neighbours' sets (as an existing set id when all of them share one, the common
+        // case, else as a new list), and the open neighbours it queues for the next layer.
+        // Voxels of this layer are still unlabelled here, so they do not see each other.
+        let step = |u: usize, grown: &mut Vec<usize>| -> Result<u32, Vec<u32>> {
             let mut ids = [NONE; 26];
             let mut count = 0;
             around.for_each(u, |w| {
                 let id = set_of[w];
-                if id < QUEUED && !ids[..count].contains(&id) {
-                    ids[count] = id;
-                    count += 1;
+                if id != NONE {
+                    if !ids[..count].contains(&id) {
+                        ids[count] = id;
+                        count += 1;
+                    }
+                } else if state[w].load(Ordering::Relaxed) == OPEN
+                    && state[w]
+                        .compare_exchange(OPEN, TAKEN, Ordering::Relaxed, Ordering::Relaxed)
+                        .is_ok()
+                {
+                    grown.push(w);
                 }
             });
             if count == 1 {
@@ -184,26 +211,28 @@ pub fn influence(
             set.dedup();
             Err(set)
         };
-        let unions: Vec<Result<u32, Vec<u32>>> = if next.len() < SEQUENTIAL_LAYER {
-            next.iter().map(|&u| union(u)).collect()
-        } else {
-            next.par_iter().with_min_len(1024).map(|&u| union(u)).collect()
+        let run = |layer: &[usize]| {
+            let mut grown = Vec::new();
+            let unions: Vec<Result<u32, Vec<u32>>> =
+                layer.iter().map(|&u| step(u, &mut grown)).collect();
+            (unions, grown)
         };
-        for (&u, set) in next.iter().zip(unions) {
-            set_of[u] = match set {
-                Ok(id) => id,
-                Err(set) => interner.id(&set),
-            };
-        }
-        // The next layer: unlabelled targets next to this one, each queued once.
+        // Which thread queues a voxel varies, the sorted layer does not.
+        let parts = if next.len() < SEQUENTIAL_LAYER {
+            vec![run(&next)]
+        } else {
+            next.par_chunks(1024).map(run).collect()
+        };
         let mut grown = Vec::new();
-        for &v in &next {
-            around.for_each(v, |u| {
-                if target[u] && set_of[u] == NONE {
-                    set_of[u] = QUEUED;
-                    grown.push(u);
-                }
-            });
+        let mut layer = next.iter();
+        for (unions, part) in parts {
+            for (set, &u) in unions.into_iter().zip(&mut layer) {
+                set_of[u] = match set {
+                    Ok(id) => id,
+                    Err(set) => interner.id(&set),
+                };
+            }
+            grown.extend(part);
         }
         if grown.len() < SEQUENTIAL_LAYER {
             grown.sort_unstable();
