@@ -199,7 +199,9 @@ mod tests {
             .unwrap();
         let at = |x| grid.index([x, 1, 1]);
         let mut voxels = UnionFind::new(vec![1; grid.len()].into_par_iter());
-        voxels.item_mut(at(1)).process(Label::True, None, at(1) as u32);
+        voxels
+            .item_mut(at(1))
+            .process(Label::True, None, at(1) as u32);
         for x in [2, 3] {
             voxels
                 .item_mut(at(x))

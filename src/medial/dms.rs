@@ -190,8 +190,7 @@ impl Extraction {
             }
             1 => {
                 // Joins the group: linked straight under its root.
-                let (root, step, direction) =
-                    self.adjacent.groups().next().expect("one group");
+                let (root, step, direction) = self.adjacent.groups().next().expect("one group");
                 let label = if sufficient {
                     Label::True
                 } else {

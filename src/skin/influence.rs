@@ -11,6 +11,10 @@ use std::sync::atomic::{AtomicU8, Ordering};
 /// Marker of a voxel without an influence set.
 const NONE: u32 = u32::MAX;
 
+/// Number of slabs of consecutive voxels in which the covered voxels' sets are built in
+/// parallel.
+const SLABS: usize = 16;
+
 /// Propagation states: not to be reached (not a target, or covered), not reached yet,
 /// queued into a layer.
 const BLOCKED: u8 = 0;
@@ -96,46 +100,60 @@ pub fn influence(
     }
 
     // Each voxel's set grows segment by segment (ascending), through memoised transitions
-    // (set, segment) -> set; then the sets are renumbered in order of first appearance in
-    // voxel order, so the result does not depend on how the work was split.
-    let mut scratch = Interner::default();
+    // (set, segment) -> set, in slabs of consecutive voxels (in parallel, each with its own
+    // numbering); then the sets are renumbered in order of first appearance in voxel order,
+    // so the result does not depend on how the work was split.
+    let slab = grid.len().div_ceil(SLABS).max(1);
     let mut set_of = vec![NONE; grid.len()];
-    let mut transitions: HashMap<(u32, u32), u32> = HashMap::new();
-    for (s, list) in lists.iter().enumerate() {
-        let s = s as u32;
-        let mut last: Option<(u32, u32)> = None;
-        for &v in list {
-            let old = set_of[v as usize];
-            let new = match last {
-                Some((from, to)) if from == old => to,
-                _ => {
-                    let to = *transitions.entry((old, s)).or_insert_with(|| {
-                        let mut set = if old == NONE {
-                            Vec::new()
-                        } else {
-                            scratch.sets[old as usize].clone()
-                        };
-                        set.push(s);
-                        scratch.id(&set)
-                    });
-                    last = Some((old, to));
-                    to
+    let scratch: Vec<Interner> = set_of
+        .par_chunks_mut(slab)
+        .enumerate()
+        .map(|(k, out)| {
+            let first = (k * slab) as u32;
+            let end = first + out.len() as u32;
+            let mut scratch = Interner::default();
+            let mut transitions: HashMap<(u32, u32), u32> = HashMap::new();
+            for (s, list) in lists.iter().enumerate() {
+                let s = s as u32;
+                let from = list.partition_point(|&v| v < first);
+                let to = list.partition_point(|&v| v < end);
+                let mut last: Option<(u32, u32)> = None;
+                for &v in &list[from..to] {
+                    let at = &mut out[(v - first) as usize];
+                    let old = *at;
+                    *at = match last {
+                        Some((from, to)) if from == old => to,
+                        _ => {
+                            let to = *transitions.entry((old, s)).or_insert_with(|| {
+                                let mut set = if old == NONE {
+                                    Vec::new()
+                                } else {
+                                    scratch.sets[old as usize].clone()
+                                };
+                                set.push(s);
+                                scratch.id(&set)
+                            });
+                            last = Some((old, to));
+                            to
+                        }
+                    };
                 }
-            };
-            set_of[v as usize] = new;
-        }
-    }
-    drop(transitions);
-    let mut interner = Interner::default();
-    let mut renumber = vec![NONE; scratch.sets.len()];
-    let mut covered = 0;
-    for id in set_of.iter_mut() {
-        if *id != NONE {
-            if renumber[*id as usize] == NONE {
-                renumber[*id as usize] = interner.id(&scratch.sets[*id as usize]);
             }
-            *id = renumber[*id as usize];
-            covered += 1;
+            scratch
+        })
+        .collect();
+    let mut interner = Interner::default();
+    let mut covered = 0;
+    for (ids, scratch) in set_of.chunks_mut(slab).zip(&scratch) {
+        let mut renumber = vec![NONE; scratch.sets.len()];
+        for id in ids.iter_mut() {
+            if *id != NONE {
+                if renumber[*id as usize] == NONE {
+                    renumber[*id as usize] = interner.id(&scratch.sets[*id as usize]);
+                }
+                *id = renumber[*id as usize];
+                covered += 1;
+            }
         }
     }
 
@@ -326,7 +344,10 @@ fn coverage(
             }
             let mut covered: Vec<u32> = Vec::new();
             for (row, bits) in mask.chunks_exact(words).enumerate() {
-                let (y, z) = (low[1] as usize + row % rows_y, low[2] as usize + row / rows_y);
+                let (y, z) = (
+                    low[1] as usize + row % rows_y,
+                    low[2] as usize + row / rows_y,
+                );
                 let base = grid.index([low[0] as usize, y, z]);
                 for (k, &word) in bits.iter().enumerate() {
                     let mut word = word;
@@ -508,12 +529,24 @@ mod tests {
 
     #[test]
     fn set_bits_sets_exactly_the_range() {
-        for (first, last) in [(0, 0), (3, 9), (0, 63), (63, 64), (5, 130), (64, 127), (70, 191)] {
+        for (first, last) in [
+            (0, 0),
+            (3, 9),
+            (0, 63),
+            (63, 64),
+            (5, 130),
+            (64, 127),
+            (70, 191),
+        ] {
             let mut words = [0u64; 3];
             set_bits(&mut words, first, last);
             for bit in 0..192 {
                 let set = words[bit / 64] >> (bit % 64) & 1 == 1;
-                assert_eq!(set, (first..=last).contains(&bit), "{first}..={last} bit {bit}");
+                assert_eq!(
+                    set,
+                    (first..=last).contains(&bit),
+                    "{first}..={last} bit {bit}"
+                );
             }
         }
     }
