@@ -1,7 +1,7 @@
 //! Steepest-ascent bridging between DMS voxels of a group (dissertation ch.4.3).
 
 use super::neighbourhood::{LinearNeighbours, NEIGHBOUR_COUNT};
-use super::record::{Label, VoxelRecord};
+use super::record::Label;
 use super::union_find::UnionFind;
 
 /// Marks "no voxel" in `u32` voxel indices.
@@ -11,11 +11,12 @@ pub(crate) const NO_VOXEL: u32 = u32::MAX;
 /// [`NEIGHBOURS_26`](crate::voxel::NEIGHBOURS_26)).
 pub(crate) const NO_DIRECTION: u8 = u8::MAX;
 
-/// Slope from a voxel of squared distance `from` to a neighbour of squared distance `to` at
-/// centre distance `length`: `(sqrt(d_n) - sqrt(d_i)) / |i - n|` (ch.4.3).
+/// Slope from a voxel at distance `from` to a neighbour at distance `to` (distances, not
+/// squared: `sqrt(d_i)`, `sqrt(d_n)`) at centre distance `length`:
+/// `(sqrt(d_n) - sqrt(d_i)) / |i - n|` (ch.4.3).
 #[inline]
-pub(crate) fn ascent(from: u32, to: u32, length: f64) -> f64 {
-    ((to as f64).sqrt() - (from as f64).sqrt()) / length
+pub(crate) fn ascent(from: f64, to: f64, length: f64) -> f64 {
+    (to - from) / length
 }
 
 /// The steepest-ascent neighbour found so far into one group.
@@ -72,6 +73,12 @@ impl AdjacentGroups {
     }
 
     /// Number of distinct adjacent groups.
+    /// Forgets all groups, for the next voxel.
+    #[inline]
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+
     pub fn len(&self) -> usize {
         self.len
     }
@@ -138,29 +145,23 @@ impl AdjacentGroups {
 ///
 /// Pointers always lead to voxels processed earlier in the same group, and every group holds
 /// a DMS voxel (its first voxel is one), so the walk ends at a DMS voxel of `start`'s group.
-pub(crate) fn bridge(
-    start: usize,
-    voxels: &mut UnionFind<VoxelRecord>,
-    neighbours: &LinearNeighbours,
-) -> usize {
+pub(crate) fn bridge(start: usize, voxels: &mut UnionFind, neighbours: &LinearNeighbours) -> usize {
     let mut voxel = start;
     let mut relabelled = 0;
     loop {
         let record = voxels.item_mut(voxel);
-        if record.label != Label::NonMedial {
-            debug_assert!(record.label.is_medial());
+        if record.label() != Label::NonMedial {
+            debug_assert!(record.label().is_medial());
             return relabelled;
         }
-        record.label = Label::Bridging;
+        record.set_label(Label::Bridging);
         relabelled += 1;
-        debug_assert_ne!(
-            record.pointer, NO_DIRECTION,
-            "non-DMS voxel {voxel} without pointer"
-        );
-        if record.pointer == NO_DIRECTION {
+        let pointer = record.pointer();
+        debug_assert!(pointer.is_some(), "non-DMS voxel {voxel} without pointer");
+        let Some(direction) = pointer else {
             return relabelled;
-        }
-        voxel = neighbours.at(voxel, record.pointer as usize);
+        };
+        voxel = neighbours.at(voxel, direction);
     }
 }
 
@@ -185,6 +186,7 @@ mod tests {
     #[test]
     fn bridge_relabels_until_a_medial_voxel() {
         use crate::voxel::{Grid, NEIGHBOURS_26};
+        use rayon::prelude::*;
         let grid = Grid {
             dims: [6, 3, 3],
             origin: glam::DVec3::ZERO,
@@ -194,16 +196,19 @@ mod tests {
         let minus_x = NEIGHBOURS_26
             .iter()
             .position(|n| n.offset == [-1, 0, 0])
-            .unwrap() as u8;
+            .unwrap();
         let at = |x| grid.index([x, 1, 1]);
-        let mut voxels = UnionFind::new((0..grid.len()).map(|_| VoxelRecord::new(1)));
-        voxels.item_mut(at(1)).label = Label::True;
+        let mut voxels = UnionFind::new(vec![1; grid.len()].into_par_iter());
+        voxels
+            .item_mut(at(1))
+            .process(Label::True, None, at(1) as u32);
         for x in [2, 3] {
-            voxels.item_mut(at(x)).label = Label::NonMedial;
-            voxels.item_mut(at(x)).pointer = minus_x;
+            voxels
+                .item_mut(at(x))
+                .process(Label::NonMedial, Some(minus_x), at(1) as u32);
         }
         assert_eq!(bridge(at(3), &mut voxels, &neighbours), 2);
-        let after: Vec<Label> = (1..5).map(|x| voxels.item(at(x)).label).collect();
+        let after: Vec<Label> = (1..5).map(|x| voxels.item(at(x)).label()).collect();
         assert_eq!(
             after,
             [
@@ -218,7 +223,7 @@ mod tests {
 
     #[test]
     fn ascent_divides_by_centre_distance() {
-        assert!((ascent(4, 9, 1.0) - 1.0).abs() < 1e-12);
-        assert!((ascent(9, 4, 2f64.sqrt()) + 1.0 / 2f64.sqrt()).abs() < 1e-12);
+        assert!((ascent(2.0, 3.0, 1.0) - 1.0).abs() < 1e-12);
+        assert!((ascent(3.0, 2.0, 2f64.sqrt()) + 1.0 / 2f64.sqrt()).abs() < 1e-12);
     }
 }

@@ -1,16 +1,17 @@
 //! Extraction of the discrete medial surface from the distance map (dissertation ch.4.3).
 
-use super::bridging::{ascent, bridge, AdjacentGroups, NO_DIRECTION};
-use super::contour::{contour_order, ContourArrays};
+use super::bridging::{ascent, bridge, AdjacentGroups};
+use super::contour::{ContourArrays, Levels};
 use super::exposure::{exposure_from_largest, voxel_exposure};
 use super::neighbourhood::{
-    checked_interior_count, LinearNeighbours, ADJACENCY_CLASSES, CLASS_LENGTHS,
+    checked_interior_count, LinearNeighbours, ADJACENCY_CLASSES, CLASS_LENGTHS, NEIGHBOUR_COUNT,
 };
 use super::record::{Label, VoxelRecord};
 use super::surface::{DmsKind, MedialSurface, NOT_MEDIAL};
 use super::union_find::UnionFind;
 use super::{MedialError, MedialOptions};
 use crate::distance::DistanceMap;
+use rayon::prelude::*;
 
 /// Typical range of useful exposure thresholds (ch.4.4: "threshold values above 1.0 or below
 /// roughly 0.25 typically do not result in useful DMA/DMSs"); outside it [`dms`] warns.
@@ -36,9 +37,11 @@ const USEFUL_THRESHOLDS: std::ops::RangeInclusive<f64> = 0.25..=1.0;
 /// 3. the labelled voxels are collected into a [`MedialSurface`].
 ///
 /// Each group's DMS voxels stay 26-connected throughout, so the DMS of a 26-connected figure
-/// is 26-connected. The time is `O(n lg* n)` in the `n` interior voxels (plus linear scans of
-/// the grid); working memory is about 24 bytes per grid voxel. The computation is sequential,
-/// so the result is the same on any number of threads.
+/// is 26-connected. The time is `O(n lg n)` in the `n` interior voxels (path halving without
+/// ranks; linear in practice) plus linear scans of the grid; working memory is an 8-byte
+/// record per grid voxel (plus the output's 4-byte lookup). The processing is sequential
+/// (only the per-voxel distance levels are computed in parallel), so the result is the same
+/// on any number of threads.
 ///
 /// Interpretation choices where ch.4 leaves room (see also [`MedialOptions`]):
 /// - "1" voxels (ch.4.4) are those with squared distance exactly 1. With
@@ -64,8 +67,9 @@ const USEFUL_THRESHOLDS: std::ops::RangeInclusive<f64> = 0.25..=1.0;
 pub fn dms(distance: &DistanceMap, options: &MedialOptions) -> Result<MedialSurface, MedialError> {
     options.validate()?;
     let interior = checked_interior_count(distance)?;
-    let order = contour_order(&distance.squared, interior);
-    let mut extraction = Extraction::new(distance, options);
+    let levels = Levels::new(&distance.squared, interior)?;
+    let order = levels.contour_order(&distance.squared);
+    let mut extraction = Extraction::new(distance, levels, options);
     for contour in
         order.chunk_by(|&a, &b| distance.squared[a as usize] == distance.squared[b as usize])
     {
@@ -78,23 +82,35 @@ pub fn dms(distance: &DistanceMap, options: &MedialOptions) -> Result<MedialSurf
 struct Extraction {
     options: MedialOptions,
     neighbours: LinearNeighbours,
-    /// Per grid voxel: the bookkeeping of ch.4.3, inside the union-find of the groups of
-    /// 26-connected processed voxels.
-    voxels: UnionFind<VoxelRecord>,
+    /// The distinct distances: records hold levels, slopes and exposures need the values.
+    levels: Levels,
+    /// Per grid voxel: the bookkeeping of ch.4.3, with the union-find of the groups of
+    /// 26-connected processed voxels threaded through it.
+    voxels: UnionFind,
     contour: ContourArrays,
+    /// The groups adjacent to the voxel being processed (reused from voxel to voxel).
+    adjacent: AdjacentGroups,
     saddles: Vec<usize>,
     /// Group founders whose exposure did not meet the threshold.
     forced_founders: usize,
 }
 
 impl Extraction {
-    fn new(distance: &DistanceMap, options: &MedialOptions) -> Self {
-        let len = distance.squared.len();
+    fn new(distance: &DistanceMap, levels: Levels, options: &MedialOptions) -> Self {
+        let voxels = UnionFind::new(
+            distance
+                .squared
+                .par_iter()
+                .with_min_len(1 << 16)
+                .map(|&s| levels.level(s)),
+        );
         Self {
             options: *options,
             neighbours: LinearNeighbours::new(&distance.grid),
-            voxels: UnionFind::new(distance.squared.iter().map(|&s| VoxelRecord::new(s))),
-            contour: ContourArrays::new(len),
+            levels,
+            voxels,
+            contour: ContourArrays::new(),
+            adjacent: AdjacentGroups::new(),
             saddles: Vec::new(),
             forced_founders: 0,
         }
@@ -102,8 +118,7 @@ impl Extraction {
 
     /// Processes one contour list through its contour arrays.
     fn process_contour(&mut self, contour: &[u32]) {
-        let voxels = &self.voxels;
-        self.contour.fill(contour, |i| voxels.item(i).processed);
+        self.contour.fill(contour, &mut self.voxels);
         while let Some(voxel) = self.contour.pop() {
             self.process_voxel(voxel as usize);
         }
@@ -114,70 +129,87 @@ impl Extraction {
     /// class (for the exposure) and notifies the unprocessed neighbours; then the three cases
     /// of ch.4.3 (no, one, several adjacent groups).
     fn process_voxel(&mut self, voxel: usize) {
-        let squared = self.voxels.item(voxel).squared;
-        let mut adjacent = AdjacentGroups::new();
+        let level = self.voxels.item(voxel).level();
+        let radius = self.levels.roots[level as usize];
+        // All 26 records are read up front: independent loads that the processor overlaps
+        // (the neighbourhood is rarely in cache). Only the levels, labels and processed
+        // counts of this copy are used, and the loop below changes none of those except the
+        // count of the neighbour it is at.
+        let around: [VoxelRecord; NEIGHBOUR_COUNT] =
+            std::array::from_fn(|k| self.voxels.item(self.neighbours.at(voxel, k)));
+        let adjacent = &mut self.adjacent;
+        adjacent.clear();
         let mut largest = [0u32; 3];
         for (class, range) in ADJACENCY_CLASSES.iter().enumerate() {
             for k in range.clone() {
-                let n = self.neighbours.at(voxel, k);
-                let record = *self.voxels.item(n);
-                largest[class] = largest[class].max(record.squared);
-                if record.squared == 0 {
+                let record = around[k];
+                let n_level = record.level();
+                largest[class] = largest[class].max(n_level);
+                if n_level == 0 {
                     continue;
                 }
-                match record.label {
+                let n = self.neighbours.at(voxel, k);
+                match record.label() {
                     Label::Unprocessed => {
-                        self.voxels.item_mut(n).processed = record.processed + 1;
-                        if record.squared == squared {
-                            self.contour.promote(n as u32, record.processed);
+                        let from = record.processed();
+                        self.voxels.item_mut(n).count_processed();
+                        if n_level == level {
+                            self.contour.promote(n as u32, from, &mut self.voxels);
                         }
                     }
                     label => {
                         let root = self.voxels.find(n);
-                        let slope = ascent(squared, record.squared, CLASS_LENGTHS[class]);
+                        let slope = ascent(
+                            radius,
+                            self.levels.roots[n_level as usize],
+                            CLASS_LENGTHS[class],
+                        );
                         adjacent.offer(root, n, k, slope, label.is_medial());
                     }
                 }
             }
         }
+        let squared = self.levels.values[level as usize];
         let ignored = self.options.ignore_distance_one && squared == 1;
-        let sufficient =
-            !ignored && exposure_from_largest(squared, largest) >= self.options.exposure_threshold;
-        match adjacent.len() {
+        let sufficient = !ignored
+            && exposure_from_largest(squared, largest.map(|l| self.levels.values[l as usize]))
+                >= self.options.exposure_threshold;
+        let medial = if sufficient {
+            Label::True
+        } else {
+            Label::Bridging
+        };
+        match self.adjacent.len() {
             0 => {
                 if !sufficient {
                     self.forced_founders += 1;
                 }
-                self.voxels.item_mut(voxel).label = if sufficient {
-                    Label::True
-                } else {
-                    Label::Bridging
-                };
+                self.voxels
+                    .item_mut(voxel)
+                    .process(medial, None, voxel as u32);
             }
             1 => {
-                let (root, step, direction) = adjacent.groups().next().expect("one group");
-                let record = self.voxels.item_mut(voxel);
-                record.pointer = direction;
-                record.label = if sufficient {
+                // Joins the group: linked straight under its root.
+                let (root, step, direction) = self.adjacent.groups().next().expect("one group");
+                let label = if sufficient {
                     Label::True
                 } else {
                     Label::NonMedial
                 };
-                self.voxels.union(voxel, root);
+                self.voxels
+                    .item_mut(voxel)
+                    .process(label, Some(direction as usize), root as u32);
                 if sufficient {
                     bridge(step, &mut self.voxels, &self.neighbours);
                 }
             }
             _ => {
-                let record = self.voxels.item_mut(voxel);
-                record.pointer = adjacent.steepest().unwrap_or(NO_DIRECTION);
-                record.label = if sufficient {
-                    Label::True
-                } else {
-                    Label::Bridging
-                };
+                let pointer = self.adjacent.steepest().map(|d| d as usize);
+                self.voxels
+                    .item_mut(voxel)
+                    .process(medial, pointer, voxel as u32);
                 self.saddles.push(voxel);
-                for (root, step, _) in adjacent.groups() {
+                for (root, step, _) in self.adjacent.groups() {
                     bridge(step, &mut self.voxels, &self.neighbours);
                     self.voxels.union(voxel, root);
                 }
@@ -191,8 +223,8 @@ impl Extraction {
         let mut voxels = Vec::new();
         let mut kinds = Vec::new();
         let mut slots = vec![NOT_MEDIAL; len];
-        for (index, record) in self.voxels.items().enumerate() {
-            let kind = match record.label {
+        for (index, record) in self.voxels.items().iter().enumerate() {
+            let kind = match record.label() {
                 Label::True => DmsKind::True,
                 Label::Bridging => DmsKind::Bridging,
                 _ => continue,

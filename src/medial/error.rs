@@ -27,6 +27,15 @@ pub enum MedialError {
         /// The largest supported grid.
         max: usize,
     },
+    /// The map has more distinct positive values than the stage's 25-bit distance levels
+    /// hold (an exact distance map never has: its values are below `2^20`).
+    #[error("the distance map has {distinct} distinct positive values, more than the medial stage supports ({max}): use an exact squared distance map (distance::edt)")]
+    TooManyDistances {
+        /// Number of distinct positive values.
+        distinct: usize,
+        /// The largest supported number.
+        max: usize,
+    },
     /// No voxel has a positive distance: there is no figure.
     #[error("the distance map has no interior voxel: voxelize a closed mesh, or use a smaller voxel size")]
     EmptyFigure,

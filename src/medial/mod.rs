@@ -8,12 +8,15 @@
 //!   (ch.4.2); voxels at or above [`MedialOptions::exposure_threshold`] are *true* DMS voxels.
 //! - contour lists in decreasing distance order, each processed through contour arrays by
 //!   number of processed neighbours (ch.4.3, `contour.rs`);
-//! - union-find groups of processed voxels (`union_find.rs`);
+//! - union-find groups of processed voxels, threaded through the 8-byte per-voxel records
+//!   (`union_find.rs`, `record.rs`);
 //! - steepest-ascent bridging paths and saddle points that keep each group's DMS connected
 //!   (`bridging.rs`), giving *bridging* DMS voxels;
 //! - the special handling of the "1" voxels (ch.4.4, [`MedialOptions::ignore_distance_one`]).
 //!
-//! The whole stage runs in `O(n lg* n)` for `n` interior voxels (ch.4.5).
+//! ch.4.5 bounds the stage by `O(n lg* n)` for `n` interior voxels with union by rank; the
+//! union-find here has no ranks (they would not fit the 8-byte voxel record), which is
+//! `O(n lg n)` in the worst case and linear in practice.
 //!
 //! ```
 //! use skelfit::distance::DistanceMap;

@@ -1,99 +1,90 @@
 //! Disjoint sets of voxels: the groups of processed voxels (dissertation ch.4.3, ch.4.5).
 
-/// One element: its parent link, its rank and the caller's per-element record, stored side by
-/// side so that one cache line serves both the group lookup and the record.
-#[derive(Debug, Clone, Copy)]
-struct Node<T> {
-    parent: u32,
-    rank: u8,
-    item: T,
-}
+use super::record::VoxelRecord;
+use rayon::prelude::*;
 
-/// Union-find over voxel indices with path halving and union by rank, so that a sequence of
-/// `m` operations on `n` voxels costs `O(m lg* n)` (ch.4.5, after Cormen, Leiserson and
-/// Rivest). Each element carries a record `T` (the per-voxel bookkeeping of ch.4.3).
+/// The records of all grid voxels, with the union-find of the groups of processed voxels
+/// threaded through their `link` fields: a processed voxel's link is its parent, a root links
+/// to itself. Unprocessed voxels belong to no group (their link is their contour array
+/// sub-index).
+///
+/// Finds use path halving. There is no rank (the record has no room for one): a voxel joining
+/// a group is linked directly under the group's root, and merged groups are linked root under
+/// root, so trees stay shallow in practice and path halving keeps them so. The grouping, not
+/// the choice of representatives, is what the extraction uses, so its result does not depend
+/// on this.
 #[derive(Debug, Clone)]
-pub(crate) struct UnionFind<T> {
-    nodes: Vec<Node<T>>,
+pub(crate) struct UnionFind {
+    records: Vec<VoxelRecord>,
 }
 
-impl<T: Copy> UnionFind<T> {
-    /// One singleton set per record, indexed like `items`.
-    pub fn new(items: impl ExactSizeIterator<Item = T>) -> Self {
-        debug_assert!(items.len() <= u32::MAX as usize);
+impl UnionFind {
+    /// One unprocessed record per grid voxel, at distance level `levels[i]` (parallel).
+    pub fn new(levels: impl IndexedParallelIterator<Item = u32>) -> Self {
         Self {
-            nodes: items
-                .enumerate()
-                .map(|(i, item)| Node {
-                    parent: i as u32,
-                    rank: 0,
-                    item,
-                })
-                .collect(),
+            records: levels.map(VoxelRecord::new).collect(),
         }
     }
 
-    /// The record of element `index`.
+    /// The record of voxel `index`.
     #[inline]
-    pub fn item(&self, index: usize) -> &T {
-        &self.nodes[index].item
+    pub fn item(&self, index: usize) -> VoxelRecord {
+        self.records[index]
     }
 
-    /// The record of element `index`, mutably.
+    /// The record of voxel `index`, to change.
     #[inline]
-    pub fn item_mut(&mut self, index: usize) -> &mut T {
-        &mut self.nodes[index].item
+    pub fn item_mut(&mut self, index: usize) -> &mut VoxelRecord {
+        &mut self.records[index]
     }
 
-    /// Every record in index order.
-    pub fn items(&self) -> impl Iterator<Item = &T> {
-        self.nodes.iter().map(|n| &n.item)
+    /// All records, in voxel index order.
+    pub fn items(&self) -> &[VoxelRecord] {
+        &self.records
     }
 
-    /// Bytes per element (link, rank and record).
-    #[cfg(test)]
-    pub fn node_size(&self) -> usize {
-        std::mem::size_of::<Node<T>>()
-    }
-
-    /// The representative of `index`'s set.
+    /// The representative of the group of the processed voxel `index`.
     #[inline]
     pub fn find(&mut self, index: usize) -> usize {
         let mut i = index;
         loop {
-            let p = self.nodes[i].parent as usize;
+            let p = self.records[i].link as usize;
             if p == i {
                 return i;
             }
-            let grandparent = self.nodes[p].parent;
-            self.nodes[i].parent = grandparent;
+            let grandparent = self.records[p].link;
+            self.records[i].link = grandparent;
             i = grandparent as usize;
         }
     }
 
-    /// Merges the sets of `a` and `b`; returns the new representative.
+    /// Merges the groups of the processed voxels `a` and `b`: `a`'s root is linked under
+    /// `b`'s. Returns the representative.
     pub fn union(&mut self, a: usize, b: usize) -> usize {
         let (ra, rb) = (self.find(a), self.find(b));
-        if ra == rb {
-            return ra;
+        if ra != rb {
+            self.records[ra].link = rb as u32;
         }
-        let (rank_a, rank_b) = (self.nodes[ra].rank, self.nodes[rb].rank);
-        let (child, root) = if rank_a < rank_b { (ra, rb) } else { (rb, ra) };
-        self.nodes[child].parent = root as u32;
-        if rank_a == rank_b {
-            self.nodes[root].rank += 1;
-        }
-        root
+        rb
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::medial::record::Label;
+
+    fn processed_singletons(n: usize) -> UnionFind {
+        let mut sets = UnionFind::new((0..n as u32).into_par_iter());
+        for i in 0..n {
+            sets.item_mut(i).process(Label::NonMedial, None, i as u32);
+        }
+        sets
+    }
 
     #[test]
     fn unions_are_transitive_and_disjoint_sets_stay_apart() {
-        let mut sets = UnionFind::new(0..10);
+        let mut sets = processed_singletons(10);
         sets.union(0, 1);
         sets.union(2, 3);
         sets.union(1, 3);
@@ -102,15 +93,15 @@ mod tests {
         assert_eq!(sets.find(7), sets.find(8));
         assert_ne!(sets.find(0), sets.find(7));
         assert_eq!(sets.find(5), 5);
-        assert_eq!(*sets.item(5), 5);
-        *sets.item_mut(5) = 50;
-        assert_eq!(sets.items().copied().nth(5), Some(50));
+        assert_eq!(sets.item(5).level(), 5);
+        sets.item_mut(5).set_label(Label::True);
+        assert_eq!(sets.items()[5].label(), Label::True);
     }
 
     #[test]
     fn a_long_chain_has_one_representative() {
         let n = 10_000;
-        let mut sets = UnionFind::new(std::iter::repeat_n((), n));
+        let mut sets = processed_singletons(n);
         for i in 1..n {
             sets.union(i - 1, i);
         }

@@ -107,7 +107,7 @@ pub fn path_tree(surface: &MedialSurface, options: &PathOptions) -> Result<PathT
     let mut node_of = vec![NOT_IN_TREE; n];
     let mut positions = Vec::new();
     let mut parents: Vec<Option<usize>> = Vec::new();
-    let mut coverage = Coverage::new(n);
+    let mut coverage = Coverage::new(surface);
     let mut to_covered = Search::new(n);
     let mut to_tree = Search::new(n);
     let weight = |q: usize, _step: f64| (surface.squared[q] as f64).powi(3).recip();

@@ -3,12 +3,23 @@
 use super::{SegmentVoxels, SkinError, SkinOptions};
 use crate::distance::DistanceMap;
 use crate::mesh::Mesh;
-use crate::voxel::{Grid, Solid};
+use crate::voxel::{Grid, Neighbour, Solid};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicU8, Ordering};
 
 /// Marker of a voxel without an influence set.
 const NONE: u32 = u32::MAX;
+
+/// Number of slabs of consecutive voxels in which the covered voxels' sets are built in
+/// parallel.
+const SLABS: usize = 16;
+
+/// Propagation states: not to be reached (not a target, or covered), not reached yet,
+/// queued into a layer.
+const BLOCKED: u8 = 0;
+const OPEN: u8 = 1;
+const TAKEN: u8 = 2;
 
 /// Propagation layers smaller than this run on the calling thread: the thread-pool overhead
 /// would exceed the work (layers through hands and feet are a few hundred voxels each). Both
@@ -89,108 +100,123 @@ pub fn influence(
     }
 
     // Each voxel's set grows segment by segment (ascending), through memoised transitions
-    // (set, segment) -> set; then the sets are renumbered in order of first appearance in
-    // voxel order, so the result does not depend on how the work was split.
-    let mut scratch = Interner::default();
+    // (set, segment) -> set, in slabs of consecutive voxels (in parallel, each with its own
+    // numbering); then the sets are renumbered in order of first appearance in voxel order,
+    // so the result does not depend on how the work was split.
+    let slab = grid.len().div_ceil(SLABS).max(1);
     let mut set_of = vec![NONE; grid.len()];
-    let mut transitions: HashMap<(u32, u32), u32> = HashMap::new();
-    for (s, list) in lists.iter().enumerate() {
-        let s = s as u32;
-        let mut last: Option<(u32, u32)> = None;
-        for &v in list {
-            let old = set_of[v as usize];
-            let new = match last {
-                Some((from, to)) if from == old => to,
-                _ => {
-                    let to = *transitions.entry((old, s)).or_insert_with(|| {
-                        let mut set = if old == NONE {
-                            Vec::new()
-                        } else {
-                            scratch.sets[old as usize].clone()
-                        };
-                        set.push(s);
-                        scratch.id(&set)
-                    });
-                    last = Some((old, to));
-                    to
+    let scratch: Vec<Interner> = set_of
+        .par_chunks_mut(slab)
+        .enumerate()
+        .map(|(k, out)| {
+            let first = (k * slab) as u32;
+            let end = first + out.len() as u32;
+            let mut scratch = Interner::default();
+            let mut transitions: HashMap<(u32, u32), u32> = HashMap::new();
+            for (s, list) in lists.iter().enumerate() {
+                let s = s as u32;
+                let from = list.partition_point(|&v| v < first);
+                let to = list.partition_point(|&v| v < end);
+                let mut last: Option<(u32, u32)> = None;
+                for &v in &list[from..to] {
+                    let at = &mut out[(v - first) as usize];
+                    let old = *at;
+                    *at = match last {
+                        Some((from, to)) if from == old => to,
+                        _ => {
+                            let to = *transitions.entry((old, s)).or_insert_with(|| {
+                                let mut set = if old == NONE {
+                                    Vec::new()
+                                } else {
+                                    scratch.sets[old as usize].clone()
+                                };
+                                set.push(s);
+                                scratch.id(&set)
+                            });
+                            last = Some((old, to));
+                            to
+                        }
+                    };
                 }
-            };
-            set_of[v as usize] = new;
-        }
-    }
-    drop(transitions);
-    let mut interner = Interner::default();
-    let mut renumber = vec![NONE; scratch.sets.len()];
-    let mut covered = 0;
-    for id in set_of.iter_mut() {
-        if *id != NONE {
-            if renumber[*id as usize] == NONE {
-                renumber[*id as usize] = interner.id(&scratch.sets[*id as usize]);
             }
-            *id = renumber[*id as usize];
-            covered += 1;
+            scratch
+        })
+        .collect();
+    let mut interner = Interner::default();
+    let mut covered = 0;
+    for (ids, scratch) in set_of.chunks_mut(slab).zip(&scratch) {
+        let mut renumber = vec![NONE; scratch.sets.len()];
+        for id in ids.iter_mut() {
+            if *id != NONE {
+                if renumber[*id as usize] == NONE {
+                    renumber[*id as usize] = interner.id(&scratch.sets[*id as usize]);
+                }
+                *id = renumber[*id as usize];
+                covered += 1;
+            }
         }
     }
 
-    let mut target: Vec<bool> = (0..grid.len())
-        .map(|i| solid.inside[i] || solid.surface.get(i).copied().unwrap_or(false))
+    // Propagation state per voxel: OPEN for targets no layer has reached yet (uncovered
+    // voxels that are interior, on the surface or hold a vertex), BLOCKED for the rest. A
+    // voxel is TAKEN when it is queued into a layer, by exactly one thread.
+    let state: Vec<AtomicU8> = (0..grid.len())
+        .into_par_iter()
+        .with_min_len(1 << 16)
+        .map(|i| {
+            let target = solid.inside[i] || solid.surface.get(i).copied().unwrap_or(false);
+            AtomicU8::new(if target && set_of[i] == NONE {
+                OPEN
+            } else {
+                BLOCKED
+            })
+        })
         .collect();
     for &p in &mesh.positions {
         if let Some(c) = grid.voxel_at(p) {
-            target[grid.index(c)] = true;
+            let i = grid.index(c);
+            if set_of[i] == NONE {
+                state[i].store(OPEN, Ordering::Relaxed);
+            }
         }
     }
 
-    let neighbours = options.connectivity.neighbours();
-    let [nx, ny, nz] = grid.dims;
-    let deltas: Vec<isize> = neighbours
-        .iter()
-        .map(|n| {
-            let [ox, oy, oz] = n.offset.map(|o| o as isize);
-            ox + nx as isize * (oy + ny as isize * oz)
-        })
-        .collect();
-    // Neighbour indices of voxel `u`: linear deltas away from the grid border, checked
-    // offsets on it (padding keeps mesh voxels off the border, so the slow path is rare).
-    let neighbours_of = |u: usize, out: &mut Vec<usize>| {
-        out.clear();
-        let [x, y, z] = grid.coords(u);
-        if x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz {
-            out.extend(deltas.iter().map(|&d| u.wrapping_add_signed(d)));
-        } else {
-            out.extend(
-                neighbours
-                    .iter()
-                    .filter_map(|n| grid.offset([x, y, z], n.offset)),
-            );
-        }
-    };
+    let around = Neighbourhood::new(grid, options.connectivity.neighbours());
     // The first layer is found from the unlabelled side: the covered voxels are most of the
     // interior, the uncovered targets a thin shell, so scanning the shell is far cheaper.
     let mut next: Vec<usize> = (0..grid.len())
         .into_par_iter()
         .with_min_len(4096)
-        .filter(|&u| target[u] && set_of[u] == NONE)
         .filter(|&u| {
-            let mut around = Vec::with_capacity(26);
-            neighbours_of(u, &mut around);
-            around.iter().any(|&w| set_of[w] != NONE)
+            state[u].load(Ordering::Relaxed) == OPEN && around.any(u, |w| set_of[w] != NONE)
         })
         .collect();
+    for &u in &next {
+        state[u].store(TAKEN, Ordering::Relaxed);
+    }
     while !next.is_empty() {
-        // The new set of `u`: the union of its labelled neighbours' sets, as an existing set
-        // id when all of them share one (the common case), else as a new list.
-        let union = |u: usize, around: &mut Vec<usize>| -> Result<u32, Vec<u32>> {
-            neighbours_of(u, around);
+        // One pass over each voxel's neighbours: its new set, the union of its labelled
+        // neighbours' sets (as an existing set id when all of them share one, the common
+        // case, else as a new list), and the open neighbours it queues for the next layer.
+        // Voxels of this layer are still unlabelled here, so they do not see each other.
+        let step = |u: usize, grown: &mut Vec<usize>| -> Result<u32, Vec<u32>> {
             let mut ids = [NONE; 26];
             let mut count = 0;
-            for &w in around.iter() {
+            around.for_each(u, |w| {
                 let id = set_of[w];
-                if id != NONE && !ids[..count].contains(&id) {
-                    ids[count] = id;
-                    count += 1;
+                if id != NONE {
+                    if !ids[..count].contains(&id) {
+                        ids[count] = id;
+                        count += 1;
+                    }
+                } else if state[w].load(Ordering::Relaxed) == OPEN
+                    && state[w]
+                        .compare_exchange(OPEN, TAKEN, Ordering::Relaxed, Ordering::Relaxed)
+                        .is_ok()
+                {
+                    grown.push(w);
                 }
-            }
+            });
             if count == 1 {
                 return Ok(ids[0]);
             }
@@ -203,55 +229,34 @@ pub fn influence(
             set.dedup();
             Err(set)
         };
-        let unions: Vec<Result<u32, Vec<u32>>> = if next.len() < SEQUENTIAL_LAYER {
-            let mut around = Vec::with_capacity(26);
-            next.iter().map(|&u| union(u, &mut around)).collect()
+        let run = |layer: &[usize]| {
+            let mut grown = Vec::new();
+            let unions: Vec<Result<u32, Vec<u32>>> =
+                layer.iter().map(|&u| step(u, &mut grown)).collect();
+            (unions, grown)
+        };
+        // Which thread queues a voxel varies, the sorted layer does not.
+        let parts = if next.len() < SEQUENTIAL_LAYER {
+            vec![run(&next)]
         } else {
-            next.par_iter()
-                .map_init(|| Vec::with_capacity(26), |around, &u| union(u, around))
-                .collect()
+            next.par_chunks(1024).map(run).collect()
         };
-        for (&u, set) in next.iter().zip(unions) {
-            set_of[u] = match set {
-                Ok(id) => id,
-                Err(set) => interner.id(&set),
-            };
-        }
-        // The next layer: unlabelled targets next to this one.
-        let grow = |v: usize, around: &mut Vec<usize>, out: &mut Vec<usize>| {
-            neighbours_of(v, around);
-            out.extend(
-                around
-                    .iter()
-                    .copied()
-                    .filter(|&u| target[u] && set_of[u] == NONE),
-            );
-        };
-        let mut grown: Vec<usize> = if next.len() < SEQUENTIAL_LAYER {
-            let (mut around, mut out) = (Vec::with_capacity(26), Vec::new());
-            for &v in &next {
-                grow(v, &mut around, &mut out);
+        let mut grown = Vec::new();
+        let mut layer = next.iter();
+        for (unions, part) in parts {
+            for (set, &u) in unions.into_iter().zip(&mut layer) {
+                set_of[u] = match set {
+                    Ok(id) => id,
+                    Err(set) => interner.id(&set),
+                };
             }
-            out
-        } else {
-            next.par_iter()
-                .fold(
-                    || (Vec::with_capacity(26), Vec::new()),
-                    |(mut around, mut out), &v| {
-                        grow(v, &mut around, &mut out);
-                        (around, out)
-                    },
-                )
-                .map(|(_, out)| out)
-                .flatten_iter()
-                .collect()
-        };
+            grown.extend(part);
+        }
         if grown.len() < SEQUENTIAL_LAYER {
             grown.sort_unstable();
         } else {
             grown.par_sort_unstable();
         }
-        grown.dedup();
         next = grown;
     }
     Ok(Influence {
@@ -266,8 +271,9 @@ pub fn influence(
 ///
 /// The spheres of neighbouring chain voxels overlap almost entirely, so instead of visiting
 /// every voxel of every sphere (`O(r^3)` per chain voxel) each sphere contributes one x-span per
-/// grid row it crosses (`O(r^2)`); a segment's spans are sorted and merged, and the union is
-/// visited once.
+/// grid row it crosses (`O(r^2)`), set as a run of bits in a bit mask over the segment's
+/// bounding box (a word or two per span); the union is then read off the mask once, in voxel
+/// order.
 fn coverage(
     solid: &Solid,
     distance: &DistanceMap,
@@ -279,15 +285,35 @@ fn coverage(
     segments
         .par_iter()
         .map(|segment| {
-            // (row = y + ny z, first x, last x), inclusive.
-            let mut spans: Vec<(u32, u32, u32)> = Vec::new();
-            for &c in &segment.voxels {
-                let radius_sq = distance.squared[c] as f64 * sphere_scale * sphere_scale;
-                if radius_sq <= 0.0 {
-                    continue;
-                }
+            // The spheres: centre and squared radius, with the bounding box of them all.
+            let spheres: Vec<([i64; 3], f64)> = segment
+                .voxels
+                .iter()
+                .map(|&c| {
+                    let radius_sq = distance.squared[c] as f64 * sphere_scale * sphere_scale;
+                    (grid.coords(c).map(|v| v as i64), radius_sq)
+                })
+                .filter(|&(_, radius_sq)| radius_sq > 0.0)
+                .collect();
+            if spheres.is_empty() {
+                return Vec::new();
+            }
+            let mut low = [i64::MAX; 3];
+            let mut high = [i64::MIN; 3];
+            for &(c, radius_sq) in &spheres {
                 let r = radius_sq.sqrt().ceil() as i64;
-                let [cx, cy, cz] = grid.coords(c).map(|v| v as i64);
+                for a in 0..3 {
+                    low[a] = low[a].min((c[a] - r).max(0));
+                    high[a] = high[a].max((c[a] + r).min(grid.dims[a] as i64 - 1));
+                }
+            }
+            let words = ((high[0] - low[0] + 1) as usize).div_ceil(64);
+            let rows_y = (high[1] - low[1] + 1) as usize;
+            let rows = rows_y * (high[2] - low[2] + 1) as usize;
+            let mut mask = vec![0u64; rows * words];
+            for &(c, radius_sq) in &spheres {
+                let r = radius_sq.sqrt().ceil() as i64;
+                let [cx, cy, cz] = c;
                 for z in (cz - r).max(0)..=(cz + r).min(nz - 1) {
                     let dz = z - cz;
                     for y in (cy - r).max(0)..=(cy + r).min(ny - 1) {
@@ -309,41 +335,103 @@ fn coverage(
                         }
                         let (x0, x1) = ((cx - w).max(0), (cx + w).min(nx - 1));
                         if x0 <= x1 {
-                            spans.push(((y + ny * z) as u32, x0 as u32, x1 as u32));
+                            let row = (y - low[1]) as usize + rows_y * (z - low[2]) as usize;
+                            let bits = &mut mask[row * words..(row + 1) * words];
+                            set_bits(bits, (x0 - low[0]) as usize, (x1 - low[0]) as usize);
                         }
                     }
                 }
             }
-            spans.sort_unstable();
             let mut covered: Vec<u32> = Vec::new();
-            let mut emit = |row: u32, x0: u32, x1: u32| {
-                let base = row as usize * grid.dims[0];
-                for x in x0..=x1 {
-                    let v = base + x as usize;
-                    if solid.inside[v] {
-                        covered.push(v as u32);
+            for (row, bits) in mask.chunks_exact(words).enumerate() {
+                let (y, z) = (
+                    low[1] as usize + row % rows_y,
+                    low[2] as usize + row / rows_y,
+                );
+                let base = grid.index([low[0] as usize, y, z]);
+                for (k, &word) in bits.iter().enumerate() {
+                    let mut word = word;
+                    while word != 0 {
+                        let v = base + 64 * k + word.trailing_zeros() as usize;
+                        word &= word - 1;
+                        if solid.inside[v] {
+                            covered.push(v as u32);
+                        }
                     }
                 }
-            };
-            let mut current: Option<(u32, u32, u32)> = None;
-            for &(row, x0, x1) in &spans {
-                current = match current {
-                    Some((r, a, b)) if r == row && x0 <= b.saturating_add(1) => {
-                        Some((r, a, b.max(x1)))
-                    }
-                    Some((r, a, b)) => {
-                        emit(r, a, b);
-                        Some((row, x0, x1))
-                    }
-                    None => Some((row, x0, x1)),
-                };
-            }
-            if let Some((r, a, b)) = current {
-                emit(r, a, b);
             }
             covered
         })
         .collect()
+}
+
+/// Sets bits `first..=last` of a bit string stored in little-endian words.
+fn set_bits(words: &mut [u64], first: usize, last: usize) {
+    let (a, b) = (first / 64, last / 64);
+    let low = u64::MAX << (first % 64);
+    let high = u64::MAX >> (63 - last % 64);
+    if a == b {
+        words[a] |= low & high;
+    } else {
+        words[a] |= low;
+        for word in &mut words[a + 1..b] {
+            *word = u64::MAX;
+        }
+        words[b] |= high;
+    }
+}
+
+/// The neighbours of a voxel in one connectivity: linear index deltas away from the grid
+/// border, checked offsets on it (padding keeps mesh voxels off the border, so the slow path
+/// is rare).
+struct Neighbourhood {
+    grid: Grid,
+    neighbours: &'static [Neighbour],
+    deltas: Vec<isize>,
+}
+
+impl Neighbourhood {
+    fn new(grid: Grid, neighbours: &'static [Neighbour]) -> Self {
+        let [nx, ny, _] = grid.dims.map(|d| d as isize);
+        let deltas = neighbours
+            .iter()
+            .map(|n| {
+                let [ox, oy, oz] = n.offset.map(|o| o as isize);
+                ox + nx * (oy + ny * oz)
+            })
+            .collect();
+        Self {
+            grid,
+            neighbours,
+            deltas,
+        }
+    }
+
+    /// Calls `f` with each neighbour index of voxel `u`, in the connectivity's order.
+    #[inline]
+    fn for_each(&self, u: usize, mut f: impl FnMut(usize)) {
+        let [x, y, z] = self.grid.coords(u);
+        let [nx, ny, nz] = self.grid.dims;
+        if x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz {
+            for &d in &self.deltas {
+                f(u.wrapping_add_signed(d));
+            }
+        } else {
+            for n in self.neighbours {
+                if let Some(w) = self.grid.offset([x, y, z], n.offset) {
+                    f(w);
+                }
+            }
+        }
+    }
+
+    /// Whether `pred` holds for some neighbour of voxel `u`.
+    #[inline]
+    fn any(&self, u: usize, mut pred: impl FnMut(usize) -> bool) -> bool {
+        let mut found = false;
+        self.for_each(u, |w| found = found || pred(w));
+        found
+    }
 }
 
 /// Assigns each distinct set an index in order of first appearance.
@@ -437,6 +525,30 @@ mod tests {
             .sets
             .iter()
             .all(|s| [&[0][..], &[1], &[0, 1]].contains(&s.as_slice())));
+    }
+
+    #[test]
+    fn set_bits_sets_exactly_the_range() {
+        for (first, last) in [
+            (0, 0),
+            (3, 9),
+            (0, 63),
+            (63, 64),
+            (5, 130),
+            (64, 127),
+            (70, 191),
+        ] {
+            let mut words = [0u64; 3];
+            set_bits(&mut words, first, last);
+            for bit in 0..192 {
+                let set = words[bit / 64] >> (bit % 64) & 1 == 1;
+                assert_eq!(
+                    set,
+                    (first..=last).contains(&bit),
+                    "{first}..={last} bit {bit}"
+                );
+            }
+        }
     }
 
     #[test]
