@@ -1,7 +1,7 @@
 //! Ankles, wrists, knees and elbows on a limb's centroid curve (seed 004, 3.3).
 
 use super::frame::BodyFrame;
-use super::geometry::angle_at;
+use super::geometry::{angle_at, nearest_loop};
 use super::limb::{LimbProfile, LimbSlice};
 use super::RefineOptions;
 use crate::mesh::{slice_plane, Mesh};
@@ -131,14 +131,8 @@ pub fn transverse_point(
 ) -> Option<DVec3> {
     let origin = frame.at_height(near, h);
     let loops = slice_plane(mesh, origin, frame.up);
-    let (l, c) = loops
-        .iter()
-        .filter(|l| l.closed)
-        .filter_map(|l| Some((l, l.centroid()?)))
-        .min_by(|a, b| {
-            a.1.distance_squared(origin)
-                .total_cmp(&b.1.distance_squared(origin))
-        })?;
+    let l = nearest_loop(&loops, origin).filter(|l| l.closed)?;
+    let c = l.centroid()?;
     let (back, front) = l
         .points
         .iter()
