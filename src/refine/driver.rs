@@ -5,7 +5,8 @@ use super::frame::{frame_from_head, head_slices, BodyFrame};
 use super::head::head_joint;
 use super::limb::trace_limb;
 use super::limb_joints::{
-    ankle, arc_near, bend, centre_in_depth, sole_under, transverse_point, wrist, BendRule,
+    ankle, arc_near, bend, centre_in_depth, sole_under, surface_above, transverse_point, wrist,
+    BendRule,
 };
 use super::shoulder::{armpit, shoulder, upper_arm_line, upper_arm_radius};
 use super::spine::{spine, Spine};
@@ -227,10 +228,16 @@ pub fn refine(
             let radius = upper_arm_radius(&profile, ss, se)?;
             let s =
                 shoulder(&frame, line, pit, sign)? - line.1 * (options.shoulder_proximal * radius);
-            Some(match options.shoulder_depth {
+            let s = match options.shoulder_depth {
                 Some(depth) => centre_in_depth(mesh, &frame, s, depth).unwrap_or(s),
                 None => s,
-            })
+            };
+            let s = match options.shoulder_below_top {
+                Some(k) => surface_above(mesh, &frame, s)
+                    .map_or(s, |top| frame.at_height(s, top - k * radius)),
+                None => s,
+            };
+            Some(s)
         });
         match shoulder_point {
             Some(s) => {

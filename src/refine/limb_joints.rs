@@ -149,18 +149,7 @@ pub fn transverse_point(
 /// (or, when `p` lies outside the surface, the nearest one) is the extent. `None` when the
 /// line misses the mesh.
 pub fn centre_in_depth(mesh: &Mesh, frame: &BodyFrame, p: DVec3, depth: f64) -> Option<DVec3> {
-    let h0 = frame.h(p);
-    let mut crossings: Vec<f64> = slice_plane(mesh, p, frame.left)
-        .iter()
-        .flat_map(|l| l.segments())
-        .filter(|(a, b)| (frame.h(*a) < h0) != (frame.h(*b) < h0))
-        .map(|(a, b)| {
-            let t = (h0 - frame.h(a)) / (frame.h(b) - frame.h(a));
-            a.lerp(b, t).dot(frame.forward)
-        })
-        .filter(|f| f.is_finite())
-        .collect();
-    crossings.sort_by(f64::total_cmp);
+    let crossings = line_crossings(mesh, p, frame.left, frame.forward);
     let f0 = p.dot(frame.forward);
     let (lo, hi) = crossings
         .chunks_exact(2)
@@ -170,4 +159,34 @@ pub fn centre_in_depth(mesh: &Mesh, frame: &BodyFrame, p: DVec3, depth: f64) -> 
             gap(*a).total_cmp(&gap(*b))
         })?;
     Some(p + frame.forward * (lo + depth * (hi - lo) - f0))
+}
+
+/// Height (along `frame.up`) of the first surface crossing above `p` on the vertical line
+/// through it, found in the sagittal slice through `p`. `None` when nothing lies above.
+pub fn surface_above(mesh: &Mesh, frame: &BodyFrame, p: DVec3) -> Option<f64> {
+    let h0 = p.dot(frame.up);
+    line_crossings(mesh, p, frame.left, frame.up)
+        .into_iter()
+        .find(|&h| h > h0)
+        .map(|h| h - h0 + frame.h(p))
+}
+
+/// Where the line through `p` along `along` crosses the mesh, found in the slice through `p`
+/// with normal `normal` (perpendicular to `along`): the crossings' coordinates along `along`
+/// (dot products with it), sorted.
+fn line_crossings(mesh: &Mesh, p: DVec3, normal: DVec3, along: DVec3) -> Vec<f64> {
+    let across = normal.cross(along);
+    let side = |q: DVec3| (q - p).dot(across);
+    let mut crossings: Vec<f64> = slice_plane(mesh, p, normal)
+        .iter()
+        .flat_map(|l| l.segments())
+        .filter(|(a, b)| (side(*a) < 0.0) != (side(*b) < 0.0))
+        .map(|(a, b)| {
+            let t = side(a) / (side(a) - side(b));
+            a.lerp(b, t).dot(along)
+        })
+        .filter(|f| f.is_finite())
+        .collect();
+    crossings.sort_by(f64::total_cmp);
+    crossings
 }

@@ -82,6 +82,13 @@ pub struct RefineOptions {
     /// 14.5 mm against 18; 1.0 overshoots on slim bodies; measurement with
     /// `skelfit bench --method anatomical`).
     pub shoulder_proximal: f64,
+    /// When set, the shoulder's height is taken from the top of the shoulder instead: this
+    /// multiple of the upper arm's radius below the first surface crossing straight above the
+    /// joint (the acromion's skin). Default `Some(1.4)`: on the MakeHuman bodies the humeral
+    /// head's centre lies 1.15-1.73 radii below that surface (mean 1.38), while its height
+    /// above the armpit varies from 37 to 84 mm (a heavy body's armpit hangs low), which had
+    /// put the heavy body's shoulders 34 mm too low.
+    pub shoulder_below_top: Option<f64>,
     /// Half-width of the minimal-perimeter search around the ratio point, fraction of the limb
     /// length. Default 0.02: a wider window pulls the knee to the thin part below the patella,
     /// 3-4 cm under the MakeHuman knees (measurement).
@@ -172,6 +179,7 @@ impl Default for RefineOptions {
             arm_ratio: 0.54,
             shoulder_depth: Some(0.5),
             shoulder_proximal: 0.5,
+            shoulder_below_top: Some(1.4),
             ratio_window: 0.02,
             ankle_search_from: 0.6,
             ankle_height: Some(0.042),
