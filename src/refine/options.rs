@@ -55,12 +55,13 @@ pub struct RefineOptions {
     /// Knees and elbows: a smallest angle above this (degrees) counts as a straight limb and the
     /// limb ratio is used instead (seed 004, 3.3). Default 165.
     pub straight_degrees: f64,
-    /// Upper leg's share of the hip-ankle centroid-curve length where the knee of a straight
-    /// leg is searched (Dellas et al. 2007 via seed 004, 3.3). Default 0.49: thigh / (thigh +
-    /// shank) of the MakeHuman reference rigs (measurement).
+    /// Upper leg's share of the hip-ankle height where the knee of a straight leg is searched
+    /// (Dellas et al. 2007 via seed 004, 3.3). Default 0.485: the mean of the MakeHuman
+    /// reference rigs' (hip - knee) / (hip - ankle) heights, 0.448-0.499 (the heavy body's
+    /// 0.448 is the low outlier; 0.49 left its knees 32 mm low, 0.485 leaves 28 mm).
     pub leg_ratio: f64,
     /// When set, the knee of a straight leg is placed in the transverse cross-section at
-    /// `leg_ratio` of the way from the ankle's height to the hip's, at its centroid across the
+    /// `leg_ratio` of the way from the hip's height to the ankle's, at its centroid across the
     /// body and at this fraction of its depth from the back (0) to the front (1), instead of on
     /// the sphere slices' centroid curve. Default `Some(0.5)`: the femoral condyles fill the
     /// knee's depth and the MakeHuman knees lie at 0.47-0.60 of it (measurement), while the
@@ -174,7 +175,7 @@ impl Default for RefineOptions {
             distal_overshoot: 0.7,
             keep: Vec::new(),
             straight_degrees: 165.0,
-            leg_ratio: 0.49,
+            leg_ratio: 0.485,
             knee_depth: Some(0.5),
             arm_ratio: 0.54,
             shoulder_depth: Some(0.5),

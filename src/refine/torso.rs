@@ -133,8 +133,10 @@ fn smooth_closed(points: &[DVec3]) -> Option<Vec<DVec3>> {
 
 /// The hips (seed 004, 3.3): the transverse slice at height `height`, restricted to the loops
 /// whose centroid lies within `reach` of `centre` across the body, split by the median plane
-/// (through `centre`, normal `frame.left`); each side's length-weighted centroid. Returns
-/// `(left, right)`.
+/// (normal `frame.left`); each side's length-weighted centroid. Returns `(left, right)`. The
+/// median plane passes through the length-weighted centroid of the kept loops (found again
+/// after each split), not through `centre`: the rough pelvis can sit a centimetre off the
+/// body's middle, which moved one hip in and the other out.
 pub fn hips(
     mesh: &Mesh,
     frame: &BodyFrame,
@@ -144,20 +146,27 @@ pub fn hips(
 ) -> Option<(DVec3, DVec3)> {
     let origin = frame.at_height(centre, height);
     let loops = slice_plane(mesh, origin, frame.up);
+    let segments: Vec<(DVec3, f64)> = loops
+        .iter()
+        .filter(|l| {
+            l.centroid().is_some_and(|g| {
+                let across = g - origin;
+                (across - frame.up * across.dot(frame.up)).length() <= reach
+            })
+        })
+        .flat_map(|l| l.segments())
+        .map(|(a, b)| ((a + b) * 0.5, a.distance(b)))
+        .collect();
+    let total: f64 = segments.iter().map(|s| s.1).sum();
+    if total <= 0.0 {
+        return None;
+    }
+    let middle = segments.iter().map(|(m, w)| *m * *w).sum::<DVec3>() / total;
     let mut sums = [(DVec3::ZERO, 0.0); 2];
-    for l in &loops {
-        let Some(g) = l.centroid() else { continue };
-        let across = g - origin;
-        if (across - frame.up * across.dot(frame.up)).length() > reach {
-            continue;
-        }
-        for (a, b) in l.segments() {
-            let mid = (a + b) * 0.5;
-            let w = a.distance(b);
-            let k = usize::from((mid - origin).dot(frame.left) < 0.0);
-            sums[k].0 += mid * w;
-            sums[k].1 += w;
-        }
+    for (mid, w) in &segments {
+        let k = usize::from((*mid - middle).dot(frame.left) < 0.0);
+        sums[k].0 += *mid * *w;
+        sums[k].1 += *w;
     }
     if sums[0].1 <= 0.0 || sums[1].1 <= 0.0 {
         return None;
