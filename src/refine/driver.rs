@@ -291,6 +291,11 @@ pub fn refine(
     };
     match hip_height.and_then(|h| hips(mesh, &frame, centre, h, reach)) {
         Some((l, r)) => {
+            let in_depth = |p: DVec3| match options.hip_depth {
+                Some(depth) => centre_in_depth(mesh, &frame, p, depth).unwrap_or(p),
+                None => p,
+            };
+            let (l, r) = (in_depth(l), in_depth(r));
             found.insert("hip_L", l);
             found.insert("hip_R", r);
             found.insert(

@@ -53,7 +53,10 @@ pub struct RefineOptions {
     /// (into hand and foot, needed by the wrist and ankle criteria). Default 0.7.
     pub distal_overshoot: f64,
     /// Knees and elbows: a smallest angle above this (degrees) counts as a straight limb and the
-    /// limb ratio is used instead (seed 004, 3.3). Default 165.
+    /// limb ratio is used instead (seed 004, 3.3). Default 160: the MakeHuman legs (straight)
+    /// measure 164-174 degrees at their most bent curve point and the A-pose arms 138-144;
+    /// 165 sat inside the legs' range, so moving a hip by a centimetre could flip a child's
+    /// knee to the smallest-angle rule and 7 cm up the thigh.
     pub straight_degrees: f64,
     /// Upper leg's share of the hip-ankle height where the knee of a straight leg is searched
     /// (Dellas et al. 2007 via seed 004, 3.3). Default 0.485: the mean of the MakeHuman
@@ -116,6 +119,13 @@ pub struct RefineOptions {
     /// from crotch to sacroiliac point), while they lay 0.049-0.068 of height above the crotch
     /// (mean 0.058, measurement; bodies whose thighs touch have the lowest crotch).
     pub hip_above_crotch: f64,
+    /// When set, each hip (the centroid of its half of the hip slice) is moved along the
+    /// body's forward to this fraction of the body's depth through it (0 the back, 1 the
+    /// front; the sagittal slice through the joint). Default `Some(0.45)`: the half-slice
+    /// centroid lay 17-21 mm in front of the male MakeHuman hips (the genital bulge) and 0-9
+    /// mm on the others; at 0.45 the hips are within 10 mm in depth on all six (measurement
+    /// with `skelfit bench --method anatomical`).
+    pub hip_depth: Option<f64>,
     /// The pelvis (root) joint lies this fraction of height above the midpoint of the hips.
     /// Default 0.006: the pelvis's centre is above the hip sockets, which sit low on it; the
     /// MakeHuman root joints are 0.003-0.010 of height above the hips' midpoint (mean 0.006,
@@ -174,7 +184,7 @@ impl Default for RefineOptions {
             split_ratio: 0.6,
             distal_overshoot: 0.7,
             keep: Vec::new(),
-            straight_degrees: 165.0,
+            straight_degrees: 160.0,
             leg_ratio: 0.485,
             knee_depth: Some(0.5),
             arm_ratio: 0.54,
@@ -187,6 +197,7 @@ impl Default for RefineOptions {
             wrist_search_from: 0.5,
             curvature_window: 0.03,
             hip_above_crotch: 0.057,
+            hip_depth: Some(0.45),
             pelvis_above_hips: 0.006,
             neck_window: 0.6,
             neck_depth: 0.3,
