@@ -201,6 +201,11 @@ fn robustness(root: &Path, out_dir: &Path, command: &str) -> Result<(), String> 
     let mut csv = String::from("variant,triangles,mean_mm,max_mm\n");
     let mut means: Vec<(f64, f64)> = Vec::new();
     let mut maxima: Vec<(f64, f64)> = Vec::new();
+    let mut per_joint = format!(
+        "\n## Per joint (mm)\n\n| variant | {} |\n|---|{}\n",
+        REFINED_KEYS.join(" | "),
+        "---|".repeat(REFINED_KEYS.len())
+    );
     for dir in variants {
         let name = dir
             .file_name()
@@ -231,6 +236,20 @@ fn robustness(root: &Path, out_dir: &Path, command: &str) -> Result<(), String> 
             mesh.triangles.len(),
             mean(&values),
             max(&values)
+        );
+        means.push((mesh.triangles.len() as f64, mean(&values)));
+        maxima.push((mesh.triangles.len() as f64, max(&values)));
+        let _ = writeln!(
+            per_joint,
+            "| {name} | {} |",
+            REFINED_KEYS
+                .iter()
+                .map(|k| d
+                    .iter()
+                    .find(|x| x.0 == *k)
+                    .map_or("–".to_string(), |x| format!("{:.1}", x.1)))
+                .collect::<Vec<_>>()
+                .join(" | ")
         );
         for w in &o.warnings {
             eprintln!("   warning: {w}");
@@ -264,6 +283,7 @@ fn robustness(root: &Path, out_dir: &Path, command: &str) -> Result<(), String> 
             ..Default::default()
         },
     );
+    md += &per_joint;
     md += "\n![displacement against triangle count](robustness.svg)\n";
     std::fs::write(out_dir.join("robustness.svg"), svg).map_err(|e| e.to_string())?;
     std::fs::write(out_dir.join("robustness.md"), md).map_err(|e| e.to_string())?;

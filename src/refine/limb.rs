@@ -154,6 +154,10 @@ pub fn trace_limb(
     Some(LimbProfile { slices })
 }
 
+/// Slices in a row that an outward march steps over when their perimeter jumps above
+/// `merge_ratio` times the previous one (before it takes the jump as the limb's end).
+const MAX_SKIPS: usize = 2;
+
 /// Marches spheres from `start` along `direction` for at most `budget` of path (`towards_torso`
 /// for the proximal march): returns
 /// (barycentre, perimeter, major, minor) per slice.
@@ -172,6 +176,7 @@ fn march(
     let (mut centre, mut dir, mut radius) = (start, direction, radius);
     let mut travelled = 0.0;
     let mut previous: Option<(f64, f64)> = None;
+    let mut skipped = 0;
     let max_steps = (budget / step).ceil() as usize + 1;
     for _ in 0..max_steps {
         let rho = (options.sphere_radius_factor * radius).max(step);
@@ -190,10 +195,20 @@ fn march(
         // outwards against the previous slice, so that the trace turns into hand and foot.
         if let Some((p, thinnest)) = previous {
             let reference = if towards_torso { thinnest } else { p };
-            if perimeter > options.merge_ratio * reference || perimeter < options.split_ratio * p {
+            let merged = perimeter > options.merge_ratio * reference;
+            if merged && !towards_torso && skipped < MAX_SKIPS {
+                // Outwards, a lone jump is a flaw of the surface (a sliver or a fold the sphere
+                // caught): step over it along the tube and look again.
+                skipped += 1;
+                centre += dir * step;
+                travelled += step;
+                continue;
+            }
+            if merged || perimeter < options.split_ratio * p {
                 break;
             }
         }
+        skipped = 0;
         let thinnest = previous.map_or(perimeter, |(_, t)| t.min(perimeter));
         previous = Some((perimeter, thinnest));
         out.push((g, perimeter, axes.major_diameter, axes.minor_diameter));
