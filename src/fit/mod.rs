@@ -3,8 +3,9 @@
 //!
 //! The fit takes geometry, not labels: a [`FitInput`] holds the centralised head-to-tail path
 //! with its distance-map radii, each limb's path from the body's centre line outwards with its
-//! attach point (the midpoint of the pair's limb-to-limb path), separated digits, and a jaw
-//! branch. Labelling (ch.7) produces it; tests build it from polylines.
+//! attach point (the midpoint of the pair's limb-to-limb path), separated digits, a jaw
+//! branch and ears ([`ears`]: a mirrored pair of rising head protrusions found in the voxels).
+//! Labelling (ch.7) produces it; tests build it from polylines.
 //!
 //! ```text
 //! FitInput ─▶ limb pairs ordered head→tail, matched to template limb groups
