@@ -154,6 +154,7 @@ fn run() -> Result<(), String> {
             },
             limbs,
             jaw: None,
+            ears: Vec::new(),
         };
         let f = fit(&input, &template, &FitOptions::default()).map_err(|e| e.to_string())?;
         let r = refine(

@@ -105,7 +105,9 @@ pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
             let grand = s.children(c);
             if grand.is_empty() && head_end.is_none() {
                 head_end = Some(c);
-            } else if grand.len() == 1 && jaw.is_none() {
+            } else if grand.len() == 1 && s.children(grand[0]).is_empty() && jaw.is_none() {
+                // The jaw is a two-joint branch (jaw, jaw_end); longer head branches are ears,
+                // cartilage without a bone.
                 jaw = Some((c, grand[0]));
             }
         }

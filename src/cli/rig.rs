@@ -215,6 +215,7 @@ pub fn run_info(mesh: &Path, rigged: &Rig, load_ms: f64) -> serde_json::Value {
         "interior_voxels": rigged.solid.report.interior_voxels,
         "joints": rigged.fit.skeleton.len(),
         "canonical_joints": rigged.fit.canonical.len(),
+        "ears": rigged.input.ears.iter().map(|e| e.side.as_str()).collect::<Vec<_>>(),
         "timings_ms": timings,
         "warnings": rigged.warnings,
     })

@@ -40,6 +40,8 @@ pub struct FitInputOptions {
     /// be checked. Default 4 (the reference limbs measure 10-20: a fox's leg about 10, a human
     /// arm about 17; a cube's corners about 3.5).
     pub min_limb_slenderness: f64,
+    /// Ear detection ([`super::ears`], run by `pipeline::rig` when the template has ears).
+    pub ears: super::EarOptions,
 }
 
 impl Default for FitInputOptions {
@@ -50,6 +52,7 @@ impl Default for FitInputOptions {
             end_direction_points: 4,
             symmetric_roots: true,
             min_limb_slenderness: 4.0,
+            ears: super::EarOptions::default(),
         }
     }
 }
@@ -228,6 +231,7 @@ pub fn fit_input(
         },
         limbs,
         jaw,
+        ears: Vec::new(),
     };
     (input, warnings)
 }

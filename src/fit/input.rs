@@ -100,6 +100,17 @@ pub struct LimbInput {
     pub root: Option<DVec3>,
 }
 
+/// One ear (or another mirrored protrusion of the head, such as an upright horn): the path from
+/// where it leaves the skull to its tip.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EarInput {
+    /// Side of the figure.
+    pub side: Side,
+    /// Points from the base (on the skull's inscribed balls) to the tip (inside the skin), mesh
+    /// units.
+    pub path: Vec<DVec3>,
+}
+
 /// Everything the fit needs, in mesh units and the mesh frame.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FitInput {
@@ -113,6 +124,9 @@ pub struct FitInput {
     pub limbs: Vec<LimbInput>,
     /// Jaw branch of the head, from the mandibular joint to the jaw tip, if one was found.
     pub jaw: Option<Vec<DVec3>>,
+    /// Ears found on the head ([`super::ears`]): empty, or one per side.
+    #[serde(default)]
+    pub ears: Vec<EarInput>,
 }
 
 /// Casts a ray from inside the figure and returns the distance to the surface along it: used

@@ -3,8 +3,9 @@
 //!
 //! The fit takes geometry, not labels: a [`FitInput`] holds the centralised head-to-tail path
 //! with its distance-map radii, each limb's path from the body's centre line outwards with its
-//! attach point (the midpoint of the pair's limb-to-limb path), separated digits, and a jaw
-//! branch. Labelling (ch.7) produces it; tests build it from polylines.
+//! attach point (the midpoint of the pair's limb-to-limb path), separated digits, a jaw
+//! branch and ears ([`ears`]: a mirrored pair of rising head protrusions found in the voxels).
+//! Labelling (ch.7) produces it; tests build it from polylines.
 //!
 //! ```text
 //! FitInput ─▶ limb pairs ordered head→tail, matched to template limb groups
@@ -19,6 +20,7 @@
 //! Missing parts never panic: a missing limb leaves its joints out with a [`FitWarning`].
 
 mod axial;
+mod ears;
 mod error;
 mod frames;
 mod from_labels;
@@ -28,10 +30,12 @@ mod options;
 mod polyline;
 mod probe;
 
+pub use ears::{ears, EarOptions};
 pub use error::{FitError, FitWarning};
 pub use from_labels::{fit_input, FitInputOptions};
 pub use input::{
-    voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, FitInput, LimbInput, Side,
+    voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, EarInput, FitInput, LimbInput,
+    Side,
 };
 pub use options::{BendSnap, FitOptions};
 
@@ -299,6 +303,11 @@ fn check(input: &FitInput) -> Result<(), FitError> {
             return Err(FitError::NonFinite { what });
         }
     }
+    if input.ears.iter().any(|e| !finite(&e.path)) {
+        return Err(FitError::NonFinite {
+            what: "an ear path".into(),
+        });
+    }
     if input.jaw.as_ref().is_some_and(|j| !finite(j)) {
         return Err(FitError::NonFinite {
             what: "the jaw path".into(),
@@ -535,8 +544,39 @@ fn assemble(
             }],
         );
     }
+    // Ears: the template's `ear` joints divide each ear path by the `ear` ratios, base first;
+    // `ear_end` marks the tip.
+    if let (Some(ear), Some(fractions)) = (template.placed("ear"), template.fractions("ear")) {
+        for e in input.ears.iter().filter(|e| e.path.len() >= 2) {
+            let path = Polyline::new(e.path.clone());
+            let length = path.length();
+            let mut at = 0.0;
+            let mut chain = Vec::new();
+            for f in &fractions {
+                chain.push(path.at(at * length));
+                at += f;
+            }
+            let tip = path.at(length);
+            let list = (0..chain.len())
+                .map(|k| Instance {
+                    position: chain[k],
+                    next: Some(chain.get(k + 1).copied().unwrap_or(tip)),
+                })
+                .collect();
+            instances.insert((ear.name.clone(), Some(e.side)), list);
+            if let Some(end) = template.placed("ear_end") {
+                instances.insert(
+                    (end.name.clone(), Some(e.side)),
+                    vec![Instance {
+                        position: tip,
+                        next: None,
+                    }],
+                );
+            }
+        }
+    }
     for j in &template.joints {
-        if j.place.is_some() {
+        if j.place.is_some() && !j.side {
             kinds.insert((j.name.clone(), None), FrameKind::Axial);
         }
     }
@@ -576,7 +616,7 @@ fn assemble(
         template
             .joint(name)
             .and_then(|j| j.place.as_deref())
-            .is_some_and(|p| matches!(p, "trunk" | "neck" | "tail"))
+            .is_some_and(|p| matches!(p, "trunk" | "neck" | "tail" | "ear"))
     };
     let girdle_joints: Vec<&str> = template
         .limbs

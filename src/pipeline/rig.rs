@@ -2,7 +2,7 @@
 
 use crate::anatomy::{label_pieces, FigureClass, Label, LabelOptions, Labelling, Overrides};
 use crate::distance::{edt, DistanceMap};
-use crate::fit::{fit_input, fit_with_probe, Fit, FitInput, FitInputOptions, FitOptions};
+use crate::fit::{ears, fit_input, fit_with_probe, Fit, FitInput, FitInputOptions, FitOptions};
 use crate::medial::dms;
 use crate::mesh::Mesh;
 use crate::refine::{refine, RefineOptions};
@@ -126,7 +126,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         options.overrides.as_ref(),
     )?;
     lap("label", &mut timings);
-    let (input, mut path_warnings) = fit_input(&labelling, &surface, &options.input);
+    let (mut input, mut path_warnings) = fit_input(&labelling, &surface, &options.input);
     lap("paths", &mut timings);
     let mut warnings = labelling.warnings.clone();
     warnings.append(&mut path_warnings);
@@ -140,6 +140,9 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
             Template::builtin(name)?
         }
     };
+    if template.placed("ear").is_some() {
+        input.ears = ears(&labelling, &distance, &input.axial, &options.input.ears);
+    }
     let mut fit = fit_with_probe(&input, &template, &options.fit, Some(&solid))?;
     warnings.extend(fit.warnings.iter().map(ToString::to_string));
     lap("fit", &mut timings);

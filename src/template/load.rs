@@ -444,8 +444,23 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
                     format!("place {place:?} is taken by another joint"),
                 );
             }
-            if j.side {
+            let sided = SIDED_PLACES.contains(&place.as_str());
+            if j.side && !sided {
                 p.push(&path, &span, "axial joints cannot be sided");
+            }
+            if sided && !j.side {
+                p.push(
+                    &path,
+                    &span,
+                    format!("place {place:?} exists per side: add side = true"),
+                );
+            }
+            if place == "ear" && !ratios.contains_key("ear") {
+                p.push(
+                    format!("{path}.place"),
+                    &span,
+                    "place \"ear\" needs ratios.ear (relative segment lengths, base first)",
+                );
             }
         }
         if let Some(c) = &j.canonical {

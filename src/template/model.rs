@@ -13,10 +13,16 @@ pub const BUILTIN_TEMPLATES: &[(&str, &str)] = &[
 /// The axial places a template joint can take (dissertation 8.1): `root` (the root joint at the
 /// hindmost limb pair), `trunk`, `neck` and `tail` (repeated vertebral joints, named
 /// `<name>_01`, `<name>_02`... away from the root), `head` (joint of the rigid head segment),
-/// `head_end`, `jaw`, `jaw_end` (when the input has a jaw branch) and `tail_end`.
+/// `head_end`, `jaw`, `jaw_end` (when the input has a jaw branch) and `tail_end`; and the sided
+/// head branches `ear` (repeated, one joint per entry of the `ear` ratio list, base first) and
+/// `ear_end` (the tip), built when the input has ears.
 pub const AXIAL_PLACES: &[&str] = &[
-    "root", "trunk", "neck", "head", "head_end", "jaw", "jaw_end", "tail", "tail_end",
+    "root", "trunk", "neck", "head", "head_end", "jaw", "jaw_end", "tail", "tail_end", "ear",
+    "ear_end",
 ];
+
+/// The places whose joints exist once per side.
+pub const SIDED_PLACES: &[&str] = &["ear", "ear_end"];
 
 /// Overall posture: decides the dorsal direction and human-like versus animal-like rules
 /// (dissertation 8.1: a nearly vertical trunk is human-like).

@@ -294,3 +294,23 @@ fn preset_renaming_never_duplicates_names() {
     assert_eq!(s.joints[1].name, "spine_02");
     assert_eq!(s.joints[0].name, "spine_02_2");
 }
+
+#[test]
+fn ear_places_are_sided_and_need_ear_ratios() {
+    let (_, text) = BUILTIN_TEMPLATES[1];
+    let t = Template::parse(text, "quadruped.toml").unwrap();
+    let ear = t.placed("ear").unwrap();
+    assert!(ear.side && ear.deform);
+    assert!(t.placed("ear_end").is_some_and(|j| j.side && !j.deform));
+    assert_eq!(t.fractions("ear").unwrap().len(), 3);
+
+    let broken = text.replacen("ear = [1, 1, 1]", "", 1).replacen(
+        "place = \"ear_end\"\nside = true",
+        "place = \"ear_end\"",
+        1,
+    );
+    let err = Template::parse(&broken, "broken.toml").unwrap_err();
+    let message = err.to_string();
+    assert!(message.contains("needs ratios.ear"), "{message}");
+    assert!(message.contains("exists per side"), "{message}");
+}

@@ -251,6 +251,7 @@ fn refdata_fit(dir: &Path, upright: bool) -> (Mesh, DistanceMap, Fit) {
         },
         limbs,
         jaw: None,
+        ears: Vec::new(),
     };
     let template = Template::builtin(if o.upright { "humanoid" } else { "quadruped" }).unwrap();
     let f = fit(&input, &template, &FitOptions::default()).unwrap();
@@ -617,6 +618,7 @@ fn toy_quadruped(fore: bool, hind_right: bool) -> (Mesh, DistanceMap, FitInput) 
         },
         limbs,
         jaw: None,
+        ears: Vec::new(),
     };
     (mesh, map, input)
 }
@@ -885,6 +887,7 @@ fn a_snake_gets_a_skull_and_vertebrae_but_no_girdles() {
         },
         limbs: Vec::new(),
         jaw: None,
+        ears: Vec::new(),
     };
     let f = quadruped_fit(&input);
     let b = bones(&f, &map, &BoneOptions::default()).unwrap();

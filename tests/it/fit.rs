@@ -87,6 +87,7 @@ fn humanoid() -> FitInput {
         },
         limbs,
         jaw: None,
+        ears: Vec::new(),
     }
 }
 
@@ -134,6 +135,7 @@ fn quadruped() -> FitInput {
         },
         limbs,
         jaw: None,
+        ears: Vec::new(),
     }
 }
 
@@ -868,6 +870,7 @@ fn oracle_paths_on_makehuman() {
             },
             limbs,
             jaw: None,
+            ears: Vec::new(),
         };
         let f = run(&input, "humanoid");
         let mut line = format!("{model:26}");
@@ -1012,6 +1015,7 @@ fn oracle_paths_on_the_fox() {
         },
         limbs,
         jaw: None,
+        ears: Vec::new(),
     };
     let f = run(&input, "quadruped");
     let length = zmax - zmin;

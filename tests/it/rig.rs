@@ -326,3 +326,145 @@ fn a_box_gets_stub_warnings_instead_of_a_silent_quadruped() {
     );
     assert!(r.fit.skeleton.validate().is_ok());
 }
+
+fn merged(parts: &[Mesh]) -> Mesh {
+    let mut out = Mesh::default();
+    for part in parts {
+        let base = out.positions.len() as u32;
+        out.positions.extend_from_slice(&part.positions);
+        out.triangles.extend(
+            part.triangles
+                .iter()
+                .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
+        );
+    }
+    out
+}
+
+/// A capsule of radius `r` from `a` to `b`.
+fn capsule_between(a: DVec3, b: DVec3, r: f64) -> Mesh {
+    let d = b - a;
+    let c = Mesh::capsule(DVec3::ZERO, r, 0.5 * d.length(), 8, 16);
+    let q = glam::DQuat::from_rotation_arc(DVec3::Y, d.normalize());
+    c.transformed(|p| q * p + 0.5 * (a + b))
+}
+
+/// A toy quadruped of capsules (+Y up, +Z forward): body, four legs, neck, a round head with a
+/// snout and,
+/// with `ears`, two thin ears rising from the back of the head and leaning outwards.
+fn toy_quadruped(ears: bool) -> Mesh {
+    let mut parts = vec![
+        capsule_between(DVec3::new(0.0, 1.0, -0.6), DVec3::new(0.0, 1.0, 0.6), 0.25),
+        capsule_between(
+            DVec3::new(0.0, 1.05, 0.6),
+            DVec3::new(0.0, 1.45, 0.95),
+            0.15,
+        ),
+        Mesh::uv_sphere(DVec3::new(0.0, 1.5, 1.05), 0.2, 16, 32),
+        capsule_between(DVec3::new(0.0, 1.45, 1.1), DVec3::new(0.0, 1.4, 1.4), 0.1),
+    ];
+    for (x, z) in [(0.15, 0.5), (-0.15, 0.5), (0.15, -0.5), (-0.15, -0.5)] {
+        parts.push(capsule_between(
+            DVec3::new(x, 1.0, z),
+            DVec3::new(x, 0.1, z),
+            0.08,
+        ));
+    }
+    if ears {
+        for x in [0.08, -0.08] {
+            parts.push(capsule_between(
+                DVec3::new(x, 1.62, 0.98),
+                DVec3::new(1.75 * x, 1.88, 0.95),
+                0.03,
+            ));
+        }
+    }
+    merged(&parts)
+}
+
+#[test]
+fn a_quadruped_with_ears_gets_an_ear_chain_per_side_inside_and_one_without_gets_none() {
+    let (with, without) = (toy_quadruped(true), toy_quadruped(false));
+    let r = rig(&with, &RigOptions::default()).unwrap();
+    assert_eq!(r.fit.template, "quadruped", "{:?}", r.warnings);
+    assert_eq!(r.input.ears.len(), 2, "{:?}", r.warnings);
+    assert_inside("toy with ears", &r);
+    let position = |name: &str| {
+        r.fit
+            .skeleton
+            .joints
+            .iter()
+            .find(|j| j.name == name)
+            .unwrap_or_else(|| panic!("no joint {name}"))
+            .position
+    };
+    for side in ["_L", "_R"] {
+        let (base, tip) = (
+            position(&format!("ear_01{side}")),
+            position(&format!("ear_end{side}")),
+        );
+        // The chain rises from the top of the head towards the modelled tip.
+        assert!(base.y > 1.55 && tip.y > 1.8, "{side}: {base:?} {tip:?}");
+        assert!(position(&format!("ear_03{side}")).y > base.y, "{side}");
+        let head = r.fit.skeleton.joint(r.fit.canonical["head"]);
+        let ear = r
+            .fit
+            .skeleton
+            .joints
+            .iter()
+            .position(|j| j.name == format!("ear_01{side}"));
+        assert_eq!(
+            r.fit.skeleton.joints[ear.unwrap()]
+                .parent
+                .map(|p| &r.fit.skeleton.joint(p).name),
+            Some(&head.name)
+        );
+    }
+    assert!(position("ear_end_L").x > 0.1 && position("ear_end_R").x < -0.1);
+
+    let r = rig(&without, &RigOptions::default()).unwrap();
+    assert!(r.input.ears.is_empty(), "{:?}", r.input.ears);
+    assert!(!r
+        .fit
+        .skeleton
+        .joints
+        .iter()
+        .any(|j| j.name.starts_with("ear")));
+}
+
+/// Every reference quadruped whose rig has ear joints (`Ear*`) gets an ear chain per side, with
+/// the tips near the reference ear joints (within 8 % of the figure's longest side: the reference chains stop short of the tips).
+#[test]
+fn quadrupeds_with_reference_ears_get_ears() {
+    for dir in models("quadruped") {
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        let Ok(reference) = skelfit::eval::load_skeleton(&dir.join("rig_gltf.json")) else {
+            continue;
+        };
+        let ears: Vec<DVec3> = reference
+            .skeleton
+            .joints
+            .iter()
+            .filter(|j| j.name.starts_with("Ear"))
+            .map(|j| j.position)
+            .collect();
+        if ears.is_empty() {
+            continue;
+        }
+        let (mesh, r) = rigged(&dir, &RigOptions::default());
+        assert_eq!(r.input.ears.len(), 2, "{name}");
+        let bbox = mesh.bounding_box().unwrap();
+        let size = (bbox.1 - bbox.0).max_element();
+        for ear in &r.input.ears {
+            let tip = *ear.path.last().unwrap();
+            let nearest = ears
+                .iter()
+                .map(|e| e.distance(tip))
+                .fold(f64::MAX, f64::min);
+            assert!(
+                nearest < 0.08 * size,
+                "{name}: ear tip {tip:?} is {nearest} from the reference ears"
+            );
+        }
+    }
+}
