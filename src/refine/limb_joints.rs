@@ -45,10 +45,6 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
         .filter(|s| s.arc >= from)
         .collect();
     let narrowest = dense.iter().min_by(|a, b| a.major.total_cmp(&b.major))?.arc;
-    if std::env::var("DBGW").is_ok() {
-        let line: Vec<String> = dense.iter().step_by(3).map(|s| format!("{:.0}/{:.0}/{:.0}", s.arc * 1e3, s.minor * 1e3, s.major * 1e3)).collect();
-        eprintln!("DBGW narrowest {:.0} | {}", narrowest * 1e3, line.join(" "));
-    }
     let minima = (1..dense.len().saturating_sub(1))
         .filter(|&i| dense[i].minor <= dense[i - 1].minor && dense[i].minor <= dense[i + 1].minor);
     let best = minima
@@ -58,7 +54,6 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
                 .total_cmp(&(dense[j].arc - narrowest).abs())
         })
         .map(|i| dense[i].centre);
-    if std::env::var("DBGW").is_ok() { eprintln!("DBGW best {:.3?}", best); }
     best.or_else(|| dense.iter().find(|s| s.arc == narrowest).map(|s| s.centre))
 }
 
