@@ -32,6 +32,7 @@ mod build;
 mod error;
 mod frame;
 mod level_graph;
+mod limb_root;
 mod neck;
 mod options;
 mod output;
@@ -246,6 +247,18 @@ fn label_in_frame(
                     region_parts[p] = head as u32;
                 }
             }
+        }
+    }
+    // Arms' and fore legs' roots inside the trunk's balls count as trunk there.
+    if options.rules.pectoral_root_scale > 0.0 {
+        let roots = limb_root::pectoral_roots_in_trunk(
+            surface,
+            &parts,
+            &region_parts,
+            options.rules.pectoral_root_scale,
+        );
+        for p in roots {
+            region_parts[p] = 0;
         }
     }
     let interior =
