@@ -11,6 +11,8 @@
 //! - [`Overrides`] (`overrides.rs`): a JSON file of user corrections;
 //! - `build.rs`: parts with girdles and digits; `neck.rs`: the trunk pieces between the
 //!   pectoral limbs' and the head's junctions, which the per-vertex labels give to the head;
+//!   `limb_root.rs`: arms' and fore legs' DMS voxels inside the trunk's balls, which the
+//!   per-vertex labels give to the trunk;
 //!   `project.rs`: labels per interior voxel and per mesh vertex; [`reference_regions`] (`reference.rs`): the body region of each mesh
 //!   vertex from a reference rig, for the accuracy table; `output.rs`: labels.json, PLY, SVG.
 //!
