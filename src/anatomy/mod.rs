@@ -11,6 +11,8 @@
 //! - [`Overrides`] (`overrides.rs`): a JSON file of user corrections;
 //! - `build.rs`: parts with girdles and digits; `neck.rs`: the trunk pieces between the
 //!   pectoral limbs' and the head's junctions, which the per-vertex labels give to the head;
+//!   `limb_root.rs`: arms' and fore legs' DMS voxels inside the trunk's balls, which the
+//!   per-vertex labels give to the trunk;
 //!   `project.rs`: labels per interior voxel and per mesh vertex; [`reference_regions`] (`reference.rs`): the body region of each mesh
 //!   vertex from a reference rig, for the accuracy table; `output.rs`: labels.json, PLY, SVG.
 //!
@@ -32,6 +34,7 @@ mod build;
 mod error;
 mod frame;
 mod level_graph;
+mod limb_root;
 mod neck;
 mod options;
 mod output;
@@ -246,6 +249,18 @@ fn label_in_frame(
                     region_parts[p] = head as u32;
                 }
             }
+        }
+    }
+    // Arms' and fore legs' roots inside the trunk's balls count as trunk there.
+    if options.rules.pectoral_root_scale > 0.0 {
+        let roots = limb_root::pectoral_roots_in_trunk(
+            surface,
+            &parts,
+            &region_parts,
+            options.rules.pectoral_root_scale,
+        );
+        for p in roots {
+            region_parts[p] = 0;
         }
     }
     let interior =
