@@ -466,3 +466,20 @@ fn rig_refines_humanoids_by_default() {
     assert!(ran && !ran_off);
     assert!(on < 0.8 * off, "refined {on:.4} m, fitted {off:.4} m");
 }
+
+/// The hip slice is split at the middle of the body's own cross-section, not at the rough
+/// pelvis it is given: a rough pelvis 4 cm off the middle of a symmetric pelvis block still
+/// gives mirror-image hips (splitting at the rough pelvis moved one hip in and the other out).
+#[test]
+fn hips_split_at_the_cross_sections_own_middle() {
+    let mesh = Mesh::cuboid(DVec3::new(-0.2, 0.0, -0.1), DVec3::new(0.2, 1.0, 0.1));
+    let frame = skelfit::refine::BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap();
+    let off_centre = DVec3::new(0.04, 0.5, 0.0);
+    let (l, r) = skelfit::refine::hips(&mesh, &frame, off_centre, 0.5, 0.5).unwrap();
+    assert!((l.x + r.x).abs() < 1e-9, "{l} {r}");
+    assert!(l.x > 0.05 && r.x < -0.05, "{l} {r}");
+    assert!(
+        (l.y - 0.5).abs() < 1e-9 && (r.y - 0.5).abs() < 1e-9,
+        "{l} {r}"
+    );
+}
