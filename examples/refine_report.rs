@@ -39,6 +39,16 @@ fn offset(k: usize) -> DVec3 {
     dir * (0.03 + 0.01 * (k % 4.0))
 }
 
+/// A markdown section `title` opening a table with a `first` column and one column per refined
+/// joint (header and separator rows).
+fn joint_table_header(title: &str, first: &str) -> String {
+    format!(
+        "\n## {title}\n\n| {first} | {} |\n|---|{}\n",
+        REFINED_KEYS.join(" | "),
+        "---|".repeat(REFINED_KEYS.len())
+    )
+}
+
 struct Outcome {
     before: Vec<f64>,
     after: Vec<f64>,
@@ -127,13 +137,7 @@ fn run() -> Result<(), String> {
     let command = "cargo run --release --example refine_report";
     let mut md = format!("# Refinement accuracy (seed 004)\n\nRegenerate: `{command}`\n\nStart: reference canonical joints displaced by deterministic 3-6 cm offsets. Errors in mm over {} joints ({}).\n\n| model | before mean | before max | after mean | after max | worst joint |\n|---|---|---|---|---|---|\n", REFINED_KEYS.len(), REFINED_KEYS.join(", "));
     let mut csv = String::from("model,joint,before_mm,after_mm\n");
-    let mut joints_md = String::from("\n## Per joint (after, mm)\n\n| model |");
-    for key in REFINED_KEYS {
-        let _ = write!(joints_md, " {key} |");
-    }
-    joints_md += "\n|---|";
-    joints_md += &"---|".repeat(REFINED_KEYS.len());
-    joints_md += "\n";
+    let mut joints_md = joint_table_header("Per joint (after, mm)", "model");
     let mut warnings_md = String::new();
     for (model, rig) in models {
         let dir = root.join("humanoid").join(model);
@@ -201,11 +205,7 @@ fn robustness(root: &Path, out_dir: &Path, command: &str) -> Result<(), String> 
     let mut csv = String::from("variant,triangles,mean_mm,max_mm\n");
     let mut means: Vec<(f64, f64)> = Vec::new();
     let mut maxima: Vec<(f64, f64)> = Vec::new();
-    let mut per_joint = format!(
-        "\n## Per joint (mm)\n\n| variant | {} |\n|---|{}\n",
-        REFINED_KEYS.join(" | "),
-        "---|".repeat(REFINED_KEYS.len())
-    );
+    let mut per_joint = joint_table_header("Per joint (mm)", "variant");
     for dir in variants {
         let name = dir
             .file_name()
