@@ -10,7 +10,7 @@ use super::limb_joints::{
 };
 use super::shoulder::{armpit, shoulder, upper_arm_line, upper_arm_radius};
 use super::spine::{spine, Spine};
-use super::torso::{hips, torso_points, TorsoBounds, TorsoPoints};
+use super::torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
 use super::{RefineError, RefineOptions};
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
@@ -281,13 +281,25 @@ pub fn refine(
     }
 
     // 3.3 Hips and pelvis.
-    let hip_height = match &torso {
-        Some(t) => Some(frame.h(t.crotch) + options.hip_above_crotch * height),
-        None => mean_height(["hip_L", "hip_R"]),
-    };
     let reach = match (rough("hip_L"), rough("hip_R")) {
         (Some(l), Some(r)) => 1.5 * l.distance(r),
         _ => 0.15 * height,
+    };
+    let hip_height = match &torso {
+        Some(t) => {
+            let bottom = frame.h(t.crotch);
+            let split = leg_split_height(
+                mesh,
+                &frame,
+                centre,
+                bottom - 0.02 * height,
+                bottom + 0.1 * height,
+                0.001 * height,
+                reach,
+            );
+            Some(split.unwrap_or(bottom) + options.hip_above_crotch * height)
+        }
+        None => mean_height(["hip_L", "hip_R"]),
     };
     match hip_height.and_then(|h| hips(mesh, &frame, centre, h, reach)) {
         Some((l, r)) => {

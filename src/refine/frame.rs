@@ -1,7 +1,7 @@
 //! Body frame and head geometry (seed 004, 3.1): the transverse normal from the legs, head
 //! slices from the top down, frontal and sagittal normals from the head's projected points.
 
-use super::geometry::{nearest_loop, pca_2d};
+use super::geometry::{nearest_loop, pca_2d_curve, Segment2};
 use super::RefineOptions;
 use crate::mesh::{slice_plane, Mesh, SliceLoop};
 use glam::DVec3;
@@ -135,25 +135,36 @@ fn finish(
 }
 
 /// Frontal and sagittal normals from the head (seed 004, 3.1): the principal axes of all head
-/// slice points projected into one transverse plane; the longer axis is forward, its sign taken
-/// from `forward_hint`. Returns the frame with `forward` and `left` replaced, or `None` when
-/// the head is too round to tell.
+/// slices projected into one transverse plane (as curves, length-weighted, not as their
+/// vertices). The seed takes the longer axis as forward; here forward is whichever principal
+/// axis lies nearer `forward_hint` (the longer one on a human head, the shorter one on a head
+/// wider than deep), its sign taken from the hint. Returns the frame with `forward` and `left`
+/// replaced, or `None` when the head is too round to tell.
 pub fn frame_from_head(
     frame: &BodyFrame,
     head: &HeadSlices,
     forward_hint: DVec3,
 ) -> Option<BodyFrame> {
-    let points: Vec<(f64, f64)> = head
+    let flat = |p: DVec3| (p.dot(frame.forward), p.dot(frame.left));
+    let segments: Vec<Segment2> = head
         .slices
         .iter()
-        .flat_map(|s| s.points.iter())
-        .map(|p| (p.dot(frame.forward), p.dot(frame.left)))
+        .flat_map(|s| s.segments())
+        .map(|(a, b)| (flat(a), flat(b)))
         .collect();
-    let (major, ratio) = pca_2d(&points)?;
+    let (major, ratio) = pca_2d_curve(&segments)?;
     if ratio < 1.02 {
         return None;
     }
-    let mut forward = (frame.forward * major.0 + frame.left * major.1).normalize();
+    let major = (frame.forward * major.0 + frame.left * major.1).normalize();
+    // A head wider than deep (a cartoon's) has its long axis across: forward is then the
+    // principal axis nearer the hint, not always the longer one.
+    let minor = frame.up.cross(major);
+    let mut forward = if major.dot(forward_hint).abs() >= minor.dot(forward_hint).abs() {
+        major
+    } else {
+        minor
+    };
     if forward.dot(forward_hint) < 0.0 {
         forward = -forward;
     }

@@ -17,23 +17,45 @@ pub fn nearest_loop(loops: &[SliceLoop], guess: DVec3) -> Option<&SliceLoop> {
     best(true).or_else(|| best(false))
 }
 
-/// Principal direction of 2-D points (unit) and the ratio of the standard deviations along the
-/// major and minor axes; `None` for fewer than two distinct points.
-pub fn pca_2d(points: &[(f64, f64)]) -> Option<((f64, f64), f64)> {
-    if points.len() < 2 {
+/// A 2-D segment `(start, end)`.
+pub type Segment2 = ((f64, f64), (f64, f64));
+
+/// Principal direction (unit) of 2-D polylines, and the ratio of the standard deviations
+/// along the major and minor axes. The polylines count as uniform curves, not as their
+/// vertices: each segment `(a, b)` counts with its length and its exact second moment, so
+/// where a mesh happens to be finely or coarsely tessellated does not pull the axes (a 3k
+/// simplification's head vertices turned the head's axis by 7 degrees). `None` when the
+/// segments have no length or no spread.
+pub fn pca_2d_curve(segments: &[Segment2]) -> Option<((f64, f64), f64)> {
+    let length: f64 = segments.iter().map(|&(a, b)| dist(a, b)).sum();
+    if length.is_nan() || length <= 0.0 {
         return None;
     }
-    let n = points.len() as f64;
-    let (mx, my) = points
-        .iter()
-        .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
+    let (mx, my) = segments.iter().fold((0.0, 0.0), |(x, y), &(a, b)| {
+        let w = dist(a, b) / length;
+        (x + w * 0.5 * (a.0 + b.0), y + w * 0.5 * (a.1 + b.1))
+    });
     let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
-    for p in points {
-        let (dx, dy) = (p.0 - mx, p.1 - my);
-        sxx += dx * dx;
-        sxy += dx * dy;
-        syy += dy * dy;
+    for &(a, b) in segments {
+        let w = dist(a, b) / length;
+        let (p, q) = ((a.0 - mx, a.1 - my), (b.0 - mx, b.1 - my));
+        // The integral of u v over the segment, divided by its length.
+        let moment = |u: (f64, f64), v: (f64, f64)| {
+            (2.0 * u.0 * u.1 + 2.0 * v.0 * v.1 + u.0 * v.1 + u.1 * v.0) / 6.0
+        };
+        sxx += w * moment((p.0, p.0), (q.0, q.0));
+        syy += w * moment((p.1, p.1), (q.1, q.1));
+        sxy += w * moment((p.0, p.1), (q.0, q.1));
     }
+    principal((sxx, sxy, syy))
+}
+
+fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
+    (a.0 - b.0).hypot(a.1 - b.1)
+}
+
+/// Major direction and axis ratio of the 2x2 covariance `(sxx, sxy, syy)`.
+fn principal((sxx, sxy, syy): (f64, f64, f64)) -> Option<((f64, f64), f64)> {
     let trace = sxx + syy;
     let det = sxx * syy - sxy * sxy;
     let disc = (trace * trace / 4.0 - det).max(0.0).sqrt();
@@ -41,13 +63,18 @@ pub fn pca_2d(points: &[(f64, f64)]) -> Option<((f64, f64), f64)> {
     if l1 <= 0.0 {
         return None;
     }
-    let dir = if sxy.abs() > 1e-300 {
-        (l1 - syy, sxy)
-    } else if sxx >= syy {
-        (1.0, 0.0)
+    // Two forms of the same eigenvector; the longer one is the well-conditioned one (the
+    // first vanishes when the major axis is the second coordinate's, the second when it is
+    // the first's).
+    let (a, b) = ((l1 - syy, sxy), (sxy, l1 - sxx));
+    let dir = if a.0.hypot(a.1) >= b.0.hypot(b.1) {
+        a
     } else {
-        (0.0, 1.0)
+        b
     };
+    if dir.0.hypot(dir.1) <= 0.0 {
+        return Some(((1.0, 0.0), 1.0));
+    }
     let len = (dir.0 * dir.0 + dir.1 * dir.1).sqrt();
     let ratio = (l1 / l2.max(l1 * 1e-12)).sqrt();
     Some(((dir.0 / len, dir.1 / len), ratio))
@@ -136,5 +163,42 @@ pub fn angle_at(a: DVec3, q: DVec3, b: DVec3) -> f64 {
         std::f64::consts::PI
     } else {
         (u.dot(v) / denom).clamp(-1.0, 1.0).acos()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A closed rectangle `w` × `h` as segments, its left side cut into `pieces` segments.
+    fn rectangle(w: f64, h: f64, pieces: usize) -> Vec<Segment2> {
+        let mut s = vec![
+            ((0.0, 0.0), (w, 0.0)),
+            ((w, 0.0), (w, h)),
+            ((w, h), (0.0, h)),
+        ];
+        for k in 0..pieces {
+            let y = |k: usize| h - h * k as f64 / pieces as f64;
+            s.push(((0.0, y(k)), (0.0, y(k + 1))));
+        }
+        s
+    }
+
+    #[test]
+    fn curve_axes_do_not_follow_where_the_points_are_dense() {
+        // 2 wide, 1.6 high: the long axis is x however finely the short left side is cut
+        // (the vertices' own PCA turns to y once that side holds most of them).
+        let (_, whole) = pca_2d_curve(&rectangle(2.0, 1.6, 1)).unwrap();
+        assert!(whole > 1.1, "{whole}");
+        for pieces in [1, 10, 400] {
+            let ((x, y), ratio) = pca_2d_curve(&rectangle(2.0, 1.6, pieces)).unwrap();
+            assert!(x.abs() > 0.999_999 && y.abs() < 1e-3, "{pieces}: {x} {y}");
+            assert!((ratio - whole).abs() < 1e-9, "{pieces}: {ratio}");
+        }
+        // Major axis along the second coordinate.
+        let ((x, y), _) = pca_2d_curve(&rectangle(1.6, 2.0, 7)).unwrap();
+        assert!(y.abs() > 0.999_999 && x.abs() < 1e-3, "{x} {y}");
+        assert!(pca_2d_curve(&[]).is_none());
+        assert!(pca_2d_curve(&[((1.0, 1.0), (1.0, 1.0))]).is_none());
     }
 }

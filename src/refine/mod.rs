@@ -43,4 +43,4 @@ pub use limb_joints::{ankle, arc_near, bend, wrist, BendRule};
 pub use options::RefineOptions;
 pub use shoulder::{armpit, shoulder, upper_arm_line};
 pub use spine::{spine, Spine, SPINE_JOINTS};
-pub use torso::{hips, torso_points, TorsoBounds, TorsoPoints};
+pub use torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};

@@ -113,11 +113,13 @@ pub struct RefineOptions {
     /// Curvature on the leg's centroid curve is measured over this arc-length window, fraction
     /// of height. Default 0.03 (5 cm).
     pub curvature_window: f64,
-    /// Height of the hip slice above the crotch, fraction of height. Default 0.057. The seed
+    /// Height of the hip slice above the crotch, fraction of height. Default 0.050. The seed
     /// (3.3) averages the crotch and sacroiliac heights; on the MakeHuman bodies the buttocks'
     /// flat bulge made the sacroiliac height unstable (the hip joints lay at 0.7-1.1 of the way
-    /// from crotch to sacroiliac point), while they lay 0.049-0.068 of height above the crotch
-    /// (mean 0.058, measurement; bodies whose thighs touch have the lowest crotch).
+    /// from crotch to sacroiliac point), while the reference hips lay 0.048-0.049 of height
+    /// above the crotch on the five adults and 0.058 on the child (mean 0.050, measurement).
+    /// The crotch is the top of the gap between the legs (where transverse slices stop cutting
+    /// two thighs), or the lowest point of the median-plane silhouette when the legs touch.
     pub hip_above_crotch: f64,
     /// When set, each hip (the centroid of its half of the hip slice) is moved along the
     /// body's forward to this fraction of the body's depth through it (0 the back, 1 the
@@ -196,7 +198,7 @@ impl Default for RefineOptions {
             ankle_height: Some(0.042),
             wrist_search_from: 0.5,
             curvature_window: 0.03,
-            hip_above_crotch: 0.057,
+            hip_above_crotch: 0.050,
             hip_depth: Some(0.45),
             pelvis_above_hips: 0.006,
             neck_window: 0.6,

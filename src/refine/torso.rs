@@ -173,3 +173,70 @@ pub fn hips(
     }
     Some((sums[0].0 / sums[0].1, sums[1].0 / sums[1].1))
 }
+
+/// Whether the transverse slice at height `h` still cuts the legs apart: among the closed loops
+/// whose centroid lies within `reach` of `centre` across the body, the second longest is at
+/// least half as long as the longest (two thighs; above the crotch one pelvis loop dwarfs any
+/// hand or arm beside it).
+fn legs_apart(mesh: &Mesh, frame: &BodyFrame, centre: DVec3, h: f64, reach: f64) -> bool {
+    let origin = frame.at_height(centre, h);
+    let mut perimeters: Vec<f64> = slice_plane(mesh, origin, frame.up)
+        .iter()
+        .filter(|l| l.closed)
+        .filter(|l| {
+            l.centroid().is_some_and(|g| {
+                let across = g - origin;
+                (across - frame.up * across.dot(frame.up)).length() <= reach
+            })
+        })
+        .map(|l| l.perimeter())
+        .collect();
+    perimeters.sort_by(|a, b| b.total_cmp(a));
+    perimeters.len() >= 2 && perimeters[1] >= 0.5 * perimeters[0]
+}
+
+/// Height of the crotch as the top of the gap between the legs: the highest height, going up
+/// from `from` (where the legs must be apart) towards `to`, below which every transverse slice
+/// cuts the legs into two loops of comparable length; found by steps of `step` then
+/// bisection to `step / 16`. `None` when the legs are not apart at `from` (legs touching, a
+/// skirt) or never join below `to`.
+///
+/// The lowest point of the median-plane silhouette (the seed's crotch) rests on the few
+/// triangles the median plane happens to cut; a simplification that pinches one vertex of the
+/// perineum drops it by several millimetres and sends the hips down with it. The leg split
+/// depends on whole cross-sections and moves by about a millimetre on the same meshes.
+pub fn leg_split_height(
+    mesh: &Mesh,
+    frame: &BodyFrame,
+    centre: DVec3,
+    from: f64,
+    to: f64,
+    step: f64,
+    reach: f64,
+) -> Option<f64> {
+    let ordered = step > 0.0 && to > from;
+    if !ordered || !legs_apart(mesh, frame, centre, from, reach) {
+        return None;
+    }
+    let mut below = from;
+    let above = loop {
+        let h = below + step;
+        if h > to {
+            return None;
+        }
+        if !legs_apart(mesh, frame, centre, h, reach) {
+            break h;
+        }
+        below = h;
+    };
+    let (mut lo, mut hi) = (below, above);
+    for _ in 0..4 {
+        let mid = 0.5 * (lo + hi);
+        if legs_apart(mesh, frame, centre, mid, reach) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(0.5 * (lo + hi))
+}
