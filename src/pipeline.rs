@@ -3,7 +3,7 @@
 
 mod rig;
 
-pub use rig::{auto_template, rig, Rig, RigOptions, TemplateChoice};
+pub use rig::{auto_template, label_by_bones, rig, Rig, RigOptions, TemplateChoice};
 
 use crate::distance::{edt, DistanceMap};
 use crate::general::{control_skeleton, GeneralOptions, GeneralSkeleton};

@@ -13,7 +13,9 @@
 //!   pectoral limbs' and the head's junctions, which the per-vertex labels give to the head;
 //!   `limb_root.rs`: arms' and fore legs' DMS voxels inside the trunk's balls, which the
 //!   per-vertex labels give to the trunk;
-//!   `project.rs`: labels per interior voxel and per mesh vertex; [`reference_regions`] (`reference.rs`): the body region of each mesh
+//!   `project.rs`: labels per interior voxel and per mesh vertex; [`label_vertices_by_bones`]
+//!   (`bone_labels.rs`): per-vertex labels from the nearest bone of a fitted skeleton instead
+//!   (`skelfit label --vertex-labels bones`, [`crate::pipeline::label_by_bones`]); [`reference_regions`] (`reference.rs`): the body region of each mesh
 //!   vertex from a reference rig, for the accuracy table; `output.rs`: labels.json, PLY, SVG.
 //!
 //! Determinism: the heart comes from deterministic sources and every step is sequential or
@@ -30,6 +32,7 @@
 //! assert!(!labels.warnings.is_empty());
 //! ```
 
+mod bone_labels;
 mod build;
 mod error;
 mod frame;
@@ -44,6 +47,7 @@ mod project;
 mod reference;
 mod rules;
 
+pub use bone_labels::label_vertices_by_bones;
 pub use error::AnatomyError;
 pub use frame::{parse_direction, Frame};
 pub use level_graph::{level_graph, LevelGraph, LevelVertex, Marks, NO_VERTEX};
@@ -52,7 +56,9 @@ pub use output::{labels_json, labels_ply, labels_svg, part_colour};
 pub use overrides::{Overrides, SectionOverride};
 pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
 pub use project::NO_PART;
-pub use reference::{agreement, part_region, reference_regions, Agreement, Region};
+pub use reference::{
+    agreement, part_region, reference_regions, skeleton_regions, Agreement, Region,
+};
 pub use rules::{label_graph, Assignment, Draft};
 
 use crate::distance::edt;

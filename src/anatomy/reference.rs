@@ -26,8 +26,10 @@
 use super::{Label, Labelling, LimbPair, Side};
 use crate::eval::ReferenceRig;
 use crate::mesh::Mesh;
+use crate::skeleton::{JointId, Skeleton};
 use glam::DVec3;
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// A body region, the unit of comparison between a labelling and a reference rig.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
@@ -167,13 +169,30 @@ fn name_region(name: &str) -> Option<Region> {
 /// module documentation for the rule). `None` for every vertex when no joint has a region.
 pub fn reference_regions(rig: &ReferenceRig, mesh: &Mesh) -> Vec<Option<Region>> {
     let rig = rig.deforming();
-    let joints = &rig.skeleton.joints;
+    nearest_bone_regions(&rig.skeleton, &rig.canonical, mesh)
+}
+
+/// The region of each mesh vertex from the nearest bone of `skeleton`, every joint counted
+/// (a fitted skeleton's non-deforming `*_end` tips included, so a tail or a head reaches its
+/// tip), by the rule of [`reference_regions`]. This is how the labelling's bone-following
+/// per-vertex labels ([`super::label_vertices_by_bones`]) read a fitted skeleton.
+pub fn skeleton_regions(
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    mesh: &Mesh,
+) -> Vec<Option<Region>> {
+    nearest_bone_regions(skeleton, canonical, mesh)
+}
+
+fn nearest_bone_regions(
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    mesh: &Mesh,
+) -> Vec<Option<Region>> {
+    let joints = &skeleton.joints;
     let mut region: Vec<Option<Region>> = vec![None; joints.len()];
-    let canonical_of: std::collections::HashMap<usize, &str> = rig
-        .canonical
-        .iter()
-        .map(|(k, id)| (id.0, k.as_str()))
-        .collect();
+    let canonical_of: std::collections::HashMap<usize, &str> =
+        canonical.iter().map(|(k, id)| (id.0, k.as_str())).collect();
     for (j, joint) in joints.iter().enumerate() {
         region[j] = canonical_of
             .get(&j)

@@ -1,6 +1,9 @@
 //! The anatomical rig: mesh → labelled body parts → template fit → skin (dissertation ch.7-8).
 
-use crate::anatomy::{label_pieces, FigureClass, Label, LabelOptions, Labelling, Overrides};
+use crate::anatomy::{
+    label_pieces, label_vertices_by_bones, label_with_overrides, FigureClass, Label, LabelOptions,
+    Labelling, Overrides,
+};
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{ears, fit_input, fit_with_probe, Fit, FitInput, FitInputOptions, FitOptions};
 use crate::medial::dms;
@@ -94,16 +97,7 @@ pub struct Rig {
 /// that does not voxelize, an empty medial surface, a bad override, or a skeleton that no bone
 /// of which passes inside the figure.
 pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
-    options.label.validate()?;
-    options.label.medial.validate()?;
-    options.label.paths.validate()?;
-    options.fit.validate()?;
-    options.skin.validate()?;
-    let chosen = match &options.template {
-        TemplateChoice::Builtin(name) => Some(Template::builtin(name)?),
-        TemplateChoice::Custom(t) => Some((**t).clone()),
-        TemplateChoice::Auto => None,
-    };
+    let chosen = checked_template(options)?;
     let mut timings = Vec::new();
     let mut clock = Instant::now();
     let mut lap = |name: &str, timings: &mut Vec<(String, f64)>| {
@@ -179,6 +173,63 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     })
 }
 
+/// Validates every stage's options and resolves the chosen template (`None` for
+/// [`TemplateChoice::Auto`]), before any work.
+fn checked_template(options: &RigOptions) -> crate::Result<Option<Template>> {
+    options.label.validate()?;
+    options.label.medial.validate()?;
+    options.label.paths.validate()?;
+    options.fit.validate()?;
+    options.skin.validate()?;
+    Ok(match &options.template {
+        TemplateChoice::Builtin(name) => Some(Template::builtin(name)?),
+        TemplateChoice::Custom(t) => Some((**t).clone()),
+        TemplateChoice::Auto => None,
+    })
+}
+
+/// Body-part labels whose per-mesh-vertex labels follow the fitted anatomical skeleton: [`rig`]
+/// (refinement and skin included), then [`label_vertices_by_bones`] on its labelling with the
+/// fitted skeleton, so each vertex takes the part of its nearest bone. The level-graph and
+/// voxel labels are the medial surface's, as with [`crate::anatomy::label`].
+///
+/// When the rig fails after the labelling succeeded (no bone inside the figure, a skin that
+/// cannot be bound), the medial surface's per-vertex labels are returned with a warning saying
+/// so.
+///
+/// # Errors
+/// Invalid options of any stage or an unknown built-in template (checked before any work), and
+/// as [`crate::anatomy::label_with_overrides`] (a mesh that does not voxelize, an empty medial
+/// surface, a bad override).
+pub fn label_by_bones(mesh: &Mesh, options: &RigOptions) -> crate::Result<Labelling> {
+    checked_template(options)?;
+    bones_or_medial(mesh, options, rig(mesh, options))
+}
+
+/// The bone-following labels of a fitted `rigged`, or the medial ones with a warning when the
+/// rig failed.
+fn bones_or_medial(
+    mesh: &Mesh,
+    options: &RigOptions,
+    rigged: crate::Result<Rig>,
+) -> crate::Result<Labelling> {
+    match rigged {
+        Ok(r) => {
+            let mut labelling = r.labelling;
+            label_vertices_by_bones(&mut labelling, mesh, &r.fit.skeleton, &r.fit.canonical);
+            Ok(labelling)
+        }
+        Err(e) => {
+            let mut labelling =
+                label_with_overrides(mesh, &options.label, options.overrides.as_ref())?;
+            labelling.warnings.push(format!(
+                "per-vertex labels follow the medial surface, not bones: the rig failed ({e})"
+            ));
+            Ok(labelling)
+        }
+    }
+}
+
 /// The built-in template for a labelled figure and, when the figure class was unknown, a
 /// sentence saying what was chosen and why.
 pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<String>) {
@@ -203,5 +254,33 @@ pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<String>) {
                 )),
             )
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::anatomy::{label, AnatomyError};
+
+    #[test]
+    fn a_failed_rig_leaves_the_medial_labels_with_a_warning() {
+        let mesh = Mesh::capsule(glam::DVec3::ZERO, 0.2, 1.0, 8, 24);
+        let options = RigOptions::default();
+        let failed = Err(AnatomyError::EmptySurface.into());
+        let labels = bones_or_medial(&mesh, &options, failed).unwrap();
+        let medial = label(&mesh, &options.label).unwrap();
+        assert_eq!(labels.mesh_parts, medial.mesh_parts);
+        let warning = labels.warnings.last().unwrap();
+        assert!(warning.contains("rig failed"), "{warning}");
+    }
+
+    #[test]
+    fn bad_options_are_errors_before_any_work() {
+        let mesh = Mesh::capsule(glam::DVec3::ZERO, 0.2, 1.0, 8, 24);
+        let options = RigOptions {
+            template: TemplateChoice::Builtin("centaur".into()),
+            ..Default::default()
+        };
+        assert!(label_by_bones(&mesh, &options).is_err());
     }
 }
