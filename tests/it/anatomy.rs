@@ -235,7 +235,11 @@ fn labels_are_identical_on_one_and_two_threads() {
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| labels_json(&label(&mesh, &LabelOptions::default()).unwrap()).to_string())
+        pool.install(|| {
+            let medial = labels_json(&label(&mesh, &LabelOptions::default()).unwrap());
+            let bones = skelfit::pipeline::label_by_bones(&mesh, &Default::default()).unwrap();
+            (medial.to_string(), labels_json(&bones).to_string())
+        })
     };
     let one_thread = run(1);
     assert_eq!(one_thread, run(2));
