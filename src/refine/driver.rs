@@ -5,8 +5,8 @@ use super::frame::{frame_from_head, head_slices, BodyFrame};
 use super::head::head_joint;
 use super::limb::trace_limb;
 use super::limb_joints::{
-    ankle, arc_near, bend, centre_in_depth, sole_under, surface_above, transverse_point, wrist,
-    BendRule,
+    ankle, arc_near, bend, centre_in_depth, on_axis, sole_under, surface_above, transverse_point,
+    wrist, BendRule,
 };
 use super::shoulder::{armpit, shoulder, upper_arm_line, upper_arm_radius};
 use super::spine::{spine, Spine};
@@ -349,6 +349,18 @@ pub fn refine(
                     Some(f) => sole_under(mesh, &frame, a, SOLE_REACH * height)
                         .map_or(a, |sole| frame.at_height(a, sole + f * height)),
                     None => a,
+                };
+                // The foot pulls the sphere slices' centroids forward around the ankle: take
+                // the depth from the shin's axis instead (the lower shin, above the
+                // curvature window).
+                let a = if options.ankle_on_shin_axis {
+                    let sa = arc_near(&profile, a);
+                    let lo = sk + 0.4 * (sa - sk);
+                    let hi = sa - 0.5 * options.curvature_window * height;
+                    on_axis(&profile, &frame, lo, hi, step, frame.h(a))
+                        .map_or(a, |p| a + frame.forward * (p - a).dot(frame.forward))
+                } else {
+                    a
                 };
                 found.insert(if side == "L" { "ankle_L" } else { "ankle_R" }, a);
             }

@@ -36,6 +36,45 @@ pub fn ankle(profile: &LimbProfile, from: f64, window: f64, step: f64) -> Option
         .map(|(q, _)| q)
 }
 
+/// The point at height `h` (along `frame.up`) on the straight line fitted through the centroid
+/// curve of `profile` between arc lengths `lo` and `hi` (least squares of the across and
+/// forward coordinates against height): the shin's axis carried down to the ankle's height,
+/// past the foot's pull on the centroids. `None` for fewer than three samples or no spread in
+/// height.
+pub fn on_axis(
+    profile: &LimbProfile,
+    frame: &BodyFrame,
+    lo: f64,
+    hi: f64,
+    step: f64,
+    h: f64,
+) -> Option<DVec3> {
+    let samples: Vec<DVec3> = profile
+        .dense(step)
+        .into_iter()
+        .filter(|s| s.arc >= lo && s.arc <= hi)
+        .map(|s| s.centre)
+        .collect();
+    if samples.len() < 3 {
+        return None;
+    }
+    let n = samples.len() as f64;
+    let mean = samples.iter().copied().sum::<DVec3>() / n;
+    let hm = frame.h(mean);
+    let (mut shh, mut sh) = (0.0, DVec3::ZERO);
+    for p in &samples {
+        let dh = frame.h(*p) - hm;
+        shh += dh * dh;
+        sh += (*p - mean) * dh;
+    }
+    if shh <= f64::EPSILON * n {
+        return None;
+    }
+    // Slope of position against height; its `up` part is 1 by construction.
+    let slope = sh / shh;
+    Some(mean + slope * (h - hm))
+}
+
 /// The wrist: among the local minima of the arm's thickness (minor diameter) beyond `from`
 /// (arc length), the one nearest the global minimum of the width (major diameter) there.
 pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
@@ -83,10 +122,16 @@ pub fn bend(
         return None;
     }
     let dense = profile.dense(step);
+    // The middle half of the limb, measured along the straight line between the joints rather
+    // than along the curve: a centroid curve that runs on into a foot and folds back puts its
+    // arc-length middle next to the ankle, where the angle to the ankle is always small.
+    let axis = distal - proximal;
+    let along = |p: DVec3| (p - proximal).dot(axis) / axis.length_squared();
     let middle = |lo: f64, hi: f64| {
-        dense
-            .iter()
-            .filter(move |s| s.arc >= s0 + lo * (s1 - s0) && s.arc <= s0 + hi * (s1 - s0))
+        dense.iter().filter(move |s| {
+            let t = along(s.centre);
+            (lo..=hi).contains(&t)
+        })
     };
     let (q, angle) = middle(0.25, 0.75)
         .map(|s| (s.centre, angle_at(proximal, s.centre, distal)))

@@ -559,3 +559,83 @@ fn a_head_wider_than_deep_still_faces_forward() {
         assert!(f.left.distance(DVec3::X) < 1e-6, "{a} {c}: {}", f.left);
     }
 }
+
+/// A limb profile through `points` (arc = length along them), every slice alike.
+fn profile(points: &[DVec3]) -> skelfit::refine::LimbProfile {
+    let mut arc = 0.0;
+    let slices = points
+        .iter()
+        .enumerate()
+        .map(|(i, &centre)| {
+            if i > 0 {
+                arc += centre.distance(points[i - 1]);
+            }
+            skelfit::refine::LimbSlice {
+                centre,
+                perimeter: 0.3,
+                major: 0.1,
+                minor: 0.08,
+                arc,
+            }
+        })
+        .collect();
+    skelfit::refine::LimbProfile { slices }
+}
+
+/// Points every `step` along the polyline `corners`.
+fn along(corners: &[DVec3], step: f64) -> Vec<DVec3> {
+    let mut out = vec![corners[0]];
+    for w in corners.windows(2) {
+        let n = (w[0].distance(w[1]) / step).ceil() as usize;
+        out.extend((1..=n).map(|k| w[0].lerp(w[1], k as f64 / n as f64)));
+    }
+    out
+}
+
+/// A leg bent at the knee whose centroid curve runs on into the foot and folds back (as the
+/// sphere slices of a low-poly foot do): the knee is the bend of the leg, not the fold next to
+/// an ankle misplaced into the foot (CesiumMan's knees went to its ankles that way).
+#[test]
+fn a_knee_is_not_taken_from_a_foot_that_folds_back() {
+    let (hip, knee, ankle) = (
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(0.0, 0.55, 0.12),
+        DVec3::new(0.0, 0.1, 0.0),
+    );
+    let points = along(
+        &[
+            hip,
+            knee,
+            ankle,
+            DVec3::new(0.0, 0.03, 0.05),
+            DVec3::new(0.0, 0.02, 0.25),
+            DVec3::new(0.0, 0.05, 0.06),
+        ],
+        0.01,
+    );
+    let p = profile(&points);
+    let distal = DVec3::new(0.0, 0.06, 0.05);
+    let (found, rule) =
+        skelfit::refine::bend(&p, hip, distal, 0.485, 0.005, &RefineOptions::default()).unwrap();
+    assert_eq!(rule, skelfit::refine::BendRule::SmallestAngle);
+    assert!(found.distance(knee) < 0.02, "{found}");
+}
+
+/// The ankle's depth comes from the shin's axis: a straight slanted shin carried down to
+/// the ankle's height, whatever the foot does below it.
+#[test]
+fn the_shin_axis_reaches_down_to_the_ankle_height() {
+    let mesh = Mesh::cuboid(DVec3::new(-0.2, 0.0, -0.2), DVec3::new(0.2, 1.8, 0.2));
+    let frame = skelfit::refine::BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap();
+    let shin = |y: f64| DVec3::new(0.1 * y, y, 0.2 + 0.05 * y);
+    let mut points: Vec<DVec3> = (0..=40).map(|k| shin(0.9 - 0.02 * k as f64)).collect();
+    points.extend([DVec3::new(0.01, 0.05, 0.3), DVec3::new(0.01, 0.03, 0.4)]);
+    let p = profile(&points);
+    let end = p.slices[40].arc;
+    let at = skelfit::refine::on_axis(&p, &frame, 0.0, end, 0.005, 0.08).unwrap();
+    assert!(at.distance(shin(0.08)) < 1e-3, "{at} vs {}", shin(0.08));
+    assert_eq!(
+        skelfit::refine::on_axis(&p, &frame, 0.0, 0.005, 0.005, 0.08),
+        None
+    );
+}
