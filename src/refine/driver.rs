@@ -12,7 +12,7 @@ use super::shoulder::{armpit, shoulder, upper_arm_line, upper_arm_radius};
 use super::spine::{spine, Spine};
 use super::torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
 use super::{RefineError, RefineOptions};
-use crate::mesh::Mesh;
+use crate::mesh::{slice_plane, Mesh};
 use crate::skeleton::{JointId, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -161,6 +161,26 @@ pub fn refine(
         (Some(p), None) => p,
         (None, Some(h)) => h,
         (None, None) => frame.at_height(DVec3::ZERO, frame.bottom + 0.5 * height),
+    };
+    // The median plane passes through the waist's cross-section: the rough pelvis can sit a
+    // centimetre or two off the body's middle, and the spine and neck (found in that plane)
+    // moved sideways with it.
+    let centre = match (
+        mean_height(["hip_L", "hip_R"]),
+        mean_height(["shoulder_L", "shoulder_R"]),
+    ) {
+        (Some(hips_h), Some(shoulders_h)) => {
+            let origin = frame.at_height(centre, 0.5 * (hips_h + shoulders_h));
+            slice_plane(mesh, origin, frame.up)
+                .iter()
+                .filter(|l| l.closed)
+                .filter_map(|l| l.centroid())
+                .min_by(|a, b| a.distance(origin).total_cmp(&b.distance(origin)))
+                .map_or(centre, |g| {
+                    centre + frame.left * (g - centre).dot(frame.left)
+                })
+        }
+        _ => centre,
     };
     // 3.3 Arms.
     let waist = match (

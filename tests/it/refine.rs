@@ -639,3 +639,20 @@ fn the_shin_axis_reaches_down_to_the_ankle_height() {
         None
     );
 }
+
+/// The median plane (spine, neck) passes through the body's own waist, not through a rough
+/// pelvis that sits off the middle: moving the rough pelvis 3 cm sideways moves the refined
+/// neck sideways by under 3 mm (it moved about half as far when the plane followed the pelvis).
+#[test]
+fn an_off_centre_rough_pelvis_does_not_move_the_neck_sideways() {
+    let c = bundled();
+    let o = RefineOptions::default();
+    let neck_x = |rough: &Skeleton| {
+        let r = refine(&c.mesh, rough, &c.canonical, DVec3::Y, DVec3::Z, &o).unwrap();
+        r.skeleton.joint(c.canonical["neck"]).position.x
+    };
+    let mut shifted = c.rough.clone();
+    shifted.joints[c.canonical["pelvis"].0].position.x += 0.03;
+    let (a, b) = (neck_x(&c.rough), neck_x(&shifted));
+    assert!((a - b).abs() < 0.003, "neck x {a} vs {b}");
+}
