@@ -201,9 +201,10 @@ fn makehuman_mean_error(options: &RigOptions) -> Option<(f64, f64, f64)> {
 }
 
 /// The humanoid rig without refinement (issue 5's target is 30 mm; measured 29.7 mm on the six
-/// MakeHuman bodies when written) and with it (the default; measured 9.1 mm, per model 6.8-11.1
-/// mm, the largest single joint error 28.3 mm). With refinement the bounds are issue 6's
-/// targets: mean <= 14 mm and max <= 29 mm on every model (and the overall mean below 11 mm).
+/// MakeHuman bodies when written) and with it (the default; measured 8.1 mm, per model 6.0-9.8
+/// mm, the largest single joint error 27.2 mm, the heavy body's knees). With refinement the
+/// bounds are issue 6's targets: mean <= 14 mm and max <= 29 mm on every model (and the overall
+/// mean below 9.5 mm, a regression guard).
 /// Per-model numbers: `cargo test --release --test it makehuman_joint_error -- --nocapture`.
 #[test]
 fn makehuman_joint_error_stays_within_the_measured_bounds() {
@@ -215,7 +216,7 @@ fn makehuman_joint_error_stays_within_the_measured_bounds() {
     }
     if let Some((mean, worst_mean, worst)) = makehuman_mean_error(&RigOptions::default()) {
         println!("with refinement: mean {:.1} mm", mean * 1e3);
-        assert!(mean < 0.011, "mean joint error {:.1} mm", mean * 1e3);
+        assert!(mean < 0.0095, "mean joint error {:.1} mm", mean * 1e3);
         assert!(
             worst_mean <= 0.014,
             "a model's mean error is {:.1} mm",
