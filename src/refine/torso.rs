@@ -103,6 +103,17 @@ pub fn torso_points(
         false,
     )?;
     let lumbar = pick(&back, bounds.hips, h(back_point), true)?;
+    // A back without a lumbar hollow (a cartoon's straight or convex back) has its forward
+    // maximum at the window's lower end, on the hips, which leaves no room for the sacrum
+    // below: the lumbar point is then the back's point halfway up the window.
+    let lumbar = if h(lumbar) <= bounds.hips + 2.0 * step {
+        let mid = 0.5 * (bounds.hips + h(back_point));
+        back.iter()
+            .copied()
+            .min_by(|&x, &y| (h(x) - mid).abs().total_cmp(&(h(y) - mid).abs()))?
+    } else {
+        lumbar
+    };
     let sacroiliac = pick(&back, h(crotch), h(lumbar), false)?;
     let throat = pick(&front, h(back_point), neck_top, false)?;
     Some(TorsoPoints {
