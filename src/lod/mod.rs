@@ -1,4 +1,4 @@
-//! Level-of-detail operations on any skelfit [`Skeleton`](crate::skeleton::Skeleton) (seed 003,
+//! Level-of-detail operations on any skelfit [`Skeleton`] (seed 003,
 //! 3.3): the coarse-to-fine controls that let a user choose how detailed a skeleton is.
 //!
 //! Four operations, each with one threshold in skeleton units (0 turns it off); a larger
