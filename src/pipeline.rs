@@ -3,7 +3,9 @@
 
 mod rig;
 
-pub use rig::{auto_template, label_by_bones, rig, Rig, RigOptions, TemplateChoice};
+pub use rig::{
+    auto_template, label_by_bones, rig, Rig, RigOptions, TemplateChoice, MEDIAL_FALLBACK,
+};
 
 use crate::distance::{edt, DistanceMap};
 use crate::general::{control_skeleton, GeneralOptions, GeneralSkeleton};

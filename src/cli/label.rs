@@ -12,7 +12,7 @@ use skelfit::anatomy::{
     Overrides, Side,
 };
 use skelfit::eval::load_skeleton;
-use skelfit::pipeline::{label_by_bones, rig, RigOptions};
+use skelfit::pipeline::{label_by_bones, rig, RigOptions, MEDIAL_FALLBACK};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -151,6 +151,18 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     }
     println!("figure          {}", labels.figure.name());
     println!("parts           {}", summary(&labels));
+    let fell_back = labels
+        .warnings
+        .iter()
+        .any(|w| w.starts_with(MEDIAL_FALLBACK));
+    println!(
+        "vertex labels   {}",
+        match args.vertex_labels {
+            VertexLabels::Bones if !fell_back => "nearest bone of the fitted skeleton",
+            VertexLabels::Bones => "medial surface (no rig could be fitted, see the warning)",
+            VertexLabels::Medial => "medial surface",
+        }
+    );
     println!("wrote           {}", args.output.display());
     for p in [&args.ply, &args.svg].into_iter().flatten() {
         println!("wrote           {}", p.display());

@@ -173,6 +173,9 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     })
 }
 
+/// How the warning of [`label_by_bones`] begins when it kept the medial per-vertex labels.
+pub const MEDIAL_FALLBACK: &str = "per-vertex labels follow the medial surface, not bones";
+
 /// Validates every stage's options and resolves the chosen template (`None` for
 /// [`TemplateChoice::Auto`]), before any work.
 fn checked_template(options: &RigOptions) -> crate::Result<Option<Template>> {
@@ -222,9 +225,9 @@ fn bones_or_medial(
         Err(e) => {
             let mut labelling =
                 label_with_overrides(mesh, &options.label, options.overrides.as_ref())?;
-            labelling.warnings.push(format!(
-                "per-vertex labels follow the medial surface, not bones: the rig failed ({e})"
-            ));
+            labelling
+                .warnings
+                .push(format!("{MEDIAL_FALLBACK}: the rig failed ({e})"));
             Ok(labelling)
         }
     }
@@ -271,7 +274,7 @@ mod tests {
         let medial = label(&mesh, &options.label).unwrap();
         assert_eq!(labels.mesh_parts, medial.mesh_parts);
         let warning = labels.warnings.last().unwrap();
-        assert!(warning.contains("rig failed"), "{warning}");
+        assert!(warning.starts_with(MEDIAL_FALLBACK), "{warning}");
     }
 
     #[test]
