@@ -31,7 +31,7 @@ pub fn armpit(
         .flat_map(|l| l.segments())
         .map(|(a, b)| ((lateral(a), frame.h(a)), (lateral(b), frame.h(b))))
         .collect();
-    let mut best: Option<(f64, f64)> = None;
+    let mut columns: Vec<(f64, f64)> = Vec::new();
     for k in 0..=samples {
         let u = inner + (outer - inner) * k as f64 / samples.max(1) as f64;
         let mut crossings: Vec<f64> = segments
@@ -47,11 +47,17 @@ pub fn armpit(
         let Some(&top) = crossings.iter().find(|&&h| h >= waist) else {
             continue;
         };
-        if best.is_none_or(|(_, h)| top > h) {
-            best = Some((u, top));
-        }
+        columns.push((u, top));
     }
-    let (u, h) = best?;
+    // Going outwards, the gap's top climbs the torso's side steeply up to the armpit, then
+    // follows the arm's underside: down and out for a hanging arm, level (or slowly up as the
+    // arm tapers) for a raised one. The armpit is the corner between the two: the top point
+    // farthest up and in (the largest height minus lateral offset), which is the highest
+    // point for a hanging arm and not the far end of a raised one's underside.
+    let (u, h) = columns
+        .iter()
+        .copied()
+        .max_by(|a, b| (a.1 - a.0).total_cmp(&(b.1 - b.0)))?;
     let origin = centre + frame.left * (sign * u);
     Some(frame.at_height(origin, h))
 }
