@@ -337,7 +337,7 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     md.push_str(
         "\nNotes. The bone-following labels agree better on 19 of the 23 models and vary less with tessellation \
-         (the mh_male_young_average variants: 98.2-99.0 % against 93.2-97.4 % medial), since the medial labels' limb roots \
+         (the mh_male_young_average variants: 98.3-99.1 % against 93.2-97.4 % medial), since the medial labels' limb roots \
          follow wherever the medial surface's limb pieces leave the trunk's. What remains below 95 % is the four Quaternius \
          quadrupeds, at the limb roots and the base of the neck, where the reference rigs disagree with each other and with \
          anatomy: the Quaternius rigs start their fore legs at the armpit (a trunk `FrontShoulder` bone runs from the spine \
