@@ -1,7 +1,7 @@
 //! Ankles, wrists, knees and elbows on a limb's centroid curve (seed 004, 3.3).
 
 use super::frame::BodyFrame;
-use super::geometry::{angle_at, nearest_loop};
+use super::geometry::{angle_at, fit_line, nearest_loop};
 use super::limb::{LimbProfile, LimbSlice};
 use super::RefineOptions;
 use crate::mesh::{slice_plane, Mesh};
@@ -36,11 +36,10 @@ pub fn ankle(profile: &LimbProfile, from: f64, window: f64, step: f64) -> Option
         .map(|(q, _)| q)
 }
 
-/// The point at height `h` (along `frame.up`) on the straight line fitted through the centroid
-/// curve of `profile` between arc lengths `lo` and `hi` (least squares of the across and
-/// forward coordinates against height): the shin's axis carried down to the ankle's height,
-/// past the foot's pull on the centroids. `None` for fewer than three samples or no spread in
-/// height.
+/// The point at height `h` (along `frame.up`) on the straight line fitted
+/// ([`fit_line`]) through the centroid curve of `profile` between arc lengths `lo` and `hi`:
+/// the shin's axis carried down to the ankle's height, past the foot's pull on the centroids.
+/// `None` for fewer than three samples or a line that does not rise.
 pub fn on_axis(
     profile: &LimbProfile,
     frame: &BodyFrame,
@@ -58,21 +57,12 @@ pub fn on_axis(
     if samples.len() < 3 {
         return None;
     }
-    let n = samples.len() as f64;
-    let mean = samples.iter().copied().sum::<DVec3>() / n;
-    let hm = frame.h(mean);
-    let (mut shh, mut sh) = (0.0, DVec3::ZERO);
-    for p in &samples {
-        let dh = frame.h(*p) - hm;
-        shh += dh * dh;
-        sh += (*p - mean) * dh;
-    }
-    if shh <= f64::EPSILON * n {
+    let (point, dir) = fit_line(&samples)?;
+    let rise = dir.dot(frame.up);
+    if rise.abs() < 1e-6 {
         return None;
     }
-    // Slope of position against height; its `up` part is 1 by construction.
-    let slope = sh / shh;
-    Some(mean + slope * (h - hm))
+    Some(point + dir * ((h - frame.h(point)) / rise))
 }
 
 /// The wrist: among the local minima of the arm's thickness (minor diameter) beyond `from`

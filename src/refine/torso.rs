@@ -4,7 +4,7 @@
 use super::frame::BodyFrame;
 use super::geometry::resample;
 use super::RefineOptions;
-use crate::mesh::{slice_plane, Mesh};
+use crate::mesh::{slice_plane, Mesh, SliceLoop};
 use bspline::BSpline;
 use glam::DVec3;
 
@@ -156,15 +156,8 @@ pub fn hips(
     reach: f64,
 ) -> Option<(DVec3, DVec3)> {
     let origin = frame.at_height(centre, height);
-    let loops = slice_plane(mesh, origin, frame.up);
-    let segments: Vec<(DVec3, f64)> = loops
+    let segments: Vec<(DVec3, f64)> = loops_near(mesh, frame, origin, reach)
         .iter()
-        .filter(|l| {
-            l.centroid().is_some_and(|g| {
-                let across = g - origin;
-                (across - frame.up * across.dot(frame.up)).length() <= reach
-            })
-        })
         .flat_map(|l| l.segments())
         .map(|(a, b)| ((a + b) * 0.5, a.distance(b)))
         .collect();
@@ -190,16 +183,9 @@ pub fn hips(
 /// least half as long as the longest (two thighs; above the crotch one pelvis loop dwarfs any
 /// hand or arm beside it).
 fn legs_apart(mesh: &Mesh, frame: &BodyFrame, centre: DVec3, h: f64, reach: f64) -> bool {
-    let origin = frame.at_height(centre, h);
-    let mut perimeters: Vec<f64> = slice_plane(mesh, origin, frame.up)
+    let mut perimeters: Vec<f64> = loops_near(mesh, frame, frame.at_height(centre, h), reach)
         .iter()
         .filter(|l| l.closed)
-        .filter(|l| {
-            l.centroid().is_some_and(|g| {
-                let across = g - origin;
-                (across - frame.up * across.dot(frame.up)).length() <= reach
-            })
-        })
         .map(|l| l.perimeter())
         .collect();
     perimeters.sort_by(|a, b| b.total_cmp(a));
@@ -250,4 +236,18 @@ pub fn leg_split_height(
         }
     }
     Some(0.5 * (lo + hi))
+}
+
+/// The pieces of the transverse slice through `origin` whose centroid lies within `reach` of
+/// it across the body (the torso and legs, not hands hanging beside them).
+fn loops_near(mesh: &Mesh, frame: &BodyFrame, origin: DVec3, reach: f64) -> Vec<SliceLoop> {
+    slice_plane(mesh, origin, frame.up)
+        .into_iter()
+        .filter(|l| {
+            l.centroid().is_some_and(|g| {
+                let across = g - origin;
+                (across - frame.up * across.dot(frame.up)).length() <= reach
+            })
+        })
+        .collect()
 }
