@@ -37,7 +37,7 @@ pub fn ankle(profile: &LimbProfile, from: f64, window: f64, step: f64) -> Option
 }
 
 /// The point at height `h` (along `frame.up`) on the straight line fitted
-/// ([`fit_line`]) through the centroid curve of `profile` between arc lengths `lo` and `hi`:
+/// (`geometry::fit_line`) through the centroid curve of `profile` between arc lengths `lo` and `hi`:
 /// the shin's axis carried down to the ankle's height, past the foot's pull on the centroids.
 /// `None` for fewer than three samples or a line that does not rise.
 pub fn on_axis(
