@@ -169,7 +169,7 @@ fn name_region(name: &str) -> Option<Region> {
 /// module documentation for the rule). `None` for every vertex when no joint has a region.
 pub fn reference_regions(rig: &ReferenceRig, mesh: &Mesh) -> Vec<Option<Region>> {
     let rig = rig.deforming();
-    nearest_bone_regions(&rig.skeleton, &rig.canonical, mesh)
+    skeleton_regions(&rig.skeleton, &rig.canonical, mesh)
 }
 
 /// The region of each mesh vertex from the nearest bone of `skeleton`, every joint counted
@@ -177,14 +177,6 @@ pub fn reference_regions(rig: &ReferenceRig, mesh: &Mesh) -> Vec<Option<Region>>
 /// tip), by the rule of [`reference_regions`]. This is how the labelling's bone-following
 /// per-vertex labels ([`super::label_vertices_by_bones`]) read a fitted skeleton.
 pub fn skeleton_regions(
-    skeleton: &Skeleton,
-    canonical: &BTreeMap<String, JointId>,
-    mesh: &Mesh,
-) -> Vec<Option<Region>> {
-    nearest_bone_regions(skeleton, canonical, mesh)
-}
-
-fn nearest_bone_regions(
     skeleton: &Skeleton,
     canonical: &BTreeMap<String, JointId>,
     mesh: &Mesh,

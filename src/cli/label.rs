@@ -7,9 +7,8 @@ use super::common::{load_mesh, write_file, VoxelArgs};
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
 use skelfit::anatomy::{
-    agreement, label_vertices_by_bones, label_with_overrides, labels_json, labels_ply, labels_svg,
-    parse_direction, reference_regions, Forward, Label, LabelOptions, Labelling, LimbPair,
-    Overrides, Side,
+    agreement, label_with_overrides, labels_json, labels_ply, labels_svg, parse_direction,
+    reference_regions, Forward, Label, LabelOptions, Labelling, LimbPair, Overrides, Side,
 };
 use skelfit::eval::load_skeleton;
 use skelfit::pipeline::{label_by_bones, rig, RigOptions, MEDIAL_FALLBACK};
@@ -265,16 +264,7 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
                 ..Default::default()
             };
             let (medial, by_bones) = match rig(&mesh, &rig_options) {
-                Ok(r) => {
-                    let mut by_bones = r.labelling.clone();
-                    label_vertices_by_bones(
-                        &mut by_bones,
-                        &mesh,
-                        &r.fit.skeleton,
-                        &r.fit.canonical,
-                    );
-                    (r.labelling, Some(by_bones))
-                }
+                Ok(r) => (r.labelling.clone(), Some(r.into_bone_labels(&mesh))),
                 Err(e) => {
                     eprintln!("  {name}: no rig ({e}); medial labels only");
                     let labels = label_with_overrides(&mesh, options, None)

@@ -84,6 +84,21 @@ pub struct Rig {
     pub warnings: Vec<String>,
 }
 
+impl Rig {
+    /// Its labelling with the per-mesh-vertex labels following the fitted bones
+    /// ([`label_vertices_by_bones`]); `mesh` is the mesh it was rigged from.
+    pub fn into_bone_labels(self, mesh: &Mesh) -> Labelling {
+        let mut labelling = self.labelling;
+        label_vertices_by_bones(
+            &mut labelling,
+            mesh,
+            &self.fit.skeleton,
+            &self.fit.canonical,
+        );
+        labelling
+    }
+}
+
 /// Rigs `mesh` with an anatomical control skeleton (dissertation ch.7-8): voxelize, exact
 /// distance map, medial surface, body-part labels, centralised paths between the labelled
 /// parts ([`fit_input`]), the template fit ([`fit_with_probe`], dorsal rays through the
@@ -217,11 +232,7 @@ fn bones_or_medial(
     rigged: crate::Result<Rig>,
 ) -> crate::Result<Labelling> {
     match rigged {
-        Ok(r) => {
-            let mut labelling = r.labelling;
-            label_vertices_by_bones(&mut labelling, mesh, &r.fit.skeleton, &r.fit.canonical);
-            Ok(labelling)
-        }
+        Ok(r) => Ok(r.into_bone_labels(mesh)),
         Err(e) => {
             let mut labelling =
                 label_with_overrides(mesh, &options.label, options.overrides.as_ref())?;
