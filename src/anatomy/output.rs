@@ -32,8 +32,14 @@ fn point(p: DVec3) -> Value {
 
 /// The labels.json document: figure class, frame, parts (label, side, limb pair, vertex count,
 /// attachment and distal points, girdle and digits), sections, level-graph vertices, one part
-/// index per mesh vertex (`vertex_labels`, mesh order) and warnings.
-pub fn labels_json(l: &Labelling) -> Value {
+/// index per mesh vertex (`vertex_labels`) and warnings.
+///
+/// `source` is the mesh file's vertex map from
+/// [`load_with_source_map`](crate::mesh::load_with_source_map): with it, `vertex_labels` has
+/// one entry per vertex of the file, in the file's order (`null` for a vertex no face uses;
+/// welded duplicates share their vertex's part), so that it lines up with the user's own
+/// mesh. Without it, one entry per vertex of the labelled [`Mesh`], in its order.
+pub fn labels_json(l: &Labelling, source: Option<&[Option<u32>]>) -> Value {
     let parts: Vec<Value> = l
         .parts
         .iter()
@@ -111,7 +117,13 @@ pub fn labels_json(l: &Labelling) -> Value {
         "parts": parts,
         "sections": sections,
         "level_graph": {"root": l.level_graph.root, "vertices": vertices},
-        "vertex_labels": l.mesh_parts,
+        "vertex_labels": match source {
+            Some(source) => json!(source
+                .iter()
+                .map(|v| v.and_then(|v| l.mesh_parts.get(v as usize).copied()))
+                .collect::<Vec<_>>()),
+            None => json!(l.mesh_parts),
+        },
         "warnings": l.warnings,
     })
 }

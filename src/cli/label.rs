@@ -123,7 +123,8 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     let Some(mesh_path) = &args.mesh else {
         bail!("give a MESH or --table REFDATA");
     };
-    let mesh = load_mesh(mesh_path)?;
+    let (mesh, source) = skelfit::mesh::load_with_source_map(mesh_path)
+        .with_context(|| format!("loading mesh {}", mesh_path.display()))?;
     let overrides = match &args.labels {
         Some(p) => Some(Overrides::load(p)?),
         None => None,
@@ -140,7 +141,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
         ),
     }
     .with_context(|| format!("labelling {}", mesh_path.display()))?;
-    let json = serde_json::to_string_pretty(&labels_json(&labels))?;
+    let json = serde_json::to_string_pretty(&labels_json(&labels, Some(&source)))?;
     write_file(&args.output, json.as_bytes())?;
     if let Some(p) = &args.ply {
         write_file(p, labels_ply(&mesh, &labels).as_bytes())?;

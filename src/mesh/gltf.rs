@@ -29,6 +29,10 @@ pub struct GltfScene {
     /// `JOINTS_n`/`WEIGHTS_n` pair. Joints are in skin order, moved only where needed to put
     /// parents before children.
     pub skeleton: Option<Skeleton>,
+    /// For every vertex of the file's triangle primitives, in reading order, its index in
+    /// `mesh` (`None`: used by no face); see
+    /// [`load_with_source_map`](super::load_with_source_map).
+    pub source_vertices: Vec<Option<u32>>,
 }
 
 /// Reads the mesh of a glTF 2.0 file (`.gltf` with external or embedded buffers, or `.glb`).
@@ -71,10 +75,11 @@ pub fn load_gltf_scene(path: &Path) -> Result<GltfScene, MeshError> {
     } else {
         " (the glTF scene has no mesh primitives)"
     };
-    let mesh = finish(raw.positions, raw.triangles, detail)?;
+    let (mesh, source_vertices) = finish(raw.positions, raw.triangles, detail)?;
     Ok(GltfScene {
         mesh,
         skeleton: raw.skeleton,
+        source_vertices,
     })
 }
 

@@ -26,15 +26,44 @@ use std::path::{Path, PathBuf};
 /// assert_eq!(mesh.triangles.len(), 1);
 /// ```
 pub fn load(path: &Path) -> Result<Mesh, MeshError> {
+    load_with_source_map(path).map(|(mesh, _)| mesh)
+}
+
+/// Reads a mesh like [`load`], and says where each vertex of the file went: entry `i` is the
+/// index in the returned mesh of the file's vertex `i`, `None` for a vertex no (non-degenerate)
+/// face uses. Vertices welded together map to the same index. Use it to write per-vertex
+/// results in the file's own vertex order (`skelfit label` does).
+///
+/// The file's vertices are, in order: OBJ `v` statements; PLY `vertex` elements; STL facet
+/// corners (three per facet); glTF: the `POSITION`s of every triangle primitive, in the order
+/// [`load_gltf`](super::load_gltf) visits the scene's nodes (a mesh instanced by two nodes
+/// counts twice).
+///
+/// # Errors
+/// As [`load`].
+///
+/// # Example
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("quad.obj");
+/// // Vertex 3 is used by no face; the faces use the others in the order 4, 2, 1, 0.
+/// std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 5 5 5\nv 0 1 0\nf 5 3 2\nf 5 2 1\n").unwrap();
+/// let (mesh, source) = skelfit::mesh::load_with_source_map(&path).unwrap();
+/// assert_eq!(source, vec![Some(0), Some(1), Some(2), None, Some(3)]);
+/// assert_eq!(mesh.positions[3], glam::DVec3::new(0.0, 1.0, 0.0));
+/// ```
+pub fn load_with_source_map(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     match extension.as_deref() {
-        Some("obj") => super::load_obj(path),
-        Some("gltf") | Some("glb") => super::load_gltf(path),
-        Some("stl") => super::load_stl(path),
-        Some("ply") => super::load_ply(path),
+        Some("obj") => super::obj::read_obj(path),
+        Some("gltf") | Some("glb") => {
+            super::load_gltf_scene(path).map(|scene| (scene.mesh, scene.source_vertices))
+        }
+        Some("stl") => super::stl::read_stl(path),
+        Some("ply") => super::ply::read_ply(path),
         _ => Err(MeshError::UnknownFormat {
             path: path.to_path_buf(),
         }),
@@ -86,23 +115,26 @@ pub(super) fn guarded<T>(
 /// exactly coincident vertices and rejects meshes whose triangles all have zero area.
 ///
 /// `detail` is appended to the [`MeshError::Empty`] message (e.g. what the file held instead).
+///
+/// Also returns, for every input position, the index of the welded vertex it became
+/// ([`Mesh::welded_with_map`]).
 pub(super) fn finish(
     positions: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
     detail: &str,
-) -> Result<Mesh, MeshError> {
+) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
     let raw = Mesh::new(positions, triangles)?;
     if raw.triangles.is_empty() {
         return Err(MeshError::Empty {
             detail: detail.to_string(),
         });
     }
-    let mesh = raw.welded(0.0);
+    let (mesh, map) = raw.welded_with_map(0.0);
     let degenerate = mesh.degenerate_triangles();
     if mesh.triangles.is_empty() || degenerate.iter().all(|&d| d) {
         return Err(MeshError::Degenerate {
             triangles: raw.triangles.len(),
         });
     }
-    Ok(mesh)
+    Ok((mesh, map))
 }

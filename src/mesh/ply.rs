@@ -20,6 +20,11 @@ const FORMAT: &str = "ply";
 /// PLY, a missing `vertex` element or coordinate, a negative index),
 /// [`MeshError::NonFinite`], [`MeshError::IndexOutOfRange`], [`MeshError::Degenerate`].
 pub fn load_ply(path: &Path) -> Result<Mesh, MeshError> {
+    read_ply(path).map(|(mesh, _)| mesh)
+}
+
+/// [`load_ply`] with the source map of [`load_with_source_map`](super::load_with_source_map).
+pub(super) fn read_ply(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
     let bytes = read_bytes(path)?;
     let ply = guarded(path, FORMAT, || {
         Parser::<DefaultElement>::new()

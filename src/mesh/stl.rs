@@ -24,6 +24,11 @@ const BINARY_TRIANGLE_BYTES: usize = 50;
 /// size, or a `nan`/`inf` in ASCII STL, which the parser rejects), [`MeshError::NonFinite`]
 /// (a NaN/inf coordinate in binary STL), [`MeshError::Degenerate`].
 pub fn load_stl(path: &Path) -> Result<Mesh, MeshError> {
+    read_stl(path).map(|(mesh, _)| mesh)
+}
+
+/// [`load_stl`] with the source map of [`load_with_source_map`](super::load_with_source_map).
+pub(super) fn read_stl(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
     let bytes = read_bytes(path)?;
     let binary_size_fits = binary_triangle_count(&bytes).is_some();
     let corners = if bytes.starts_with(b"solid ") {

@@ -32,6 +32,25 @@ impl Mesh {
     /// assert_eq!(welded.triangles, vec![[0, 1, 2], [1, 3, 2]]);
     /// ```
     pub fn welded(&self, tolerance: f64) -> Mesh {
+        self.welded_with_map(tolerance).0
+    }
+
+    /// [`Mesh::welded`], and for every vertex of `self` the index of the welded vertex it
+    /// became: its own or the one it merged into; `None` when that vertex is used by no
+    /// kept triangle (dropped). A vertex no triangle uses still maps to the welded vertex at
+    /// its position when it merged into one.
+    ///
+    /// # Example
+    /// ```
+    /// use glam::DVec3;
+    /// use skelfit::mesh::Mesh;
+    /// let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+    /// let mesh = Mesh::new(p.to_vec(), vec![[0, 1, 2], [3, 4, 5]]).unwrap();
+    /// let (welded, map) = mesh.welded_with_map(0.0);
+    /// assert_eq!(welded.positions.len(), 4);
+    /// assert_eq!(map, vec![Some(0), Some(1), Some(2), Some(1), Some(3), Some(2)]);
+    /// ```
+    pub fn welded_with_map(&self, tolerance: f64) -> (Mesh, Vec<Option<u32>>) {
         let representative = if tolerance > 0.0 {
             self.merge_within(tolerance)
         } else {
@@ -59,10 +78,17 @@ impl Mesh {
         for tri in &mut triangles {
             *tri = tri.map(|i| new_index[i as usize]);
         }
-        Mesh {
-            positions,
-            triangles,
-        }
+        let map = representative
+            .iter()
+            .map(|&r| Some(new_index[r as usize]).filter(|&i| i != u32::MAX))
+            .collect();
+        (
+            Mesh {
+                positions,
+                triangles,
+            },
+            map,
+        )
     }
 
     /// For every vertex, the lowest-index vertex with exactly the same coordinates.

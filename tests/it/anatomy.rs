@@ -236,9 +236,9 @@ fn labels_are_identical_on_one_and_two_threads() {
             .build()
             .unwrap();
         pool.install(|| {
-            let medial = labels_json(&label(&mesh, &LabelOptions::default()).unwrap());
+            let medial = labels_json(&label(&mesh, &LabelOptions::default()).unwrap(), None);
             let bones = skelfit::pipeline::label_by_bones(&mesh, &Default::default()).unwrap();
-            (medial.to_string(), labels_json(&bones).to_string())
+            (medial.to_string(), labels_json(&bones, None).to_string())
         })
     };
     let one_thread = run(1);
@@ -309,6 +309,97 @@ fn the_spider_gets_a_best_effort_with_a_warning() {
             .any(|w| w.contains("not vertebrate-like")),
         "{:?}",
         labels.warnings
+    );
+}
+
+/// `vertex_labels` line up with the file's own `v` statements, whatever order the faces use
+/// them in: `tobj` numbers an OBJ's vertices by first use, and the labels once came out in
+/// that order. The file here lists its faces backwards (so first use is far from file order),
+/// splits one vertex into two `v` statements and adds one no face uses.
+#[test]
+fn cli_vertex_labels_follow_the_files_vertex_order() {
+    let source =
+        std::fs::read_to_string(common::data_dir().join("quadruped/quaternius_horse/mesh.obj"))
+            .unwrap();
+    let vertices: Vec<&str> = source.lines().filter(|l| l.starts_with("v ")).collect();
+    let faces: Vec<&str> = source.lines().filter(|l| l.starts_with("f ")).collect();
+    let mut text: String = vertices.iter().map(|v| format!("{v}\n")).collect();
+    // A copy of vertex 1 (file index len) used by the first face listed; then an unused one.
+    let split = vertices.len();
+    text.push_str(&format!("{}\n", vertices[0]));
+    text.push_str("v 1000 1000 1000\n");
+    for (k, f) in faces.iter().rev().enumerate() {
+        if k == 0 {
+            let words: Vec<String> = f
+                .split_whitespace()
+                .skip(1)
+                .map(|w| match w.split('/').next() {
+                    Some("1") => (split + 1).to_string(),
+                    Some(i) => i.to_string(),
+                    None => String::new(),
+                })
+                .collect();
+            text.push_str(&format!("f {}\n", words.join(" ")));
+        } else {
+            text.push_str(&format!("{f}\n"));
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("reordered.obj");
+    std::fs::write(&mesh, text).unwrap();
+    let json = dir.path().join("labels.json");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_skelfit"))
+        .args([
+            "label",
+            mesh.to_str().unwrap(),
+            "-o",
+            json.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let labels = doc["vertex_labels"].as_array().unwrap();
+    assert_eq!(
+        labels.len(),
+        vertices.len() + 2,
+        "one label per v statement"
+    );
+    assert!(labels[split + 1].is_null(), "the unused vertex has no part");
+    assert_eq!(labels[split], labels[0], "a split vertex keeps its part");
+    let parts = doc["parts"].as_array().unwrap();
+    let label_of = |i: usize| {
+        let p = &parts[labels[i].as_u64().unwrap() as usize];
+        (
+            p["label"].as_str().unwrap().to_string(),
+            p["limb_pair"].as_str().map(str::to_string),
+        )
+    };
+    let position = |i: usize| -> Vec<f64> {
+        vertices[i]
+            .split_whitespace()
+            .skip(1)
+            .map(|w| w.parse().unwrap())
+            .collect()
+    };
+    let extreme = |axis: usize, sign: f64| {
+        (0..vertices.len())
+            .max_by(|&a, &b| (sign * position(a)[axis]).total_cmp(&(sign * position(b)[axis])))
+            .unwrap()
+    };
+    // The horse faces +Z with its tail at -Z and its hooves on the ground.
+    assert_eq!(label_of(extreme(2, 1.0)).0, "head");
+    assert_eq!(label_of(extreme(1, -1.0)).0, "leg");
+    let hindmost = label_of(extreme(2, -1.0)).0;
+    assert!(hindmost == "tail" || hindmost == "leg", "{hindmost}");
+    assert_eq!(
+        label_of(extreme(1, 1.0)).0,
+        "head",
+        "the ears are the highest point"
     );
 }
 
