@@ -57,7 +57,8 @@ pub use overrides::{Overrides, SectionOverride};
 pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
 pub use project::NO_PART;
 pub use reference::{
-    agreement, part_region, reference_regions, skeleton_regions, Agreement, Region,
+    agreement, joint_regions, part_region, reference_regions, skeleton_regions, weight_regions,
+    Agreement, Region,
 };
 pub use rules::{label_graph, Assignment, Draft};
 

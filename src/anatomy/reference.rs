@@ -182,20 +182,7 @@ pub fn skeleton_regions(
     mesh: &Mesh,
 ) -> Vec<Option<Region>> {
     let joints = &skeleton.joints;
-    let mut region: Vec<Option<Region>> = vec![None; joints.len()];
-    let canonical_of: std::collections::HashMap<usize, &str> =
-        canonical.iter().map(|(k, id)| (id.0, k.as_str())).collect();
-    for (j, joint) in joints.iter().enumerate() {
-        region[j] = canonical_of
-            .get(&j)
-            .and_then(|k| key_region(k))
-            .or_else(|| name_region(&joint.name))
-            .or_else(|| {
-                joint
-                    .parent
-                    .and_then(|p| region.get(p.0).copied().flatten())
-            });
-    }
+    let region = joint_regions(skeleton, canonical);
     let mut has_child = vec![false; joints.len()];
     let mut bones: Vec<(DVec3, DVec3, Region)> = Vec::new();
     for joint in joints {
@@ -219,6 +206,65 @@ pub fn skeleton_regions(
                 .map(|&(a, b, r)| (point_segment(x, a, b), r))
                 .min_by(|p, q| p.0.total_cmp(&q.0))
                 .map(|(_, r)| r)
+        })
+        .collect()
+}
+
+/// The region of every joint of `skeleton` by rules 1-3 of the module documentation (the
+/// region of the bones it heads, and of the skin it moves).
+pub fn joint_regions(
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+) -> Vec<Option<Region>> {
+    let joints = &skeleton.joints;
+    let mut region: Vec<Option<Region>> = vec![None; joints.len()];
+    let canonical_of: std::collections::HashMap<usize, &str> =
+        canonical.iter().map(|(k, id)| (id.0, k.as_str())).collect();
+    for (j, joint) in joints.iter().enumerate() {
+        region[j] = canonical_of
+            .get(&j)
+            .and_then(|k| key_region(k))
+            .or_else(|| name_region(&joint.name))
+            .or_else(|| {
+                joint
+                    .parent
+                    .and_then(|p| region.get(p.0).copied().flatten())
+            });
+    }
+    region
+}
+
+/// The region of each vertex from skin weights instead of the nearest bone: the region whose
+/// joints ([`joint_regions`]) carry the largest share of the vertex's weight, i.e. the part
+/// whose bones move it most. `weights[v]` lists `(joint, weight)` of vertex `v`; `None` for a
+/// vertex without weights on a joint with a region. Ties go to the first region in [`Region`]
+/// order.
+///
+/// This is the reference rig's own statement of which bone moves which vertex; the accuracy
+/// table compares it with the nearest-bone rule to show how far that rule is from the artist's
+/// intent on each model.
+pub fn weight_regions(
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    weights: &[Vec<(JointId, f64)>],
+) -> Vec<Option<Region>> {
+    let region = joint_regions(skeleton, canonical);
+    weights
+        .iter()
+        .map(|list| {
+            let mut per: BTreeMap<Region, f64> = BTreeMap::new();
+            for &(j, w) in list {
+                if let Some(r) = region.get(j.0).copied().flatten() {
+                    *per.entry(r).or_default() += w;
+                }
+            }
+            let mut best: Option<(Region, f64)> = None;
+            for (r, w) in per {
+                if best.is_none_or(|(_, b)| w > b) {
+                    best = Some((r, w));
+                }
+            }
+            best.map(|(r, _)| r)
         })
         .collect()
 }

@@ -5,7 +5,7 @@ use super::gltf_nodes::NodeTree;
 use super::gltf_skin::SkinBind;
 use super::load::{finish, guarded, parse_error, read_bytes};
 use super::{Mesh, MeshError};
-use crate::skeleton::Skeleton;
+use crate::skeleton::{JointId, Skeleton};
 use glam::{DMat4, DVec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
@@ -33,6 +33,12 @@ pub struct GltfScene {
     /// `mesh` (`None`: used by no face); see
     /// [`load_with_source_map`](super::load_with_source_map).
     pub source_vertices: Vec<Option<u32>>,
+    /// Skin weights of each vertex of `mesh` to the joints of `skeleton` (`JOINTS_n` /
+    /// `WEIGHTS_n` of the primitives skinned by that skin, zero weights left out, normalised
+    /// to sum to one), as the artist painted them; `None` when no mesh node is skinned. A
+    /// vertex of an unskinned primitive, or whose weights are all zero, has an empty list;
+    /// welded vertices take the weights of their first copy.
+    pub weights: Option<Vec<Vec<(JointId, f64)>>>,
 }
 
 /// Reads the mesh of a glTF 2.0 file (`.gltf` with external or embedded buffers, or `.glb`).
@@ -76,11 +82,39 @@ pub fn load_gltf_scene(path: &Path) -> Result<GltfScene, MeshError> {
         " (the glTF scene has no mesh primitives)"
     };
     let (mesh, source_vertices) = finish(raw.positions, raw.triangles, detail)?;
+    let weights = raw.skeleton.as_ref().map(|_| {
+        let mut weights = vec![None; mesh.positions.len()];
+        for (raw_vertex, welded) in source_vertices.iter().enumerate() {
+            if let Some(w) = welded {
+                let slot = &mut weights[*w as usize];
+                if slot.is_none() {
+                    *slot = Some(normalised(&raw.weights[raw_vertex]));
+                }
+            }
+        }
+        weights.into_iter().map(Option::unwrap_or_default).collect()
+    });
     Ok(GltfScene {
         mesh,
         skeleton: raw.skeleton,
         source_vertices,
+        weights,
     })
+}
+
+/// Joint weights summed per joint, zeros dropped, scaled to sum to one (empty if all zero).
+fn normalised(weights: &[(JointId, f64)]) -> Vec<(JointId, f64)> {
+    let mut sum: std::collections::BTreeMap<JointId, f64> = Default::default();
+    for &(j, w) in weights {
+        if w > 0.0 && w.is_finite() {
+            *sum.entry(j).or_default() += w;
+        }
+    }
+    let total: f64 = sum.values().sum();
+    if total <= 0.0 {
+        return Vec::new();
+    }
+    sum.into_iter().map(|(j, w)| (j, w / total)).collect()
 }
 
 /// Everything read from the file before welding.
@@ -89,6 +123,9 @@ struct RawScene {
     triangles: Vec<[u32; 3]>,
     skipped_primitives: usize,
     skeleton: Option<Skeleton>,
+    /// Per position: weights to skin joints of the rig (skin joint indices until the skeleton
+    /// is built, then skeleton ids).
+    weights: Vec<Vec<(JointId, f64)>>,
 }
 
 fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
@@ -137,6 +174,7 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         triangles: Vec::new(),
         skipped_primitives: 0,
         skeleton: None,
+        weights: Vec::new(),
     };
     for &n in &mesh_nodes {
         let node = &nodes[n];
@@ -154,8 +192,9 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
                 None => tree.world[n],
             },
         };
+        let by_rig = rig.is_some_and(|r| node.skin().map(|s| s.index()) == Some(r.skin));
         if let Some(mesh) = node.mesh() {
-            append_mesh(&mesh, transform, &buffers, &mut raw).map_err(|e| match e {
+            append_mesh(&mesh, transform, by_rig, &buffers, &mut raw).map_err(|e| match e {
                 Failure::Message(m) => error(m),
                 Failure::Mesh(e) => e,
             })?;
@@ -171,7 +210,15 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         let deform = rig
             .deforming(&document, &skinned, &buffers)
             .map_err(error)?;
-        raw.skeleton = Some(rig.skeleton(&document, &tree, &deform).map_err(error)?);
+        let (skeleton, id_of) = rig.skeleton(&document, &tree, &deform).map_err(error)?;
+        for weights in &mut raw.weights {
+            for (j, _) in weights.iter_mut() {
+                // In range: `deforming` checked every joint index with a nonzero weight.
+                *j = JointId(id_of.get(j.0).copied().unwrap_or(usize::MAX));
+            }
+            weights.retain(|(j, _)| j.0 != usize::MAX);
+        }
+        raw.skeleton = Some(skeleton);
     }
     Ok(raw)
 }
@@ -209,9 +256,12 @@ impl From<String> for Failure {
 }
 
 /// Appends the triangle primitives of `mesh`, transformed by `transform`.
+/// `skinned` says that the node is skinned by the rig's skin: its vertices' `JOINTS_n` /
+/// `WEIGHTS_n` are kept (as skin joint indices).
 fn append_mesh(
     mesh: &gltf::Mesh,
     transform: DMat4,
+    skinned: bool,
     buffers: &[&[u8]],
     raw: &mut RawScene,
 ) -> Result<(), Failure> {
@@ -274,6 +324,46 @@ fn append_mesh(
                 .push(if mirrored { [a, c, b] } else { [a, b, c] });
         }
         raw.positions.extend(positions);
+        let mut weights = vec![Vec::new(); vertex_count];
+        if skinned {
+            for set in 0.. {
+                let (Some(joints), Some(w)) = (
+                    primitive.get(&Semantic::Joints(set)),
+                    primitive.get(&Semantic::Weights(set)),
+                ) else {
+                    break;
+                };
+                gltf_accessor::check(
+                    &joints,
+                    buffers,
+                    &[DataType::U8, DataType::U16],
+                    Dimensions::Vec4,
+                    &format!("JOINTS_{set} of {what}"),
+                )?;
+                gltf_accessor::check(
+                    &w,
+                    buffers,
+                    &[DataType::F32, DataType::U8, DataType::U16],
+                    Dimensions::Vec4,
+                    &format!("WEIGHTS_{set} of {what}"),
+                )?;
+                let (Some(joints), Some(w)) = (reader.read_joints(set), reader.read_weights(set))
+                else {
+                    break;
+                };
+                for (vertex, (js, ws)) in joints.into_u16().zip(w.into_f32()).enumerate() {
+                    if let Some(list) = weights.get_mut(vertex) {
+                        list.extend(
+                            js.into_iter()
+                                .zip(ws)
+                                .filter(|&(_, w)| w > 0.0)
+                                .map(|(j, w)| (JointId(usize::from(j)), f64::from(w))),
+                        );
+                    }
+                }
+            }
+        }
+        raw.weights.extend(weights);
     }
     Ok(())
 }

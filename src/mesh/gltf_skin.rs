@@ -173,13 +173,14 @@ impl SkinBind {
         Ok(deform)
     }
 
-    /// The skin's joints in the bind pose as a [`Skeleton`], parents before children.
+    /// The skin's joints in the bind pose as a [`Skeleton`], parents before children, and the
+    /// skeleton index of each skin joint.
     pub fn skeleton(
         &self,
         document: &Document,
         tree: &NodeTree,
         deform: &[bool],
-    ) -> Result<Skeleton, String> {
+    ) -> Result<(Skeleton, Vec<usize>), String> {
         let nodes: Vec<_> = document.nodes().collect();
         let count = self.joints.len();
         let mut positions = Vec::with_capacity(count);
@@ -234,6 +235,6 @@ impl SkinBind {
                 }
             })
             .collect();
-        Ok(Skeleton { joints })
+        Ok((Skeleton { joints }, id_of))
     }
 }

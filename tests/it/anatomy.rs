@@ -586,6 +586,57 @@ fn bone_following_labels_on_refdata() {
     }
 }
 
+/// The artist's skin weights of a glTF reference (read with the mesh, `GltfScene::weights`)
+/// give nearly the same body regions as the nearest-bone rule on CesiumMan (measured 97.8 %),
+/// and the weights of every skinned vertex sum to one. A wrong joint numbering (skin order vs
+/// skeleton order) or a wrong vertex order would break both.
+#[test]
+fn skin_weight_regions_agree_with_the_nearest_bone_on_cesium_man() {
+    use skelfit::anatomy::{weight_regions, Region};
+    let Some(dir) = common::model("humanoid/gltf_cesium_man") else {
+        return;
+    };
+    let scene = skelfit::mesh::load_gltf_scene(&dir.join("source.glb")).unwrap();
+    let skeleton = scene.skeleton.unwrap();
+    let weights = scene.weights.unwrap();
+    assert_eq!(weights.len(), scene.mesh.positions.len());
+    for w in &weights {
+        let sum: f64 = w.iter().map(|(_, x)| x).sum();
+        assert!((sum - 1.0).abs() < 1e-9, "{w:?}");
+    }
+    let reference = load_skeleton(&dir.join("rig_gltf.json")).unwrap();
+    let canonical = reference
+        .canonical
+        .iter()
+        .filter_map(|(k, id)| {
+            Some((
+                k.clone(),
+                skeleton.find(&reference.skeleton.joints[id.0].name)?,
+            ))
+        })
+        .collect();
+    let by_weight = weight_regions(&skeleton, &canonical, &weights);
+    let nearest = reference_regions(&reference, &scene.mesh);
+    let both: Vec<(Region, Region)> = nearest
+        .iter()
+        .zip(&by_weight)
+        .filter_map(|(a, b)| Some(((*a)?, (*b)?)))
+        .collect();
+    assert!(both.len() > scene.mesh.positions.len() * 9 / 10);
+    let same = both.iter().filter(|(a, b)| a == b).count() as f64 / both.len() as f64;
+    println!("nearest bone vs skin weights: {:.1} %", 100.0 * same);
+    assert!(same > 0.95, "{same}");
+    // The top of the head moves with a head joint.
+    let top = (0..scene.mesh.positions.len())
+        .max_by(|&a, &b| {
+            scene.mesh.positions[a]
+                .y
+                .total_cmp(&scene.mesh.positions[b].y)
+        })
+        .unwrap();
+    assert_eq!(by_weight[top], Some(Region::Head));
+}
+
 /// A sphere (no limbs, no head) gets a trunk-only rig, and every vertex the trunk.
 #[test]
 fn bone_following_labels_of_a_sphere_are_all_trunk() {

@@ -804,6 +804,12 @@ fn skinned_gltf_is_read_in_its_bind_pose() {
         ("joint_2", Some(skelfit::skeleton::JointId(0)), false)
     );
     assert!(child.position.distance(DVec3::new(0.0, 4.0, 1.0)) < 1e-12);
+    // Every vertex is bound wholly to joint 0 (the skeleton's `root`).
+    let weights = scene.weights.unwrap();
+    assert_eq!(weights.len(), scene.mesh.positions.len());
+    assert!(weights
+        .iter()
+        .all(|w| w == &vec![(skelfit::skeleton::JointId(0), 1.0)]));
 }
 
 #[test]
