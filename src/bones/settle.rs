@@ -77,8 +77,10 @@ pub(crate) fn settle(
 ) -> Option<Bone> {
     let offsets = draft.offsets();
     let mut best: Option<(f64, f64, Mesh)> = None;
-    // Whether some placement was inside enough but touched a kept bone.
+    // Whether some placement was inside enough but touched a kept bone; whether a placement
+    // that was not, but would have been the best so far, did.
     let mut touching = false;
+    let mut touching_fallback = false;
     let mut clear = false;
     let mut scale = 1.0;
     'search: for _ in 0..=options.max_shrink_steps {
@@ -94,12 +96,17 @@ pub(crate) fn settle(
                 }
                 touching = true;
             } else if best.as_ref().is_none_or(|b| fraction > b.0) {
-                best = Some((fraction, scale, mesh));
+                // A fallback placement must not overlap a kept bone either.
+                if kept.iter().any(|b| overlaps(&mesh, &b.mesh, articulations)) {
+                    touching_fallback = true;
+                } else {
+                    best = Some((fraction, scale, mesh));
+                }
             }
         }
         scale *= options.shrink_step;
     }
-    if !clear && touching {
+    if !clear && (touching || (touching_fallback && best.is_none())) {
         // Bones must not intersect outside the joints: a bone that overlaps a neighbour at
         // every size and offset is left out rather than kept intersecting.
         warnings.push(format!(

@@ -3,7 +3,7 @@
 
 use super::axial::perpendicular;
 use super::polyline::{boundaries, smooth, Polyline};
-use super::{BodyFrame, FitOptions, FitWarning, LimbInput, Side};
+use super::{BodyFrame, DorsalProbe, FitOptions, FitWarning, LimbInput, Side};
 use crate::template::{Girdle, LimbGroup, Manus, Placement, Template};
 use glam::DVec3;
 
@@ -56,6 +56,7 @@ pub(crate) fn limb(
     frame: &BodyFrame,
     options: &FitOptions,
     centre_distance: &dyn Fn(DVec3) -> f64,
+    probe: Option<&dyn DorsalProbe>,
     warnings: &mut Vec<FitWarning>,
 ) -> LimbFit {
     let side = input.side;
@@ -83,6 +84,19 @@ pub(crate) fn limb(
             });
             0.0
         });
+    let folded = match (
+        group.placement,
+        group.girdle,
+        group.wing,
+        options.limb_fold,
+        probe,
+    ) {
+        (Placement::Animal, Girdle::Pelvic, false, Some(k), Some(probe)) => {
+            let towards = perpendicular(sphere.anterior, frame.up);
+            fold(&path, &input.radii, s0, towards, k, probe)
+        }
+        _ => None,
+    };
     let girdle = group
         .girdle_joint
         .as_ref()
@@ -149,6 +163,15 @@ pub(crate) fn limb(
                 group.girdle,
                 options,
             ));
+        }
+    }
+    if let Some((s, p)) = folded {
+        // Only the elbow/knee moves (after the shoulder/hip was placed from the labelled
+        // root): the joints below keep their Table 8.1 places.
+        let below = chain_s.get(2).copied().flatten().unwrap_or(f64::INFINITY);
+        if s > s0 && s < below && chain.len() > 1 {
+            chain[1] = Some(p);
+            chain_s[1] = Some(s);
         }
     }
     if group.wing {
@@ -291,6 +314,37 @@ fn interior_root(
         p = sphere.centre + off * (reach / off.length());
     }
     p
+}
+
+/// The first arc length at or after `from` (within the path's proximal two thirds) from which
+/// a ray along unit `towards` leaves the figure within `k` local radii: where the limb comes
+/// free of the trunk on that side ([`FitOptions::limb_fold`]); and the joint there: one local
+/// radius inside the surface point the ray leaves through (the fold's corner). `None` when the
+/// path never does, or `towards` is zero.
+fn fold(
+    path: &Polyline,
+    radii: &[f64],
+    from: f64,
+    towards: DVec3,
+    k: f64,
+    probe: &dyn DorsalProbe,
+) -> Option<(f64, DVec3)> {
+    const STEPS: usize = 64;
+    if towards == DVec3::ZERO || radii.len() != path.points.len() {
+        return None;
+    }
+    let end = path.length() * 2.0 / 3.0;
+    if end <= from {
+        return None;
+    }
+    (0..=STEPS)
+        .map(|i| from + (end - from) * i as f64 / STEPS as f64)
+        .find_map(|s| {
+            let r = path.value_at(radii, s);
+            let p = path.at(s);
+            let d = probe.depth(p, towards)?;
+            (r > 0.0 && d <= k * r).then(|| (s, p + towards * (d - r).max(0.0)))
+        })
 }
 
 /// Digits (8.2): first digit = the one nearest the body's centre line, divided 36:25:15

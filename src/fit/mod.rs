@@ -196,6 +196,7 @@ pub fn fit_with_probe(
                         &frame,
                         options,
                         &centre_distance,
+                        probe,
                         &mut warnings,
                     ),
                 )),

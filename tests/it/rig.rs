@@ -226,6 +226,43 @@ fn makehuman_joint_error_stays_within_the_measured_bounds() {
     }
 }
 
+/// The knees (stifles) of an animal sit at the flank fold, low on the front of the hind leg
+/// (`FitOptions::limb_fold`), not where the leg's medial piece leaves the trunk on the haunch.
+/// Measured on the bundled Quaternius horse against its rig's `BackUpperLeg` joints (the
+/// stifles), the worse side: 3.2 % of height with the fold, 12.3 % without.
+#[test]
+fn quadruped_knees_sit_at_the_flank_fold() {
+    let dir = common::data_dir().join("quadruped/quaternius_horse");
+    let reference = skelfit::eval::load_skeleton(&dir.join("rig_gltf.json")).unwrap();
+    let error = |options: &RigOptions| {
+        let (mesh, r) = rigged(&dir, options);
+        let (lo, hi) = mesh.bounding_box().unwrap();
+        let sk = &r.fit.skeleton;
+        ["L", "R"]
+            .iter()
+            .map(|s| {
+                let ours = sk.joints[sk.find(&format!("knee_{s}")).unwrap().0].position;
+                let id = reference
+                    .skeleton
+                    .find(&format!("BackUpperLeg.{s}"))
+                    .unwrap();
+                ours.distance(reference.skeleton.joints[id.0].position) / (hi.y - lo.y)
+            })
+            .fold(0.0, f64::max)
+    };
+    let with = error(&RigOptions::default());
+    let mut options = RigOptions::default();
+    options.fit.limb_fold = None;
+    let without = error(&options);
+    println!(
+        "knee error: {:.1} % with the fold, {:.1} % without",
+        100.0 * with,
+        100.0 * without
+    );
+    assert!(with < 0.05, "{with}");
+    assert!(without > 2.0 * with, "{without} vs {with}");
+}
+
 #[test]
 fn a_humanoid_template_on_a_quadruped_warns_and_does_not_panic() {
     let Some(dir) = common::model("quadruped/quaternius_horse") else {
