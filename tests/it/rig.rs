@@ -228,39 +228,63 @@ fn makehuman_joint_error_stays_within_the_measured_bounds() {
 
 /// The knees (stifles) of an animal sit at the flank fold, low on the front of the hind leg
 /// (`FitOptions::limb_fold`), not where the leg's medial piece leaves the trunk on the haunch.
-/// Measured on the bundled Quaternius horse against its rig's `BackUpperLeg` joints (the
-/// stifles), the worse side: 3.2 % of height with the fold, 12.3 % without.
+/// Measured against the `BackUpperLeg.*` joints (the stifles) of the Quaternius rigs: the
+/// bundled horse, the worse side: 3.2 % of height with the fold, 12.3 % without; with
+/// `../shared/refdata`, every quadruped whose rig has such joints is measured too and printed
+/// (`cargo test --release --test it quadruped_knees -- --nocapture`).
 #[test]
 fn quadruped_knees_sit_at_the_flank_fold() {
-    let dir = common::data_dir().join("quadruped/quaternius_horse");
-    let reference = skelfit::eval::load_skeleton(&dir.join("rig_gltf.json")).unwrap();
-    let error = |options: &RigOptions| {
-        let (mesh, r) = rigged(&dir, options);
+    let error = |dir: &Path, options: &RigOptions| -> Option<f64> {
+        let reference = skelfit::eval::load_skeleton(&dir.join("rig_gltf.json")).ok()?;
+        let (mesh, r) = rigged(dir, options);
         let (lo, hi) = mesh.bounding_box().unwrap();
         let sk = &r.fit.skeleton;
-        ["L", "R"]
-            .iter()
-            .map(|s| {
-                let ours = sk.joints[sk.find(&format!("knee_{s}")).unwrap().0].position;
-                let id = reference
-                    .skeleton
-                    .find(&format!("BackUpperLeg.{s}"))
-                    .unwrap();
-                ours.distance(reference.skeleton.joints[id.0].position) / (hi.y - lo.y)
-            })
-            .fold(0.0, f64::max)
+        let mut worst: f64 = 0.0;
+        for s in ["L", "R"] {
+            let ours = sk.joints[sk.find(&format!("knee_{s}"))?.0].position;
+            let id = reference.skeleton.find(&format!("BackUpperLeg.{s}"))?;
+            worst =
+                worst.max(ours.distance(reference.skeleton.joints[id.0].position) / (hi.y - lo.y));
+        }
+        Some(worst)
     };
-    let with = error(&RigOptions::default());
-    let mut options = RigOptions::default();
-    options.fit.limb_fold = None;
-    let without = error(&options);
+    let mut off = RigOptions::default();
+    off.fit.limb_fold = None;
+    let horse = common::data_dir().join("quadruped/quaternius_horse");
+    let (with, without) = (
+        error(&horse, &RigOptions::default()).unwrap(),
+        error(&horse, &off).unwrap(),
+    );
     println!(
-        "knee error: {:.1} % with the fold, {:.1} % without",
+        "bundled horse: knee error {:.1} % with the fold, {:.1} % without",
         100.0 * with,
         100.0 * without
     );
     assert!(with < 0.05, "{with}");
     assert!(without > 2.0 * with, "{without} vs {with}");
+    let (mut sum_with, mut sum_without, mut n) = (0.0, 0.0, 0);
+    for dir in models("quadruped") {
+        let (Some(a), Some(b)) = (error(&dir, &RigOptions::default()), error(&dir, &off)) else {
+            continue;
+        };
+        println!(
+            "{}: {:.1} % with, {:.1} % without",
+            dir.display(),
+            100.0 * a,
+            100.0 * b
+        );
+        sum_with += a;
+        sum_without += b;
+        n += 1;
+    }
+    if n > 0 {
+        println!(
+            "mean of {n}: {:.1} % with, {:.1} % without",
+            100.0 * sum_with / n as f64,
+            100.0 * sum_without / n as f64
+        );
+        assert!(sum_with < 0.5 * sum_without);
+    }
 }
 
 #[test]
