@@ -70,6 +70,7 @@ pub(crate) fn axial(
     radii: &[f64],
     bounds: Bounds,
     root_t: f64,
+    pectoral_t: Option<f64>,
     template: &Template,
     options: &FitOptions,
     frame: &BodyFrame,
@@ -97,7 +98,16 @@ pub(crate) fn axial(
             let r = original.value_at(radii, t);
             let dorsal = perpendicular(frame.dorsal, original.tangent(t));
             // Trunk: 70 % of the sphere radius dorsally, fading out over `blend` beyond it.
-            let outside = (bounds.neck - t).max(t - bounds.trunk).max(0.0);
+            // Animal-like necks leave the trunk low: the offset has faded out by the neck
+            // boundary, over `neck_base_drop` segments of the trunk in front of the foremost
+            // girdle (the scapulae stay on the dorsal spine).
+            let drop = if rules.cervical_s_curve {
+                let room = pectoral_t.map_or(f64::INFINITY, |p| (p - bounds.neck).max(0.0));
+                (options.neck_base_drop * seg).min(room)
+            } else {
+                0.0
+            };
+            let outside = (bounds.neck + drop - t).max(t - bounds.trunk).max(0.0);
             let w = if outside <= 0.0 {
                 1.0
             } else if blend > 0.0 {

@@ -161,11 +161,17 @@ pub fn fit_with_probe(
         .map(|p| p.t)
         .reduce(f64::max)
         .unwrap_or(bounds.trunk);
+    let pectoral_t = pairs
+        .iter()
+        .filter(|p| template.limbs[p.group].girdle == crate::template::Girdle::Pectoral)
+        .map(|p| p.t)
+        .reduce(f64::min);
     let axial = axial::axial(
         &original,
         radii,
         bounds,
         root_t,
+        pectoral_t,
         template,
         options,
         &frame,

@@ -114,6 +114,17 @@ pub struct FitOptions {
     /// the same rule behind the fore leg moved the elbows only 4.7 → 4.4 % and put the deer's
     /// forearms partly outside its legs.
     pub limb_fold: Option<f64>,
+    /// For templates with the S-shaped neck (animal-like), the trunk's dorsal offset is faded
+    /// out this many vertebral segments before the neck/trunk boundary instead of after it
+    /// (but not behind the foremost girdle, so the scapulae stay on the dorsal spine), so that
+    /// the neck leaves the trunk at the middle of the chest's front (the cervical spine dips
+    /// ventrally to the thoracic inlet) rather than along the top of the back. 0 = dissertation
+    /// 8.1. Default 2: the fox's neck joint moved from 35 to 15 mm from its reference, the
+    /// Quaternius quadrupeds' `neck_01` from 8.8 to 7.4 % of height from their `Neck1`, mean
+    /// CD-B2B over the reference set 1.88 → 1.87 %; the triceratops' neck moved 0.40 → 0.58
+    /// units away (of a 20-unit body). See `reports/rig/` and the test
+    /// `quadruped_necks_leave_the_trunk_at_the_chest_front`.
+    pub neck_base_drop: f64,
 }
 
 impl Default for FitOptions {
@@ -144,6 +155,7 @@ impl Default for FitOptions {
             root_offset: 0.0,
             root_dorsal: 0.0,
             limb_fold: Some(3.0),
+            neck_base_drop: 2.0,
         }
     }
 }
@@ -184,6 +196,7 @@ impl FitOptions {
         fraction("neck_at_girdle_edge", self.neck_at_girdle_edge, 0.0, 3.0)?;
         fraction("root_offset", self.root_offset, 0.0, 10.0)?;
         fraction("root_dorsal", self.root_dorsal, 0.0, 1.0)?;
+        fraction("neck_base_drop", self.neck_base_drop, 0.0, 10.0)?;
         if let Some(k) = self.limb_fold {
             fraction("limb_fold", k, 0.5, 20.0)?;
         }

@@ -287,6 +287,39 @@ fn quadruped_knees_sit_at_the_flank_fold() {
     }
 }
 
+/// An animal's neck leaves the trunk at the middle of the chest's front, not along the top of
+/// the back (`FitOptions::neck_base_drop`): measured on the bundled horse against its rig's
+/// `Neck1` (7.3 % of height with the default, 9.3 % without) and, with `../shared/refdata`, on
+/// the fox against its canonical neck (15 mm with, 35 mm without).
+#[test]
+fn quadruped_necks_leave_the_trunk_at_the_chest_front() {
+    let error = |dir: &Path, reference_joint: &str, options: &RigOptions| -> f64 {
+        let reference = skelfit::eval::load_skeleton(&dir.join("rig_gltf.json")).unwrap();
+        let (_, r) = rigged(dir, options);
+        let sk = &r.fit.skeleton;
+        let ours = sk.joints[sk.find("neck_01").unwrap().0].position;
+        let id = reference.skeleton.find(reference_joint).unwrap();
+        ours.distance(reference.skeleton.joints[id.0].position)
+    };
+    let mut off = RigOptions::default();
+    off.fit.neck_base_drop = 0.0;
+    let horse = common::data_dir().join("quadruped/quaternius_horse");
+    let (with, without) = (
+        error(&horse, "Neck1", &RigOptions::default()),
+        error(&horse, "Neck1", &off),
+    );
+    println!("bundled horse: neck {with:.3} with, {without:.3} without (units)");
+    assert!(with < 0.85 * without, "{with} vs {without}");
+    if let Some(fox) = common::model("quadruped/khronos_fox") {
+        let (with, without) = (
+            error(&fox, "b_Neck_04", &RigOptions::default()),
+            error(&fox, "b_Neck_04", &off),
+        );
+        println!("fox: neck {with:.3} m with, {without:.3} m without");
+        assert!(with < 0.6 * without, "{with} vs {without}");
+    }
+}
+
 #[test]
 fn a_humanoid_template_on_a_quadruped_warns_and_does_not_panic() {
     let Some(dir) = common::model("quadruped/quaternius_horse") else {
