@@ -10,7 +10,7 @@
 //!           ─▶ ends extended to the skin by their inscribed radius; points and radii in mesh units
 //! ```
 
-use super::{AxialPath, DigitInput, FitInput, LimbInput, Side};
+use super::{AxialPath, DigitInput, DorsalProbe, FitInput, LimbInput, Side};
 use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part, Side as PartSide};
 use crate::medial::MedialSurface;
 use crate::paths::{DmsGraph, Search};
@@ -55,6 +55,106 @@ impl Default for FitInputOptions {
             ears: super::EarOptions::default(),
         }
     }
+}
+
+/// How many extension lengths short of the skin a path tip must be before [`reach_the_skin`]
+/// looks beyond the straight end direction.
+const SHORT_OF_SKIN: f64 = 1.5;
+
+/// [`reach_the_skin`] stops a tip where its ray enters a part whose inscribed radius exceeds
+/// this multiple of the limb end's.
+const THICKER: f64 = 2.0;
+
+/// Moves the extended tip of every leg path (and its digit paths) out to the skin: from the
+/// path's last medial point along its end direction (as [`FitInputOptions::end_extension`]
+/// extends it) to where `probe` says the figure ends, when that is farther than the extension
+/// already reaches. The medial surface of a thin foot or hand can stop well short of the sole
+/// (a few voxels across, its medial piece breaks off), which left the limb's distal joints
+/// hanging above the ground on one side of a symmetric figure; the skin does not move with the
+/// voxel grid. A tip more than [`SHORT_OF_SKIN`] extension lengths short of the skin follows
+/// the deepest ray within 30 degrees of the end direction instead (the limb may bend past its
+/// medial piece: a hoof in front of the pastern). A tip never goes on into a part more than
+/// [`THICKER`] times as thick as the limb's end (`radius_at` gives the figure's inscribed
+/// radius at a point): a foot touching the other leg is one solid with it. Arms and wings
+/// keep the extension: on CesiumMan's mitten hands the longer arm path moved the refined
+/// wrist onto the fingertips. Returns how many tips moved.
+pub fn reach_the_skin(
+    input: &mut FitInput,
+    options: &FitInputOptions,
+    probe: &dyn DorsalProbe,
+    radius_at: &dyn Fn(DVec3) -> Option<f64>,
+) -> usize {
+    let mut moved = 0;
+    let mut reach = |points: &mut Vec<DVec3>| {
+        let n = points.len();
+        let k = options.end_direction_points;
+        if n < 3 || k == 0 || options.end_extension <= 0.0 {
+            return;
+        }
+        // The last point is the extension; the one before it, the medial path's end.
+        let end = points[n - 2];
+        let from = points[n.saturating_sub(2 + k)];
+        let Some(dir) = (end - from).try_normalize() else {
+            return;
+        };
+        let Some(depth) = probe.depth(end, dir) else {
+            return;
+        };
+        let extension = end.distance(points[n - 1]);
+        if !(depth.is_finite() && depth > extension) {
+            return;
+        }
+        // Well short of the skin: the limb goes on past its medial piece, perhaps bending
+        // (a hoof in front of the pastern); follow the deepest ray within 30 degrees.
+        let (mut best_dir, mut best) = (dir, depth);
+        if depth > SHORT_OF_SKIN * extension {
+            let side = dir.any_orthonormal_vector();
+            let other = dir.cross(side);
+            for tilt in [10.0_f64, 20.0, 30.0] {
+                for k in 0..8 {
+                    let azimuth = std::f64::consts::TAU * k as f64 / 8.0;
+                    let d = (dir * tilt.to_radians().cos()
+                        + (side * azimuth.cos() + other * azimuth.sin()) * tilt.to_radians().sin())
+                    .normalize();
+                    if let Some(x) = probe.depth(end, d).filter(|x| x.is_finite() && *x > best) {
+                        (best_dir, best) = (d, x);
+                    }
+                }
+            }
+        }
+        // A foot resting on the other leg is one solid with it: stop where the ray enters a part
+        // much thicker than the limb's end.
+        let limit = radius_at(end).map(|r| THICKER * r.max(extension));
+        let steps = (best / (0.25 * extension.max(1e-12))).ceil().min(4096.0) as usize;
+        for k in 1..=steps {
+            let t = best * k as f64 / steps as f64;
+            if let (Some(limit), Some(r)) = (limit, radius_at(end + best_dir * t)) {
+                if r > limit {
+                    best = t.max(extension);
+                    break;
+                }
+            }
+        }
+        if best > extension {
+            points[n - 1] = end + best_dir * best;
+            moved += 1;
+        }
+    };
+    for limb in &mut input.limbs {
+        if !matches!(
+            limb.kind,
+            LimbKind::Leg | LimbKind::ForeLeg | LimbKind::HindLeg
+        ) {
+            continue;
+        }
+        if limb.digits.is_empty() {
+            reach(&mut limb.path);
+        }
+        for digit in &mut limb.digits {
+            reach(&mut digit.path);
+        }
+    }
+    moved
 }
 
 /// The fit's input from a labelling and the medial surface it was made from (same grid):

@@ -32,7 +32,7 @@ mod probe;
 
 pub use ears::{ears, EarOptions};
 pub use error::{FitError, FitWarning};
-pub use from_labels::{fit_input, FitInputOptions};
+pub use from_labels::{fit_input, reach_the_skin, FitInputOptions};
 pub use input::{
     voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, EarInput, FitInput, LimbInput,
     Side,

@@ -5,7 +5,9 @@ use crate::anatomy::{
     Labelling, Overrides,
 };
 use crate::distance::{edt, DistanceMap};
-use crate::fit::{ears, fit_input, fit_with_probe, Fit, FitInput, FitInputOptions, FitOptions};
+use crate::fit::{
+    ears, fit_input, fit_with_probe, reach_the_skin, Fit, FitInput, FitInputOptions, FitOptions,
+};
 use crate::medial::dms;
 use crate::mesh::Mesh;
 use crate::refine::{refine, RefineOptions};
@@ -136,6 +138,13 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     )?;
     lap("label", &mut timings);
     let (mut input, mut path_warnings) = fit_input(&labelling, &surface, &options.input);
+    let radius_at = |p: glam::DVec3| {
+        distance
+            .grid
+            .voxel_at(p)
+            .map(|c| distance.distance(distance.grid.index(c)) * distance.grid.voxel_size)
+    };
+    reach_the_skin(&mut input, &options.input, &solid, &radius_at);
     lap("paths", &mut timings);
     let mut warnings = labelling.warnings.clone();
     warnings.append(&mut path_warnings);

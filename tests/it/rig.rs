@@ -320,6 +320,39 @@ fn quadruped_necks_leave_the_trunk_at_the_chest_front() {
     }
 }
 
+/// Legs reach the ground on both sides even where the medial surface of a thin foot broke
+/// off on one side (the alpaca's left fore foot: its limb path stopped 0.46 units above the
+/// ground, and its digit joints hung 0.38 above it): `fit::reach_the_skin` takes the path tip
+/// to the skin along the end direction.
+#[test]
+fn every_foot_reaches_the_ground() {
+    for dir in models("quadruped") {
+        let name = dir.file_name().unwrap().to_string_lossy().to_string();
+        let (mesh, r) = rigged(&dir, &RigOptions::default());
+        let (lo, hi) = mesh.bounding_box().unwrap();
+        let h = hi.y - lo.y;
+        let sk = &r.fit.skeleton;
+        let mut lowest = Vec::new();
+        for chain in ["finger", "toe"] {
+            for side in ["L", "R"] {
+                let low = sk
+                    .joints
+                    .iter()
+                    .filter(|j| j.name.starts_with(chain) && j.name.ends_with(side))
+                    .map(|j| (j.position.y - lo.y) / h)
+                    .fold(f64::INFINITY, f64::min);
+                lowest.push(low);
+                assert!(
+                    low < 0.03,
+                    "{name}: {chain} {side} ends {:.1} % of height above the ground",
+                    100.0 * low
+                );
+            }
+        }
+        println!("{name}: lowest digit joints {lowest:.3?} of height");
+    }
+}
+
 #[test]
 fn a_humanoid_template_on_a_quadruped_warns_and_does_not_panic() {
     let Some(dir) = common::model("quadruped/quaternius_horse") else {
