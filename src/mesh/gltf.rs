@@ -2,7 +2,7 @@
 
 use super::gltf_accessor;
 use super::gltf_nodes::NodeTree;
-use super::gltf_skin::SkinBind;
+use super::gltf_skin::{vertex_weights, SkinBind};
 use super::load::{finish, guarded, parse_error, read_bytes};
 use super::{Mesh, MeshError};
 use crate::skeleton::{JointId, Skeleton};
@@ -326,41 +326,15 @@ fn append_mesh(
         raw.positions.extend(positions);
         let mut weights = vec![Vec::new(); vertex_count];
         if skinned {
-            for set in 0.. {
-                let (Some(joints), Some(w)) = (
-                    primitive.get(&Semantic::Joints(set)),
-                    primitive.get(&Semantic::Weights(set)),
-                ) else {
-                    break;
-                };
-                gltf_accessor::check(
-                    &joints,
-                    buffers,
-                    &[DataType::U8, DataType::U16],
-                    Dimensions::Vec4,
-                    &format!("JOINTS_{set} of {what}"),
-                )?;
-                gltf_accessor::check(
-                    &w,
-                    buffers,
-                    &[DataType::F32, DataType::U8, DataType::U16],
-                    Dimensions::Vec4,
-                    &format!("WEIGHTS_{set} of {what}"),
-                )?;
-                let (Some(joints), Some(w)) = (reader.read_joints(set), reader.read_weights(set))
-                else {
-                    break;
-                };
-                for (vertex, (js, ws)) in joints.into_u16().zip(w.into_f32()).enumerate() {
-                    if let Some(list) = weights.get_mut(vertex) {
-                        list.extend(
-                            js.into_iter()
-                                .zip(ws)
-                                .filter(|&(_, w)| w > 0.0)
-                                .map(|(j, w)| (JointId(usize::from(j)), f64::from(w))),
-                        );
-                    }
-                }
+            for (vertex, list) in vertex_weights(&primitive, buffers, &what)?
+                .into_iter()
+                .enumerate()
+                .take(vertex_count)
+            {
+                weights[vertex] = list
+                    .into_iter()
+                    .map(|(j, w)| (JointId(usize::from(j)), f64::from(w)))
+                    .collect();
             }
         }
         raw.weights.extend(weights);

@@ -124,48 +124,18 @@ impl SkinBind {
                 continue;
             };
             for primitive in mesh.primitives() {
-                let reader = primitive.reader(|b| buffers.get(b.index()).copied());
-                for set in 0.. {
-                    let (Some(joints), Some(weights)) = (
-                        primitive.get(&Semantic::Joints(set)),
-                        primitive.get(&Semantic::Weights(set)),
-                    ) else {
-                        break;
-                    };
-                    let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
-                    gltf_accessor::check(
-                        &joints,
-                        buffers,
-                        &[DataType::U8, DataType::U16],
-                        Dimensions::Vec4,
-                        &format!("JOINTS_{set} of {what}"),
-                    )?;
-                    gltf_accessor::check(
-                        &weights,
-                        buffers,
-                        &[DataType::F32, DataType::U8, DataType::U16],
-                        Dimensions::Vec4,
-                        &format!("WEIGHTS_{set} of {what}"),
-                    )?;
-                    let (Some(joints), Some(weights)) =
-                        (reader.read_joints(set), reader.read_weights(set))
-                    else {
-                        break;
-                    };
-                    for (js, ws) in joints.into_u16().zip(weights.into_f32()) {
-                        for (j, w) in js.into_iter().zip(ws) {
-                            if w > 0.0 {
-                                let slot = deform.get_mut(j as usize).ok_or_else(|| {
-                                    format!(
-                                        "JOINTS_{set} of {what} names joint {j} but skin {} \
-                                         has {} joints",
-                                        self.skin,
-                                        self.joints.len()
-                                    )
-                                })?;
-                                *slot = true;
-                            }
-                        }
+                let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
+                for list in vertex_weights(&primitive, buffers, &what)? {
+                    for (j, _) in list {
+                        let slot = deform.get_mut(usize::from(j)).ok_or_else(|| {
+                            format!(
+                                "a JOINTS attribute of {what} names joint {j} but skin {} has {} \
+                                 joints",
+                                self.skin,
+                                self.joints.len()
+                            )
+                        })?;
+                        *slot = true;
                     }
                 }
             }
@@ -237,4 +207,49 @@ impl SkinBind {
             .collect();
         Ok((Skeleton { joints }, id_of))
     }
+}
+
+/// The nonzero `(joint, weight)` pairs of every vertex of `primitive`, over all its
+/// `JOINTS_n`/`WEIGHTS_n` sets (joint indices into the skin; weights as stored, normalised
+/// integer weights read as fractions). `what` names the primitive in errors.
+pub(super) fn vertex_weights(
+    primitive: &gltf::Primitive,
+    buffers: &[&[u8]],
+    what: &str,
+) -> Result<Vec<Vec<(u16, f32)>>, String> {
+    let reader = primitive.reader(|b| buffers.get(b.index()).copied());
+    let mut out: Vec<Vec<(u16, f32)>> = Vec::new();
+    for set in 0.. {
+        let (Some(joints), Some(weights)) = (
+            primitive.get(&Semantic::Joints(set)),
+            primitive.get(&Semantic::Weights(set)),
+        ) else {
+            break;
+        };
+        gltf_accessor::check(
+            &joints,
+            buffers,
+            &[DataType::U8, DataType::U16],
+            Dimensions::Vec4,
+            &format!("JOINTS_{set} of {what}"),
+        )?;
+        gltf_accessor::check(
+            &weights,
+            buffers,
+            &[DataType::F32, DataType::U8, DataType::U16],
+            Dimensions::Vec4,
+            &format!("WEIGHTS_{set} of {what}"),
+        )?;
+        let (Some(joints), Some(weights)) = (reader.read_joints(set), reader.read_weights(set))
+        else {
+            break;
+        };
+        for (vertex, (js, ws)) in joints.into_u16().zip(weights.into_f32()).enumerate() {
+            if out.len() <= vertex {
+                out.resize(vertex + 1, Vec::new());
+            }
+            out[vertex].extend(js.into_iter().zip(ws).filter(|&(_, w)| w > 0.0));
+        }
+    }
+    Ok(out)
 }

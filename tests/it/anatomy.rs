@@ -312,6 +312,26 @@ fn the_spider_gets_a_best_effort_with_a_warning() {
     );
 }
 
+/// Runs `skelfit label MESH -o JSON ARGS...`, asserts success and returns the JSON.
+fn run_label(mesh: &Path, json: &Path, args: &[&str]) -> serde_json::Value {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_skelfit"))
+        .args([
+            "label",
+            mesh.to_str().unwrap(),
+            "-o",
+            json.to_str().unwrap(),
+        ])
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap()
+}
+
 /// `vertex_labels` line up with the file's own `v` statements, whatever order the faces use
 /// them in: `tobj` numbers an OBJ's vertices by first use, and the labels once came out in
 /// that order. The file here lists its faces backwards (so first use is far from file order),
@@ -348,21 +368,7 @@ fn cli_vertex_labels_follow_the_files_vertex_order() {
     let mesh = dir.path().join("reordered.obj");
     std::fs::write(&mesh, text).unwrap();
     let json = dir.path().join("labels.json");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args([
-            "label",
-            mesh.to_str().unwrap(),
-            "-o",
-            json.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let doc = run_label(&mesh, &json, &[]);
     let labels = doc["vertex_labels"].as_array().unwrap();
     assert_eq!(
         labels.len(),
@@ -410,28 +416,20 @@ fn cli_label_writes_json_ply_and_svg_and_guesses_forward() {
     let json = dir.path().join("labels.json");
     let ply = dir.path().join("labels.ply");
     let svg = dir.path().join("labels.svg");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args([
-            "label",
-            mesh.to_str().unwrap(),
-            "-o",
-            json.to_str().unwrap(),
-        ])
-        .args([
+    let doc = run_label(
+        &mesh,
+        &json,
+        &[
             "--ply",
             ply.to_str().unwrap(),
             "--svg",
             svg.to_str().unwrap(),
-        ])
-        .args(["--up", "+Y", "--forward", "auto"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+            "--up",
+            "+Y",
+            "--forward",
+            "auto",
+        ],
     );
-    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
     assert_eq!(doc["figure"], "human-like");
     let parts = doc["parts"].as_array().unwrap();
     let count = |label: &str| parts.iter().filter(|p| p["label"] == label).count();
