@@ -71,10 +71,10 @@ const THICKER: f64 = 2.0;
 /// already reaches. The medial surface of a thin foot or hand can stop well short of the sole
 /// (a few voxels across, its medial piece breaks off), which left the limb's distal joints
 /// hanging above the ground on one side of a symmetric figure; the skin does not move with the
-/// voxel grid. A tip more than [`SHORT_OF_SKIN`] extension lengths short of the skin follows
+/// voxel grid. A tip more than 1.5 extension lengths short of the skin follows
 /// the deepest ray within 30 degrees of the end direction instead (the limb may bend past its
 /// medial piece: a hoof in front of the pastern). A tip never goes on into a part more than
-/// [`THICKER`] times as thick as the limb's end (`radius_at` gives the figure's inscribed
+/// twice as thick as the limb's end (`radius_at` gives the figure's inscribed
 /// radius at a point): a foot touching the other leg is one solid with it. Arms and wings
 /// keep the extension: on CesiumMan's mitten hands the longer arm path moved the refined
 /// wrist onto the fingertips. Returns how many tips moved.
