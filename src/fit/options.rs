@@ -107,12 +107,12 @@ pub struct FitOptions {
     /// sits at the front of the limb). Only the knee moves (the hip and the joints below keep
     /// their places) and never towards the trunk. `None` keeps the labelled root (where the
     /// limb's medial piece leaves the trunk's, on the haunch). Needs the fit's ray probe
-    /// (`fit_with_probe`). Default 3: on the four Quaternius quadrupeds the knees' distance
-    /// from the reference stifles fell from 11.8 to 3.7 % of height (mean of both sides; 2 and
-    /// 8 gave 13.3 and 5.4 %), the worse side's from 12.0 to 4.7 % (`cargo test --release
-    /// --test it quadruped_knees -- --nocapture`); the fox's knees moved 2 cm away. Fore limbs keep the labelled root:
-    /// the same rule behind the fore leg moved the elbows only 4.7 → 4.4 % and put the deer's
-    /// forearms partly outside its legs.
+    /// (`fit_with_probe`). Default 3: on the four Quaternius quadrupeds the worse knee's
+    /// distance from the reference stifle fell from 12.0 to 4.8 % of height (`cargo test
+    /// --release --test it quadruped_knees -- --nocapture`; thresholds of 2 and 8 radii did
+    /// worse); the fox's knees moved 2 cm away from its reference. Fore limbs keep the
+    /// labelled root: the same rule behind the fore leg barely moved the elbows and put the
+    /// deer's forearms partly outside its legs.
     pub limb_fold: Option<f64>,
     /// For templates with the S-shaped neck (animal-like), the trunk's dorsal offset is faded
     /// out this many vertebral segments before the neck/trunk boundary instead of after it

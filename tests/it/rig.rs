@@ -229,7 +229,7 @@ fn makehuman_joint_error_stays_within_the_measured_bounds() {
 /// The knees (stifles) of an animal sit at the flank fold, low on the front of the hind leg
 /// (`FitOptions::limb_fold`), not where the leg's medial piece leaves the trunk on the haunch.
 /// Measured against the `BackUpperLeg.*` joints (the stifles) of the Quaternius rigs: the
-/// bundled horse, the worse side: 3.2 % of height with the fold, 12.3 % without; with
+/// bundled horse, the worse side: 3.7 % of height with the fold, 12.3 % without; with
 /// `../shared/refdata`, every quadruped whose rig has such joints is measured too and printed
 /// (`cargo test --release --test it quadruped_knees -- --nocapture`).
 #[test]
