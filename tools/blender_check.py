@@ -20,7 +20,8 @@ for path in files:
     objects = list(bpy.data.objects)
     print("FILE", path, [(o.name, o.type, o.parent.name if o.parent else None) for o in objects])
     armature = next(o for o in objects if o.type == "ARMATURE")
-    mesh = next(o for o in objects if o.type == "MESH")
+    # The skinned mesh (with `--bones` the bone meshes are parented to joints, unskinned).
+    mesh = max((o for o in objects if o.type == "MESH"), key=lambda o: len(o.vertex_groups))
     print("  bones", len(armature.data.bones))
     used = {g.group for v in mesh.data.vertices for g in v.groups if g.weight > 0}
     print("  vertices", len(mesh.data.vertices), "vertex groups", len(mesh.vertex_groups),
