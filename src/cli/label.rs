@@ -439,7 +439,7 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
         "\nNotes. The bone-following labels agree better on 20 of the 23 models and vary less with tessellation \
          (the mh_male_young_average variants: 98.3-99.1 % against 93.2-97.4 % medial), since the medial labels' limb roots \
          follow wherever the medial surface's limb pieces leave the trunk's. What remains below 95 % is the five Quaternius \
-         quadrupeds (91.4-94.1 %), at the limb roots and the base of the neck, where the reference rigs disagree with each other and with \
+         quadrupeds (91.1-93.8 %), at the limb roots and the base of the neck, where the reference rigs disagree with each other and with \
          anatomy: the Quaternius rigs start their fore legs at the armpit (a trunk `FrontShoulder` bone runs from the spine \
          to the top of the leg, so the chest and upper arm above it are trunk; our shoulder joint is the humeral head, higher \
          up), but their hind legs at the top of the haunch (`BackLeg` from the hip beside the spine); the fox's legs hang \
@@ -455,7 +455,7 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
          vertices: the artists' weights put the limb roots, the base of the neck and the tail root elsewhere than the nearest \
          bone does (the fox's weights give its belly to the trunk, its nearest bones to the hind legs). A labelling can \
          match one of the two to about the extent they match each other; our labels agree with the weights on 87.2 % (fox) \
-         and 91.9-92.9 % (Quaternius quadrupeds).\n",
+         and 91.7-93.5 % (Quaternius quadrupeds).\n",
     );
     write_file(&out.join("labels.md"), md.as_bytes())?;
     write_file(

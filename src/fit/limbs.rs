@@ -95,6 +95,12 @@ pub(crate) fn limb(
             let towards = perpendicular(sphere.anterior, frame.up);
             fold(&path, &input.radii, s0, towards, k, probe)
         }
+        // The elbow stays on the limb's axis: its surface point (the olecranon) is the
+        // fold's corner, but the forearm must run inside the leg.
+        (Placement::Animal, Girdle::Pectoral, false, Some(k), Some(probe)) => {
+            let towards = perpendicular(-sphere.anterior, frame.up);
+            fold(&path, &input.radii, s0, towards, k, probe).map(|(s, _)| (s, path.at(s)))
+        }
         _ => None,
     };
     let girdle = group

@@ -287,6 +287,57 @@ fn quadruped_knees_sit_at_the_flank_fold() {
     }
 }
 
+/// An animal's elbows sit where the fore leg comes free of the chest floor
+/// (`FitOptions::limb_fold`), not where its medial piece leaves the trunk's. Measured with
+/// `../shared/refdata` against the fox's canonical elbows and the Quaternius rigs'
+/// `FrontUpperLeg.*` joints (their elbows), mean of both sides in % of height
+/// (`cargo test --release --test it quadruped_elbows -- --nocapture`).
+#[test]
+fn quadruped_elbows_sit_below_the_chest_floor() {
+    let error = |dir: &Path, options: &RigOptions| -> Option<f64> {
+        let reference = skelfit::eval::load_skeleton(&dir.join("rig_gltf.json")).ok()?;
+        let (mesh, r) = rigged(dir, options);
+        let (lo, hi) = mesh.bounding_box().unwrap();
+        let sk = &r.fit.skeleton;
+        let mut sum = 0.0;
+        for s in ["L", "R"] {
+            let ours = sk.joints[sk.find(&format!("elbow_{s}"))?.0].position;
+            let id = reference
+                .canonical
+                .get(&format!("elbow_{s}"))
+                .copied()
+                .or_else(|| reference.skeleton.find(&format!("FrontUpperLeg.{s}")))?;
+            sum += ours.distance(reference.skeleton.joints[id.0].position) / (hi.y - lo.y) / 2.0;
+        }
+        Some(sum)
+    };
+    let mut off = RigOptions::default();
+    off.fit.limb_fold = None;
+    let (mut with, mut without, mut n) = (0.0, 0.0, 0);
+    for dir in models("quadruped") {
+        let (Some(a), Some(b)) = (error(&dir, &RigOptions::default()), error(&dir, &off)) else {
+            continue;
+        };
+        println!(
+            "{}: elbows {:.1} % with, {:.1} % without",
+            dir.display(),
+            100.0 * a,
+            100.0 * b
+        );
+        with += a;
+        without += b;
+        n += 1;
+    }
+    if n > 0 {
+        println!(
+            "mean of {n}: {:.1} % with, {:.1} % without",
+            100.0 * with / n as f64,
+            100.0 * without / n as f64
+        );
+        assert!(with < 0.85 * without, "{with} vs {without}");
+    }
+}
+
 /// An animal's neck leaves the trunk at the middle of the chest's front, not along the top of
 /// the back (`FitOptions::neck_base_drop`): measured on the bundled horse against its rig's
 /// `Neck1` (7.3 % of height with the default, 9.3 % without) and, with `../shared/refdata`, on
