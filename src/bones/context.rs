@@ -42,7 +42,7 @@ impl<'a> Context<'a> {
             .iter()
             .map(|j| Articulation {
                 centre: j.position,
-                radius: options.articulation * super::measure::radius_at(map, j.position),
+                radius: options.articulation * map.radius_at(j.position),
             })
             .collect();
         Self {

@@ -3,7 +3,7 @@
 //! its sockets at the hip joints.
 
 use super::context::Context;
-use super::measure::{median_radius, radius_at};
+use super::measure::median_radius;
 use super::settle::{Draft, Shrink};
 use super::shapes::{pelvis, rib_cage, scapula, Pelvis, RibCage, Scapula};
 use super::structure::{perpendicular, GirdleKind};
@@ -55,11 +55,11 @@ fn girdle_sphere(ctx: &Context, at: DVec3) -> Option<Sphere> {
     let steps = (reach / h).ceil() as usize;
     let mut best = Sphere {
         centre: s,
-        radius: radius_at(ctx.map, s),
+        radius: ctx.map.radius_at(s),
     };
     for k in 1..=steps {
         let q = s - ctx.dorsal * (k as f64 * h);
-        let r = radius_at(ctx.map, q);
+        let r = ctx.map.radius_at(q);
         if r > best.radius {
             best = Sphere {
                 centre: q,
@@ -220,7 +220,7 @@ pub(crate) fn scapulae(ctx: &mut Context, cage_of: &[Option<usize>]) {
             .unwrap_or_else(|| u.any_orthonormal_vector());
         let across = normal.cross(u);
         let thick = 2.6 * 0.035 * length;
-        let radius = radius_at(ctx.map, middle);
+        let radius = ctx.map.radius_at(middle);
         let lift = cage.map_or(0.0, |m| {
             m.positions
                 .iter()

@@ -4,14 +4,6 @@
 use crate::distance::DistanceMap;
 use glam::DVec3;
 
-/// Distance (mesh units) from `p` to the figure's outside: the distance-map value of the voxel
-/// holding `p`, 0 outside the figure or the grid.
-pub(crate) fn radius_at(map: &DistanceMap, p: DVec3) -> f64 {
-    map.grid.voxel_at(p).map_or(0.0, |c| {
-        map.distance(map.grid.index(c)) * map.grid.voxel_size
-    })
-}
-
 /// Trilinear interpolation of the distance map (voxel units) at `p` between the eight nearest
 /// voxel centres (0 outside the grid). The figure's surface lies near the 0.5 level, between
 /// the last interior and the first exterior voxel centres.
@@ -70,7 +62,7 @@ fn radii(map: &DistanceMap, a: DVec3, b: DVec3, samples: usize) -> Vec<f64> {
             } else {
                 0.2 + 0.6 * k as f64 / (n - 1) as f64
             };
-            radius_at(map, a.lerp(b, t))
+            map.radius_at(a.lerp(b, t))
         })
         .collect();
     r.sort_by(f64::total_cmp);
@@ -87,6 +79,6 @@ pub(crate) fn median_radius(map: &DistanceMap, a: DVec3, b: DVec3) -> f64 {
 pub(crate) fn max_radius(map: &DistanceMap, a: DVec3, b: DVec3, samples: usize) -> f64 {
     let n = samples.max(2);
     (0..n)
-        .map(|k| radius_at(map, a.lerp(b, k as f64 / (n - 1) as f64)))
+        .map(|k| map.radius_at(a.lerp(b, k as f64 / (n - 1) as f64)))
         .fold(0.0, f64::max)
 }

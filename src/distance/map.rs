@@ -19,6 +19,14 @@ impl DistanceMap {
         (self.squared[index] as f64).sqrt()
     }
 
+    /// Distance (mesh units) from `p` to the figure's outside: the distance-map value of the
+    /// voxel holding `p` (the local inscribed radius), 0 outside the figure or the grid.
+    pub fn radius_at(&self, p: glam::DVec3) -> f64 {
+        self.grid.voxel_at(p).map_or(0.0, |c| {
+            self.distance(self.grid.index(c)) * self.grid.voxel_size
+        })
+    }
+
     /// The largest distance, voxel units (the radius of the largest inscribed ball).
     pub fn max_distance(&self) -> f64 {
         (self.squared.iter().copied().max().unwrap_or(0) as f64).sqrt()

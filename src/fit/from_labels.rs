@@ -12,6 +12,7 @@
 
 use super::{AxialPath, DigitInput, DorsalProbe, FitInput, LimbInput, Side};
 use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part, Side as PartSide};
+use crate::distance::DistanceMap;
 use crate::medial::MedialSurface;
 use crate::paths::{DmsGraph, Search};
 use crate::template::LimbKind;
@@ -74,15 +75,15 @@ const THICKER: f64 = 2.0;
 /// voxel grid. A tip more than 1.5 extension lengths short of the skin follows
 /// the deepest ray within 30 degrees of the end direction instead (the limb may bend past its
 /// medial piece: a hoof in front of the pastern). A tip never goes on into a part more than
-/// twice as thick as the limb's end (`radius_at` gives the figure's inscribed
-/// radius at a point): a foot touching the other leg is one solid with it. Arms and wings
+/// twice as thick as the limb's end (by `distance`, the figure's distance map): a foot
+/// touching the other leg is one solid with it. Arms and wings
 /// keep the extension: on CesiumMan's mitten hands the longer arm path moved the refined
 /// wrist onto the fingertips. Returns how many tips moved.
 pub fn reach_the_skin(
     input: &mut FitInput,
     options: &FitInputOptions,
     probe: &dyn DorsalProbe,
-    radius_at: &dyn Fn(DVec3) -> Option<f64>,
+    distance: &DistanceMap,
 ) -> usize {
     let mut moved = 0;
     let mut reach = |points: &mut Vec<DVec3>| {
@@ -124,15 +125,13 @@ pub fn reach_the_skin(
         }
         // A foot resting on the other leg is one solid with it: stop where the ray enters a part
         // much thicker than the limb's end.
-        let limit = radius_at(end).map(|r| THICKER * r.max(extension));
+        let limit = THICKER * distance.radius_at(end).max(extension);
         let steps = (best / (0.25 * extension.max(1e-12))).ceil().min(4096.0) as usize;
         for k in 1..=steps {
             let t = best * k as f64 / steps as f64;
-            if let (Some(limit), Some(r)) = (limit, radius_at(end + best_dir * t)) {
-                if r > limit {
-                    best = t.max(extension);
-                    break;
-                }
+            if distance.radius_at(end + best_dir * t) > limit {
+                best = t.max(extension);
+                break;
             }
         }
         if best > extension {

@@ -138,13 +138,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     )?;
     lap("label", &mut timings);
     let (mut input, mut path_warnings) = fit_input(&labelling, &surface, &options.input);
-    let radius_at = |p: glam::DVec3| {
-        distance
-            .grid
-            .voxel_at(p)
-            .map(|c| distance.distance(distance.grid.index(c)) * distance.grid.voxel_size)
-    };
-    reach_the_skin(&mut input, &options.input, &solid, &radius_at);
+    reach_the_skin(&mut input, &options.input, &solid, &distance);
     lap("paths", &mut timings);
     let mut warnings = labelling.warnings.clone();
     warnings.append(&mut path_warnings);
