@@ -226,6 +226,40 @@ fn makehuman_joint_error_stays_within_the_measured_bounds() {
     }
 }
 
+/// Runs `error` (a fraction of height, `None` where the model's rig lacks the joints) on every
+/// refdata quadruped with the default options and with `off`, prints each, and returns the two
+/// means; `None` without refdata or a model that has the joints.
+fn refdata_means(
+    what: &str,
+    error: &dyn Fn(&Path, &RigOptions) -> Option<f64>,
+    off: &RigOptions,
+) -> Option<(f64, f64)> {
+    let (mut with, mut without, mut n) = (0.0, 0.0, 0);
+    for dir in models("quadruped") {
+        let (Some(a), Some(b)) = (error(&dir, &RigOptions::default()), error(&dir, off)) else {
+            continue;
+        };
+        println!(
+            "{}: {what} {:.1} % with, {:.1} % without",
+            dir.display(),
+            100.0 * a,
+            100.0 * b
+        );
+        with += a;
+        without += b;
+        n += 1;
+    }
+    (n > 0).then(|| {
+        let (with, without) = (with / n as f64, without / n as f64);
+        println!(
+            "mean of {n}: {:.1} % with, {:.1} % without",
+            100.0 * with,
+            100.0 * without
+        );
+        (with, without)
+    })
+}
+
 /// The knees (stifles) of an animal sit at the flank fold, low on the front of the hind leg
 /// (`FitOptions::limb_fold`), not where the leg's medial piece leaves the trunk on the haunch.
 /// Measured against the `BackUpperLeg.*` joints (the stifles) of the Quaternius rigs: the
@@ -262,28 +296,8 @@ fn quadruped_knees_sit_at_the_flank_fold() {
     );
     assert!(with < 0.05, "{with}");
     assert!(without > 2.0 * with, "{without} vs {with}");
-    let (mut sum_with, mut sum_without, mut n) = (0.0, 0.0, 0);
-    for dir in models("quadruped") {
-        let (Some(a), Some(b)) = (error(&dir, &RigOptions::default()), error(&dir, &off)) else {
-            continue;
-        };
-        println!(
-            "{}: {:.1} % with, {:.1} % without",
-            dir.display(),
-            100.0 * a,
-            100.0 * b
-        );
-        sum_with += a;
-        sum_without += b;
-        n += 1;
-    }
-    if n > 0 {
-        println!(
-            "mean of {n}: {:.1} % with, {:.1} % without",
-            100.0 * sum_with / n as f64,
-            100.0 * sum_without / n as f64
-        );
-        assert!(sum_with < 0.5 * sum_without);
+    if let Some((with, without)) = refdata_means("knees", &error, &off) {
+        assert!(with < 0.5 * without, "{with} vs {without}");
     }
 }
 
@@ -313,27 +327,7 @@ fn quadruped_elbows_sit_below_the_chest_floor() {
     };
     let mut off = RigOptions::default();
     off.fit.limb_fold = None;
-    let (mut with, mut without, mut n) = (0.0, 0.0, 0);
-    for dir in models("quadruped") {
-        let (Some(a), Some(b)) = (error(&dir, &RigOptions::default()), error(&dir, &off)) else {
-            continue;
-        };
-        println!(
-            "{}: elbows {:.1} % with, {:.1} % without",
-            dir.display(),
-            100.0 * a,
-            100.0 * b
-        );
-        with += a;
-        without += b;
-        n += 1;
-    }
-    if n > 0 {
-        println!(
-            "mean of {n}: {:.1} % with, {:.1} % without",
-            100.0 * with / n as f64,
-            100.0 * without / n as f64
-        );
+    if let Some((with, without)) = refdata_means("elbows", &error, &off) {
         assert!(with < 0.85 * without, "{with} vs {without}");
     }
 }
