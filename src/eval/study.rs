@@ -175,8 +175,8 @@ fn run_study(
             (input, result.map_err(|e| e.to_string()))
         })
         .collect();
-    let base_skeleton = match &rigged[0].1 {
-        Ok(r) => r.skeleton.clone(),
+    let (base_skeleton, base_canonical) = match &rigged[0].1 {
+        Ok(r) => (r.skeleton.clone(), r.canonical.clone()),
         Err(message) => {
             return Err(EvalError::Study {
                 message: format!("the base mesh did not rig: {message}"),
@@ -184,7 +184,10 @@ fn run_study(
             .into())
         }
     };
-    let base_rig = ReferenceRig::from_skeleton(model, base_skeleton.clone());
+    // The rigs' own canonical maps (a method that names no anatomy leaves them empty, and the
+    // joint names are read by the naming presets).
+    let mut base_rig = ReferenceRig::from_skeleton(model, base_skeleton.clone());
+    base_rig.canonical = base_canonical;
     let figure = match reference {
         Some(r) => figure_size(r, Some(base_mesh), options.eval.measure),
         None => figure_size(&base_rig, Some(base_mesh), FigureMeasure::LongestSide),
@@ -232,7 +235,8 @@ fn run_study(
         variant.joints = rig.skeleton.len();
         variant.timings = rig.timings;
         variant.warnings = rig.warnings;
-        let predicted = ReferenceRig::from_skeleton(model, rig.skeleton.clone());
+        let mut predicted = ReferenceRig::from_skeleton(model, rig.skeleton.clone());
+        predicted.canonical = rig.canonical;
         let (pairing, displacement) = displacement(&predicted, &base_rig);
         variant.displacement = displacement
             .into_iter()

@@ -763,36 +763,10 @@ fn assemble(
             }
         }
     }
-    if let Some(trunk) = template.placed("trunk") {
-        let trunk_ids = ids
-            .get(&(trunk.name.clone(), None))
-            .cloned()
-            .unwrap_or_default();
-        let nearest = |at: f64, skip: Option<usize>| {
-            (0..trunk_ids.len())
-                .filter(|&k| Some(k) != skip)
-                .min_by(|&a, &b| {
-                    (axial.trunk[a].1 - at)
-                        .abs()
-                        .total_cmp(&(axial.trunk[b].1 - at).abs())
-                        .then(a.cmp(&b))
-                })
-        };
-        let spine = nearest(template.axial.spine_at, None);
-        let chest = nearest(template.axial.chest_at, spine);
+    if template.placed("trunk").is_some() {
         wanted.push("spine".into());
         wanted.push("chest".into());
-        // With two joints left the nearer to each fraction wins; keep spine below chest.
-        let (spine, chest) = match (spine, chest) {
-            (Some(s), Some(c)) if s > c => (Some(c), Some(s)),
-            other => other,
-        };
-        if let Some(s) = spine {
-            canonical.insert("spine".into(), trunk_ids[s]);
-        }
-        if let Some(c) = chest {
-            canonical.insert("chest".into(), trunk_ids[c]);
-        }
+        assign_trunk_keys(&skeleton, &mut canonical, &template.axial);
     }
     for key in wanted {
         if !canonical.contains_key(&key) {
@@ -800,6 +774,80 @@ fn assemble(
         }
     }
     (skeleton, canonical)
+}
+
+/// Chooses the canonical `spine` and `chest` joints: among the joints strictly between the
+/// canonical `pelvis` and `neck` on the skeleton's chain, the one nearest `axial.spine_at`,
+/// and another nearest `axial.chest_at`, of the chain's length from the pelvis (spine below
+/// chest; ties to the lower joint). Called by the fit, and again after the refinement has
+/// moved the trunk joints onto the spine curve, so the keys follow the joints' final places.
+/// Removes both keys when the chain has no joint between pelvis and neck, one when it has one
+/// (`chest` then goes); returns whether the map changed.
+pub fn assign_trunk_keys(
+    skeleton: &Skeleton,
+    canonical: &mut BTreeMap<String, JointId>,
+    axial: &crate::template::AxialRules,
+) -> bool {
+    let before = (
+        canonical.get("spine").copied(),
+        canonical.get("chest").copied(),
+    );
+    canonical.remove("spine");
+    canonical.remove("chest");
+    let (Some(&pelvis), Some(&neck)) = (canonical.get("pelvis"), canonical.get("neck")) else {
+        return before != (None, None);
+    };
+    // The chain pelvis -> ... -> neck, pelvis first.
+    let mut chain = vec![neck];
+    let mut k = skeleton.joint(neck).parent;
+    while let Some(p) = k {
+        chain.push(p);
+        if p == pelvis || chain.len() > skeleton.joints.len() {
+            break;
+        }
+        k = skeleton.joint(p).parent;
+    }
+    if chain.last() != Some(&pelvis) {
+        return before != (None, None);
+    }
+    chain.reverse();
+    let mut along = vec![0.0];
+    for w in chain.windows(2) {
+        let step = skeleton
+            .joint(w[0])
+            .position
+            .distance(skeleton.joint(w[1]).position);
+        along.push(along.last().copied().unwrap_or(0.0) + step);
+    }
+    let total = along.last().copied().unwrap_or(0.0);
+    let inner = 1..chain.len() - 1;
+    let fraction = |k: usize| if total > 0.0 { along[k] / total } else { 0.0 };
+    let nearest = |at: f64, skip: Option<usize>| {
+        inner.clone().filter(|&k| Some(k) != skip).min_by(|&a, &b| {
+            (fraction(a) - at)
+                .abs()
+                .total_cmp(&(fraction(b) - at).abs())
+                .then(a.cmp(&b))
+        })
+    };
+    let spine = nearest(axial.spine_at, None);
+    let chest = nearest(axial.chest_at, spine);
+    // With two joints left the nearer to each fraction wins; keep spine below chest.
+    let (spine, chest) = match (spine, chest) {
+        (Some(s), Some(c)) if s > c => (Some(c), Some(s)),
+        other => other,
+    };
+    if let Some(s) = spine {
+        canonical.insert("spine".into(), chain[s]);
+    }
+    if let Some(c) = chest {
+        canonical.insert("chest".into(), chain[c]);
+    }
+    before
+        != (
+            canonical.get("spine").copied(),
+            canonical.get("chest").copied(),
+        )
 }
 
 #[allow(clippy::too_many_arguments)]

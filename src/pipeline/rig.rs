@@ -6,7 +6,8 @@ use crate::anatomy::{
 };
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{
-    ears, fit_input, fit_with_probe, reach_the_skin, Fit, FitInput, FitInputOptions, FitOptions,
+    assign_trunk_keys, ears, fit_input, fit_with_probe, reach_the_skin, Fit, FitInput,
+    FitInputOptions, FitOptions,
 };
 use crate::medial::dms;
 use crate::mesh::Mesh;
@@ -170,6 +171,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         ) {
             Ok(refined) => {
                 fit.skeleton = refined.skeleton;
+                assign_trunk_keys(&fit.skeleton, &mut fit.canonical, &template.axial);
                 warnings.extend(refined.warnings.iter().map(|w| format!("refine: {w}")));
             }
             Err(e) => warnings.push(format!("refine: {e}; the fitted joints are kept")),

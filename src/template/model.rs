@@ -53,7 +53,8 @@ pub struct AxialRules {
     pub vertebra_to_head: f64,
     /// Whether to build the S-shaped cervical replacement (8.1: animal-like figures).
     pub cervical_s_curve: bool,
-    /// Canonical `spine`: the trunk joint nearest this fraction of the way root → neck.
+    /// Canonical `spine`: the trunk joint nearest this fraction of the joint chain's length
+    /// pelvis → neck, where the joints end up ([`crate::fit::assign_trunk_keys`]).
     pub spine_at: f64,
     /// Canonical `chest`: the trunk joint nearest this fraction.
     pub chest_at: f64,

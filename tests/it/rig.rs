@@ -226,6 +226,82 @@ fn makehuman_joint_error_stays_within_the_measured_bounds() {
     }
 }
 
+/// The canonical `spine` and `chest` are the trunk joints nearest the template's fractions
+/// (25 % and 45 % of the way pelvis -> neck) where the joints end up: the refinement moves
+/// the trunk joints onto the spine curve, and the keys used to stay with the joints chosen
+/// before it (the bundled MakeHuman body's `chest` then sat at 57 %, 96 mm from the
+/// reference's `spine_03`; now 45 %, 38 mm).
+#[test]
+fn trunk_keys_follow_the_refined_spine() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
+    let (_, r) = rigged(&dir, &RigOptions::default());
+    let skeleton = &r.fit.skeleton;
+    let key = |k: &str| r.fit.canonical[k];
+    let mut chain = vec![key("neck")];
+    while *chain.last().unwrap() != key("pelvis") {
+        let parent = skeleton.joint(*chain.last().unwrap()).parent.unwrap();
+        chain.push(parent);
+    }
+    chain.reverse();
+    let mut along = vec![0.0];
+    for w in chain.windows(2) {
+        let step = skeleton
+            .joint(w[0])
+            .position
+            .distance(skeleton.joint(w[1]).position);
+        along.push(along.last().unwrap() + step);
+    }
+    let total = *along.last().unwrap();
+    let fraction = |id| along[chain.iter().position(|&c| c == id).unwrap()] / total;
+    for (k, at) in [("spine", 0.25), ("chest", 0.45)] {
+        let ours = (fraction(key(k)) - at).abs();
+        for &other in &chain[1..chain.len() - 1] {
+            assert!(
+                ours <= (fraction(other) - at).abs() + 1e-9,
+                "{k} is {} at {:.2} of the chain; {} at {:.2} is nearer {at}",
+                skeleton.joint(key(k)).name,
+                fraction(key(k)),
+                skeleton.joint(other).name,
+                fraction(other)
+            );
+        }
+    }
+    let reference = skelfit::eval::load_skeleton(&dir.join("rig_game_engine.json")).unwrap();
+    let error = skeleton
+        .joint(key("chest"))
+        .position
+        .distance(reference.canonical_joint("chest").unwrap().position);
+    println!("chest: {:.1} mm from the reference", error * 1e3);
+    assert!(
+        error < 0.06,
+        "chest {:.1} mm from the reference",
+        error * 1e3
+    );
+}
+
+/// A tessellation study pairs the anatomical rig with the reference through the rig's own
+/// canonical map, as `skelfit bench` does (it used to read the joint names by the naming
+/// preset, which ties `chest` to `spine_03` whatever the fit chose).
+#[test]
+fn a_study_evaluates_the_rig_by_its_own_canonical_map() {
+    use skelfit::eval::{tessellation_study, RigMethod, StudyOptions};
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
+    let (mesh, r) = rigged(&dir, &RigOptions::default());
+    let reference = skelfit::eval::load_skeleton(&dir.join("rig_game_engine.json")).unwrap();
+    let mut options = StudyOptions::default();
+    options.rigger.method = RigMethod::Anatomical;
+    let study = tessellation_study(&mesh, "mh", Some(&reference), &[], &options).unwrap();
+    let evaluation = study.base().unwrap().to_reference.as_ref().unwrap();
+    for key in ["spine", "chest", "neck", "shoulder_L"] {
+        let joint = evaluation.joints.iter().find(|j| j.key == key).unwrap();
+        assert_eq!(
+            joint.predicted_joint,
+            r.fit.skeleton.joint(r.fit.canonical[key]).name,
+            "{key}"
+        );
+    }
+}
+
 /// Runs `error` (a fraction of height, `None` where the model's rig lacks the joints) on every
 /// refdata quadruped with the default options and with `off`, prints each, and returns the two
 /// means; `None` without refdata or a model that has the joints.
