@@ -15,5 +15,6 @@ mod mesh;
 mod outline;
 mod refine;
 mod rig;
+mod robust;
 mod skin;
 mod voxel;
