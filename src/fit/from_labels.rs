@@ -58,9 +58,9 @@ impl Default for FitInputOptions {
     }
 }
 
-/// How many extension lengths short of the skin a path tip must be before [`reach_the_skin`]
-/// looks beyond the straight end direction.
-const SHORT_OF_SKIN: f64 = 1.5;
+/// [`reach_the_skin`] leaves the straight end direction for a tilted ray only when that ray
+/// reaches this many times as far.
+const DEEPER: f64 = 1.1;
 
 /// [`reach_the_skin`] stops a tip where its ray enters a part whose inscribed radius exceeds
 /// this multiple of the limb end's.
@@ -72,13 +72,16 @@ const THICKER: f64 = 2.0;
 /// already reaches. The medial surface of a thin foot or hand can stop well short of the sole
 /// (a few voxels across, its medial piece breaks off), which left the limb's distal joints
 /// hanging above the ground on one side of a symmetric figure; the skin does not move with the
-/// voxel grid. A tip more than 1.5 extension lengths short of the skin follows
-/// the deepest ray within 30 degrees of the end direction instead (the limb may bend past its
-/// medial piece: a hoof in front of the pastern). A tip never goes on into a part more than
-/// twice as thick as the limb's end (by `distance`, the figure's distance map): a foot
-/// touching the other leg is one solid with it. Arms and wings
-/// keep the extension: on CesiumMan's mitten hands the longer arm path moved the refined
-/// wrist onto the fingertips. Returns how many tips moved.
+/// voxel grid.
+///
+/// When a ray within 30 degrees of the end direction reaches more than 10 % farther, the tip
+/// follows the least tilted ray that reaches within 10 % of the farthest: the limb may bend
+/// past its medial piece (a hoof in front of the pastern), or the end direction may dip
+/// through a thin sole (the right foot of the symmetric MakeHuman body ended 5 cm short of the
+/// toes). A tip never goes on into a part more than twice as thick as the limb's end (by
+/// `distance`, the figure's distance map): a foot touching the other leg is one solid with
+/// it. Arms and wings keep the extension: on CesiumMan's mitten hands the longer arm path
+/// moved the refined wrist onto the fingertips. Returns how many tips moved.
 pub fn reach_the_skin(
     input: &mut FitInput,
     options: &FitInputOptions,
@@ -105,22 +108,46 @@ pub fn reach_the_skin(
         if !(depth.is_finite() && depth > extension) {
             return;
         }
-        // Well short of the skin: the limb goes on past its medial piece, perhaps bending
-        // (a hoof in front of the pastern); follow the deepest ray within 30 degrees.
+        // The limb may go on past its medial piece, bending (a hoof in front of the pastern), or
+        // the end direction may dip through a thin sole (a foot's medial piece ends a voxel
+        // lower on one side than the other): when a ray within 30 degrees reaches clearly
+        // farther than the straight one, take the least tilted ray that reaches nearly as far
+        // as the farthest (the deepest at that tilt).
+        let side = dir.any_orthonormal_vector();
+        let other = dir.cross(side);
+        let tilts = [5.0_f64, 10.0, 15.0, 20.0, 25.0, 30.0];
+        let rays: Vec<Vec<(DVec3, f64)>> = tilts
+            .iter()
+            .map(|tilt| {
+                (0..16)
+                    .filter_map(|k| {
+                        let azimuth = std::f64::consts::TAU * k as f64 / 16.0;
+                        let d = (dir * tilt.to_radians().cos()
+                            + (side * azimuth.cos() + other * azimuth.sin())
+                                * tilt.to_radians().sin())
+                        .normalize();
+                        probe
+                            .depth(end, d)
+                            .filter(|x| x.is_finite())
+                            .map(|x| (d, x))
+                    })
+                    .collect()
+            })
+            .collect();
+        let farthest = rays.iter().flatten().map(|r| r.1).fold(depth, f64::max);
         let (mut best_dir, mut best) = (dir, depth);
-        if depth > SHORT_OF_SKIN * extension {
-            let side = dir.any_orthonormal_vector();
-            let other = dir.cross(side);
-            for tilt in [10.0_f64, 20.0, 30.0] {
-                for k in 0..8 {
-                    let azimuth = std::f64::consts::TAU * k as f64 / 8.0;
-                    let d = (dir * tilt.to_radians().cos()
-                        + (side * azimuth.cos() + other * azimuth.sin()) * tilt.to_radians().sin())
-                    .normalize();
-                    if let Some(x) = probe.depth(end, d).filter(|x| x.is_finite() && *x > best) {
-                        (best_dir, best) = (d, x);
-                    }
-                }
+        if farthest > DEEPER * depth {
+            if let Some(&(d, x)) = rays
+                .iter()
+                .filter_map(|at_tilt| {
+                    at_tilt
+                        .iter()
+                        .filter(|r| r.1 * DEEPER >= farthest)
+                        .max_by(|a, b| a.1.total_cmp(&b.1))
+                })
+                .next()
+            {
+                (best_dir, best) = (d, x);
             }
         }
         // A foot resting on the other leg is one solid with it: stop where the ray enters a part
