@@ -88,7 +88,8 @@ fn general_stages(mesh: &Mesh, options: &GeneralSkeletonOptions) -> crate::Resul
     lap("paths", &mut timings);
     let mut general = control_skeleton(tree, &options.general)?;
     lap("general", &mut timings);
-    let mut warnings = surface.warnings;
+    let mut warnings = solid.report.warnings();
+    warnings.extend(surface.warnings);
     warnings.append(&mut general.warnings);
     general.warnings = warnings;
     general.timings = timings;

@@ -118,10 +118,10 @@ pub fn label_pieces(
     if surface.is_empty() {
         return Err(AnatomyError::EmptySurface);
     }
-    match options.forward {
+    let mut labelling = match options.forward {
         Forward::Direction(f) => {
             let frame = Frame::new(options.up, f)?;
-            label_in_frame(mesh, solid, surface, options, overrides, frame, false)
+            label_in_frame(mesh, solid, surface, options, overrides, frame, false)?
         }
         Forward::Auto => {
             let up = options.up;
@@ -140,9 +140,12 @@ pub fn label_pieces(
                 "forward guessed as ({:.3}, {:.3}, {:.3}) {note}",
                 f.x, f.y, f.z
             ));
-            Ok(second)
+            second
         }
-    }
+    };
+    // What the voxelization left out comes first.
+    labelling.warnings.splice(0..0, solid.report.warnings());
+    Ok(labelling)
 }
 
 /// Forward from a first labelling: animal-like figures face from the tail (or the hind legs)

@@ -83,14 +83,7 @@ pub fn summarize(
     let stats = mesh.stats();
 
     let mut warnings = Vec::new();
-    if solid.report.dropped_voxels > 0 {
-        warnings.push(format!(
-            "kept the largest of {} separate interior parts; dropped {} voxels ({:.2} % of the interior)",
-            solid.report.components,
-            solid.report.dropped_voxels,
-            100.0 * solid.report.dropped_voxels as f64 / (solid.report.interior_voxels + solid.report.dropped_voxels) as f64
-        ));
-    }
+    warnings.extend(solid.report.warnings());
     if stats.boundary_edges > 0 || stats.non_manifold_edges > 0 {
         warnings.push(format!(
             "the mesh is not closed ({} boundary, {} non-manifold edges): inside/outside was decided by a six-direction winding-number vote ({} voxels had disagreeing votes)",

@@ -3,6 +3,7 @@
 
 mod components;
 mod error;
+mod figure;
 mod grid;
 mod options;
 mod solid;

@@ -33,6 +33,50 @@ pub struct VoxelReport {
     pub dropped_voxels: usize,
     /// Voxels whose inside/outside votes disagreed (a sign of holes or self-intersections).
     pub ambiguous_voxels: usize,
+    /// Connected pieces of the mesh left out of the voxelization because they lie apart from
+    /// the figure (see [`voxelize`](super::voxelize)).
+    pub left_out_pieces: usize,
+    /// Their triangles.
+    pub left_out_triangles: usize,
+    /// Their share of the mesh's surface area, 0-1.
+    pub left_out_area_share: f64,
+}
+
+/// Dropped interior components are worth a warning from this share of the interior on (a
+/// pinched finger tip drops a voxel or two).
+const DROPPED_WARNING: f64 = 0.005;
+
+impl VoxelReport {
+    /// What the voxelization left out, as warning sentences: loose pieces apart from the
+    /// figure, and interior components smaller than the largest when they hold at least 0.5 %
+    /// of the interior.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if self.left_out_pieces > 0 {
+            out.push(format!(
+                "{} loose piece{} of the mesh ({} triangles, {:.2} % of the surface area) {} apart \
+                 from the figure and {} left out of the voxels (delete them from the mesh if they \
+                 are not part of the figure)",
+                self.left_out_pieces,
+                if self.left_out_pieces == 1 { "" } else { "s" },
+                self.left_out_triangles,
+                100.0 * self.left_out_area_share,
+                if self.left_out_pieces == 1 { "lies" } else { "lie" },
+                if self.left_out_pieces == 1 { "was" } else { "were" }
+            ));
+        }
+        let all = self.interior_voxels + self.dropped_voxels;
+        if self.dropped_voxels as f64 >= DROPPED_WARNING * all as f64 && self.dropped_voxels > 0 {
+            out.push(format!(
+                "the figure's interior has {} separate parts: the largest was kept, the others \
+                 ({} voxels, {:.1} % of the interior) were dropped",
+                self.components,
+                self.dropped_voxels,
+                100.0 * self.dropped_voxels as f64 / all.max(1) as f64
+            ));
+        }
+        out
+    }
 }
 
 impl Solid {

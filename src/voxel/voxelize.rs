@@ -1,6 +1,7 @@
 //! The voxelization driver: grid sizing, classification, component filtering.
 
 use super::components::keep_largest_component;
+use super::figure::figure_triangles;
 use super::surface::surface_voxels;
 use super::winding::winding_votes;
 use super::{Grid, Solid, VoxelError, VoxelOptions, VoxelReport, VoxelSize};
@@ -10,7 +11,10 @@ use rayon::prelude::*;
 
 /// Voxelizes `mesh` into a [`Solid`].
 ///
-/// Phases: size the grid around the bounding box (padded by `options.padding` outside voxels);
+/// Phases: leave out connected pieces lying apart from the figure (pieces whose bounding box
+/// does not meet the largest piece's, enlarged by a tenth of its longest side, when that piece
+/// holds at least 60 % of the surface area; [`VoxelReport::left_out_pieces`]); size the grid
+/// around the bounding box (padded by `options.padding` outside voxels);
 /// classify every voxel centre by the six-direction winding-number vote (see the module docs of
 /// `voxel::winding`: exact for closed meshes, robust to holes, non-manifold edges and
 /// overlapping parts; the absolute winding is used, so inward-wound meshes work too); mark the
@@ -22,7 +26,20 @@ use rayon::prelude::*;
 /// would exceed `options.max_voxels` (the error names a voxel size that fits), and
 /// [`VoxelError::EmptyInterior`] when no voxel centre is inside.
 pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError> {
-    let grid = grid_for(mesh, options)?;
+    let figure = figure_triangles(mesh);
+    let left_out = figure.as_ref().map(|f| f.1).unwrap_or_default();
+    let figure_mesh;
+    let mesh = match figure {
+        Some((triangles, _)) => {
+            figure_mesh = Mesh {
+                positions: mesh.positions.clone(),
+                triangles,
+            };
+            &figure_mesh
+        }
+        None => mesh,
+    };
+    let grid = grid_of(mesh, options)?;
     let h = grid.voxel_size;
     let corners: Vec<[DVec3; 3]> = (0..mesh.triangles.len())
         .map(|t| mesh.corners(t).map(|p| (p - grid.origin) / h))
@@ -74,6 +91,9 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
         components,
         dropped_voxels,
         ambiguous_voxels,
+        left_out_pieces: left_out.pieces,
+        left_out_triangles: left_out.triangles,
+        left_out_area_share: left_out.area_share,
     };
     Ok(Solid {
         grid,
@@ -88,6 +108,19 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
 /// # Errors
 /// As [`voxelize`], except `EmptyInterior`.
 pub fn grid_for(mesh: &Mesh, options: &VoxelOptions) -> Result<Grid, VoxelError> {
+    match figure_triangles(mesh) {
+        Some((triangles, _)) => grid_of(
+            &Mesh {
+                positions: mesh.positions.clone(),
+                triangles,
+            },
+            options,
+        ),
+        None => grid_of(mesh, options),
+    }
+}
+
+fn grid_of(mesh: &Mesh, options: &VoxelOptions) -> Result<Grid, VoxelError> {
     let (min, max) = mesh.bounding_box().ok_or(VoxelError::NoTriangles)?;
     let extent = max - min;
     let longest = extent.max_element();

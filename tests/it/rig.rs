@@ -466,6 +466,45 @@ fn a_symmetric_body_gets_mirrored_feet() {
     }
 }
 
+/// A loose piece far from the figure (a helper object left in the file) used to size the voxel
+/// grid: one tetrahedron two horse-lengths away coarsened the voxels from 0.057 to 0.125 and
+/// the rig lost joints. It is left out of the voxels with a warning, and the horse gets the
+/// rig it gets alone.
+#[test]
+fn a_loose_piece_far_away_leaves_the_rig_unchanged_and_is_named() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/quadruped/quaternius_horse");
+    let (horse, alone) = rigged(&dir, &RigOptions::default());
+    let (_, hi) = horse.bounding_box().unwrap();
+    let base = horse.positions.len() as u32;
+    let mut positions = horse.positions.clone();
+    let at = hi + DVec3::splat(10.0);
+    positions.extend([at, at + DVec3::X, at + DVec3::Y, at + DVec3::Z]);
+    let mut triangles = horse.triangles.clone();
+    triangles.extend([
+        [base, base + 2, base + 1],
+        [base, base + 1, base + 3],
+        [base, base + 3, base + 2],
+        [base + 1, base + 2, base + 3],
+    ]);
+    let messy = Mesh::new(positions, triangles).unwrap();
+    let r = rig(&messy, &RigOptions::default()).unwrap();
+    assert_eq!(r.solid.grid, alone.solid.grid);
+    assert_eq!(r.fit.skeleton.joints.len(), alone.fit.skeleton.joints.len());
+    for (a, b) in r.fit.skeleton.joints.iter().zip(&alone.fit.skeleton.joints) {
+        assert!(a.position.distance(b.position) < 1e-9, "{} moved", a.name);
+    }
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.starts_with("1 loose piece of the mesh (4 triangles")),
+        "{:?}",
+        r.warnings
+    );
+    assert!(r.skin.weights[base as usize..]
+        .iter()
+        .all(|w| !w.is_empty()));
+}
+
 /// Legs reach the ground on both sides even where the medial surface of a thin foot broke
 /// off on one side (the alpaca's left fore foot: its limb path stopped 0.46 units above the
 /// ground, and its digit joints hung 0.38 above it): `fit::reach_the_skin` takes the path tip

@@ -86,16 +86,31 @@ fn overlapping_parts_are_one_solid() {
 
 #[test]
 fn largest_component_is_kept_and_the_rest_reported() {
-    let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
-    let small = Mesh::cuboid(DVec3::splat(3.0), DVec3::splat(3.3));
-    let offset = mesh.positions.len() as u32;
-    mesh.positions.extend(small.positions);
-    mesh.triangles
-        .extend(small.triangles.iter().map(|t| t.map(|i| i + offset)));
-    let solid = voxelize(&mesh, &options(1.0 / 128.0)).unwrap();
+    let with_cube_at = |lo: f64, hi: f64| {
+        let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        let small = Mesh::cuboid(DVec3::splat(lo), DVec3::splat(hi));
+        let offset = mesh.positions.len() as u32;
+        mesh.positions.extend(small.positions);
+        mesh.triangles
+            .extend(small.triangles.iter().map(|t| t.map(|i| i + offset)));
+        mesh
+    };
+    // Beside the figure (within a tenth of its size): voxelized, then dropped as a smaller
+    // interior component.
+    let solid = voxelize(&with_cube_at(1.05, 1.35), &options(1.0 / 128.0)).unwrap();
     assert_eq!(solid.report.components, 2);
+    assert_eq!(solid.report.left_out_pieces, 0);
     assert!(solid.report.dropped_voxels > 0);
     assert!(relative_error(solid.interior_volume(), 1.0) < 0.05);
+    assert!(solid.report.warnings()[0].contains("2 separate parts"));
+    // Far away: left out before voxelizing, so the grid fits the unit cube alone.
+    let solid = voxelize(&with_cube_at(3.0, 3.3), &options(1.0 / 128.0)).unwrap();
+    assert_eq!(solid.report.left_out_pieces, 1);
+    assert_eq!(solid.report.left_out_triangles, 12);
+    assert_eq!(solid.report.components, 1);
+    assert!((solid.grid.voxel_size - 1.0 / 128.0).abs() < 1e-12);
+    assert!(relative_error(solid.interior_volume(), 1.0) < 0.05);
+    assert!(solid.report.warnings()[0].starts_with("1 loose piece"));
 }
 
 #[test]

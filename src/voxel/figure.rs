@@ -1,0 +1,108 @@
+//! Loose pieces lying apart from the figure (a helper object, a stray triangle far away) are
+//! left out of the voxelization: the grid is sized on the figure's bounding box, and one such
+//! piece would otherwise coarsen every voxel by the distance to it.
+
+use crate::mesh::Mesh;
+use glam::DVec3;
+
+/// Share of the surface area the largest connected piece must hold before anything is left
+/// out (a triangle soup, or two figures of about one size, keeps every piece).
+const MAIN_SHARE: f64 = 0.6;
+
+/// A piece is part of the figure when its bounding box meets the largest piece's, enlarged by
+/// this fraction of that box's longest side on every side.
+const MARGIN: f64 = 0.1;
+
+/// What [`figure_triangles`] left out.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct LeftOut {
+    /// Connected pieces left out.
+    pub pieces: usize,
+    /// Their triangles.
+    pub triangles: usize,
+    /// Their share of the surface area.
+    pub area_share: f64,
+}
+
+/// The triangles to voxelize: every connected piece (triangles sharing vertices) whose bounding
+/// box meets the largest piece's (by area), enlarged by [`MARGIN`], when that piece holds at
+/// least [`MAIN_SHARE`] of the area; `None` when nothing is left out.
+pub(super) fn figure_triangles(mesh: &Mesh) -> Option<(Vec<[u32; 3]>, LeftOut)> {
+    let (component, count) = mesh.triangle_components();
+    if count < 2 {
+        return None;
+    }
+    let mut area = vec![0.0; count];
+    let mut lo = vec![DVec3::splat(f64::INFINITY); count];
+    let mut hi = vec![DVec3::splat(f64::NEG_INFINITY); count];
+    for (t, &c) in component.iter().enumerate() {
+        let c = c as usize;
+        let [a, b, d] = mesh.corners(t);
+        area[c] += (b - a).cross(d - a).length() * 0.5;
+        for p in [a, b, d] {
+            lo[c] = lo[c].min(p);
+            hi[c] = hi[c].max(p);
+        }
+    }
+    let total: f64 = area.iter().sum();
+    let main = (0..count).max_by(|&a, &b| area[a].total_cmp(&area[b]).then(b.cmp(&a)))?;
+    if total.is_nan() || total <= 0.0 || area[main] < MAIN_SHARE * total {
+        return None;
+    }
+    let margin = MARGIN * (hi[main] - lo[main]).max_element();
+    let (box_lo, box_hi) = (
+        lo[main] - DVec3::splat(margin),
+        hi[main] + DVec3::splat(margin),
+    );
+    let keep: Vec<bool> = (0..count)
+        .map(|c| lo[c].cmple(box_hi).all() && hi[c].cmpge(box_lo).all())
+        .collect();
+    if keep.iter().all(|&k| k) {
+        return None;
+    }
+    let mut left_out = LeftOut::default();
+    for c in (0..count).filter(|&c| !keep[c]) {
+        left_out.pieces += 1;
+        left_out.area_share += area[c] / total;
+    }
+    let triangles: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .zip(&component)
+        .filter(|(_, &c)| keep[c as usize])
+        .map(|(t, _)| *t)
+        .collect();
+    left_out.triangles = mesh.triangles.len() - triangles.len();
+    Some((triangles, left_out))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn with_piece_at(offset: DVec3, scale: f64) -> Mesh {
+        let body = Mesh::capsule(DVec3::ZERO, 0.2, 1.0, 8, 16);
+        let piece = Mesh::capsule(offset, 0.2 * scale, 1.0 * scale, 8, 16);
+        let base = body.positions.len() as u32;
+        let mut positions = body.positions.clone();
+        positions.extend(&piece.positions);
+        let mut triangles = body.triangles.clone();
+        triangles.extend(piece.triangles.iter().map(|t| t.map(|i| i + base)));
+        Mesh::new(positions, triangles).unwrap()
+    }
+
+    #[test]
+    fn a_far_small_piece_is_left_out_and_a_near_one_kept() {
+        let far = with_piece_at(DVec3::new(20.0, 0.0, 0.0), 0.1);
+        let (kept, left_out) = figure_triangles(&far).unwrap();
+        assert_eq!(left_out.pieces, 1);
+        assert_eq!(kept.len() + left_out.triangles, far.triangles.len());
+        assert!(left_out.area_share > 0.0 && left_out.area_share < 0.05);
+        // Beside the body (a separate hand, an eye): part of the figure.
+        assert!(figure_triangles(&with_piece_at(DVec3::new(0.35, 0.0, 0.0), 0.3)).is_none());
+        // Two equal figures: nothing is left out.
+        assert!(figure_triangles(&with_piece_at(DVec3::new(20.0, 0.0, 0.0), 1.0)).is_none());
+        // One piece: nothing to do.
+        assert!(figure_triangles(&Mesh::capsule(DVec3::ZERO, 0.2, 1.0, 8, 16)).is_none());
+    }
+}
