@@ -56,3 +56,33 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     skelfit::output::write_atomic(path, bytes)
         .with_context(|| format!("writing {}", path.display()))
 }
+
+/// A hint for labels that make no complete body plan (a humanoid's two legs, two arms and
+/// head; a quadruped's four legs and head; a winged figure's two legs, two wings and head):
+/// the commonest cause is a mesh whose up axis is not the one assumed (Z-up files from CAD
+/// tools and scanners read as +Y up lie on their back).
+pub fn orientation_hint(labels: &skelfit::anatomy::Labelling, up: glam::DVec3) -> Option<String> {
+    use skelfit::anatomy::{FigureClass, Label};
+    let count = |label| labels.find(label).len();
+    let (legs, arms, wings, heads) = (
+        count(Label::Leg),
+        count(Label::Arm),
+        count(Label::Wing),
+        count(Label::Head),
+    );
+    let complete = heads == 1
+        && match labels.figure {
+            FigureClass::HumanLike => legs == 2 && arms == 2,
+            FigureClass::AnimalLike => legs == 4 || (legs == 2 && wings == 2),
+            FigureClass::Unknown => false,
+        };
+    (!complete).then(|| {
+        format!(
+            "the labels make no complete humanoid, quadruped or winged figure with up = ({:.3}, \
+             {:.3}, {:.3}) ({legs} legs, {arms} arms, {wings} wings, {heads} heads); if the \
+             mesh's up axis is another one, pass it with --up and a forward axis across it with \
+             --forward (Z-up files from Blender, CAD tools and scanners: --up +Z --forward -Y)",
+            up.x, up.y, up.z
+        )
+    })
+}

@@ -39,10 +39,20 @@ pub struct LabelArgs {
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
     /// Up direction: an axis (+Y, -Z, ...) or a vector x,y,z.
-    #[arg(long, value_name = "DIR", default_value = "+Y")]
+    #[arg(
+        long,
+        value_name = "DIR",
+        default_value = "+Y",
+        allow_hyphen_values = true
+    )]
     pub up: String,
     /// Forward direction: an axis, a vector x,y,z, or `auto` (guessed from head/tail or feet).
-    #[arg(long, value_name = "DIR", default_value = "+Z")]
+    #[arg(
+        long,
+        value_name = "DIR",
+        default_value = "+Z",
+        allow_hyphen_values = true
+    )]
     pub forward: String,
     /// A labels override file (JSON) correcting sections (see ARCHITECTURE.md).
     #[arg(long, value_name = "OVERRIDE.json")]
@@ -131,6 +141,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
         Some(p) => Some(Overrides::load(p)?),
         None => None,
     };
+    let up = options.up;
     let labels = match args.vertex_labels {
         VertexLabels::Medial => label_with_overrides(&mesh, &options, overrides.as_ref()),
         VertexLabels::Bones => label_by_bones(
@@ -171,6 +182,9 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     }
     for w in &labels.warnings {
         eprintln!("skelfit: warning: {w}");
+    }
+    if let Some(hint) = super::common::orientation_hint(&labels, up) {
+        eprintln!("skelfit: hint: {hint}");
     }
     Ok(())
 }

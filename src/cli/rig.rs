@@ -62,10 +62,20 @@ pub struct RigArgs {
     #[arg(long, value_enum, default_value_t = PresetArg::Anatomical)]
     pub preset: PresetArg,
     /// Up direction: an axis (+Y, -Z, ...) or a vector x,y,z.
-    #[arg(long, value_name = "DIR", default_value = "+Y")]
+    #[arg(
+        long,
+        value_name = "DIR",
+        default_value = "+Y",
+        allow_hyphen_values = true
+    )]
     pub up: String,
     /// Forward direction: an axis, a vector x,y,z, or `auto` (guessed from head/tail or feet).
-    #[arg(long, value_name = "DIR", default_value = "+Z")]
+    #[arg(
+        long,
+        value_name = "DIR",
+        default_value = "+Z",
+        allow_hyphen_values = true
+    )]
     pub forward: String,
     /// A labels override file (JSON) correcting body-part sections (see `skelfit label`).
     #[arg(long, value_name = "OVERRIDE.json")]
@@ -174,6 +184,9 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     }
     for w in &bone_warnings {
         eprintln!("skelfit: warning: bones: {w}");
+    }
+    if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
+        eprintln!("skelfit: hint: {hint}");
     }
     Ok(())
 }

@@ -74,7 +74,7 @@ pub struct RotationArgs {
     #[arg(long, default_value_t = 8)]
     pub n: usize,
     /// Rotation axis x,y,z (default the up axis +Y).
-    #[arg(long, value_delimiter = ',', num_args = 1, default_values_t = [0.0, 1.0, 0.0])]
+    #[arg(long, value_delimiter = ',', num_args = 1, allow_hyphen_values = true, default_values_t = [0.0, 1.0, 0.0])]
     pub axis: Vec<f64>,
 }
 

@@ -214,3 +214,34 @@ fn rig_refuses_an_unknown_template_and_a_missing_mesh() {
     assert!(stderr(&out).contains("skelfit: error:"));
     assert!(!glb.exists());
 }
+
+/// A Z-up file read as +Y up lies on its back and labels as no complete body plan: `skelfit
+/// rig` says so and names `--up`; with `--up +Z --forward -Y` the hint goes away, and the upright file
+/// never gets it.
+#[test]
+fn rig_hints_at_the_up_axis_of_a_lying_figure() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = skelfit::mesh::load(Path::new(&bundled_humanoid())).unwrap();
+    let lying = mesh.transformed(|p| glam::DVec3::new(p.x, -p.z, p.y));
+    let path = dir.path().join("z_up.obj");
+    skelfit::export::write_obj(&path, &lying).unwrap();
+    let path = path.display().to_string();
+    let out_glb = dir.path().join("out.glb").display().to_string();
+    let hint = |args: &[&str]| {
+        let out = skelfit(args);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        stderr(&out).contains("skelfit: hint:") && stderr(&out).contains("--up")
+    };
+    assert!(hint(&["rig", &path, "-o", &out_glb]));
+    assert!(!hint(&[
+        "rig",
+        &path,
+        "-o",
+        &out_glb,
+        "--up",
+        "+Z",
+        "--forward",
+        "-Y"
+    ]));
+    assert!(!hint(&["rig", &bundled_humanoid(), "-o", &out_glb]));
+}
