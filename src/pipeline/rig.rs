@@ -6,14 +6,14 @@ use crate::anatomy::{
 };
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{
-    assign_trunk_keys, ears, fit_input, fit_with_probe, reach_the_skin, Fit, FitInput,
+    assign_trunk_keys, ears, fit_input, fit_with_probe, reach_the_skin, Fit, FitError, FitInput,
     FitInputOptions, FitOptions,
 };
 use crate::medial::dms;
 use crate::mesh::Mesh;
 use crate::refine::{refine, RefineOptions};
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
-use crate::template::Template;
+use crate::template::{apply_preset, Preset, Template};
 use crate::voxel::{voxelize, Solid};
 use std::time::Instant;
 
@@ -156,7 +156,13 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     if template.placed("ear").is_some() {
         input.ears = ears(&labelling, &distance, &input.axial, &options.input.ears);
     }
-    let mut fit = fit_with_probe(&input, &template, &options.fit, Some(&solid))?;
+    // Anatomical names through the refinement; the preset's names go on last, from the final
+    // canonical keys (the refinement may move `spine` and `chest` to other joints).
+    let anatomical = FitOptions {
+        preset: Preset::Anatomical,
+        ..options.fit.clone()
+    };
+    let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().map(ToString::to_string));
     lap("fit", &mut timings);
     if options.refine.in_rig && fit.template == "humanoid" {
@@ -178,6 +184,8 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         }
         lap("refine", &mut timings);
     }
+    apply_preset(&mut fit.skeleton, &fit.canonical, options.fit.preset)
+        .map_err(|e| FitError::Preset(e.to_string()))?;
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().map(ToString::to_string));
     lap("skin", &mut timings);

@@ -303,6 +303,31 @@ fn a_study_evaluates_the_rig_by_its_own_canonical_map() {
     }
 }
 
+/// Engine presets name each canonical joint by its key, also after the refinement has moved
+/// `spine`/`chest` to other joints (the names used to be given before it, so Mixamo's
+/// `Spine2` was no longer the `chest`).
+#[test]
+fn preset_names_follow_the_final_canonical_keys() {
+    use skelfit::template::Preset;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
+    for preset in [Preset::Mixamo, Preset::Unity, Preset::MakeHuman] {
+        let mut options = RigOptions::default();
+        options.fit.preset = preset;
+        let (_, r) = rigged(&dir, &options);
+        let table = preset.names().unwrap();
+        for (key, id) in &r.fit.canonical {
+            let Some(names) = table.joints.get(key) else {
+                continue;
+            };
+            assert_eq!(
+                &r.fit.skeleton.joint(*id).name,
+                &names[0],
+                "{preset:?}: canonical {key}"
+            );
+        }
+    }
+}
+
 /// Runs `error` (a fraction of height, `None` where the model's rig lacks the joints) on every
 /// refdata quadruped with the default options and with `off`, prints each, and returns the two
 /// means; `None` without refdata or a model that has the joints.
