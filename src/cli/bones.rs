@@ -89,5 +89,8 @@ pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
     for w in &made.warnings {
         eprintln!("skelfit: warning: bones: {w}");
     }
+    if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
+        eprintln!("skelfit: hint: {hint}");
+    }
     Ok(())
 }
