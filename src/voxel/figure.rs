@@ -13,7 +13,7 @@ const MAIN_SHARE: f64 = 0.6;
 /// this fraction of that box's longest side on every side.
 const MARGIN: f64 = 0.1;
 
-/// What [`figure_triangles`] left out.
+/// What [`figure_mesh`] left out.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(super) struct LeftOut {
     /// Connected pieces left out.
@@ -24,10 +24,10 @@ pub(super) struct LeftOut {
     pub area_share: f64,
 }
 
-/// The triangles to voxelize: every connected piece (triangles sharing vertices) whose bounding
-/// box meets the largest piece's (by area), enlarged by [`MARGIN`], when that piece holds at
-/// least [`MAIN_SHARE`] of the area; `None` when nothing is left out.
-pub(super) fn figure_triangles(mesh: &Mesh) -> Option<(Vec<[u32; 3]>, LeftOut)> {
+/// The mesh to voxelize: `mesh` with only the connected pieces (triangles sharing vertices)
+/// whose bounding box meets the largest piece's (by area), enlarged by [`MARGIN`], when that
+/// piece holds at least [`MAIN_SHARE`] of the area; `None` when nothing is left out.
+pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     let (component, count) = mesh.triangle_components();
     if count < 2 {
         return None;
@@ -73,7 +73,11 @@ pub(super) fn figure_triangles(mesh: &Mesh) -> Option<(Vec<[u32; 3]>, LeftOut)> 
         .map(|(t, _)| *t)
         .collect();
     left_out.triangles = mesh.triangles.len() - triangles.len();
-    Some((triangles, left_out))
+    let figure = Mesh {
+        positions: mesh.positions.clone(),
+        triangles,
+    };
+    Some((figure, left_out))
 }
 
 #[cfg(test)]
@@ -94,15 +98,18 @@ mod tests {
     #[test]
     fn a_far_small_piece_is_left_out_and_a_near_one_kept() {
         let far = with_piece_at(DVec3::new(20.0, 0.0, 0.0), 0.1);
-        let (kept, left_out) = figure_triangles(&far).unwrap();
+        let (kept, left_out) = figure_mesh(&far).unwrap();
         assert_eq!(left_out.pieces, 1);
-        assert_eq!(kept.len() + left_out.triangles, far.triangles.len());
+        assert_eq!(
+            kept.triangles.len() + left_out.triangles,
+            far.triangles.len()
+        );
         assert!(left_out.area_share > 0.0 && left_out.area_share < 0.05);
         // Beside the body (a separate hand, an eye): part of the figure.
-        assert!(figure_triangles(&with_piece_at(DVec3::new(0.35, 0.0, 0.0), 0.3)).is_none());
+        assert!(figure_mesh(&with_piece_at(DVec3::new(0.35, 0.0, 0.0), 0.3)).is_none());
         // Two equal figures: nothing is left out.
-        assert!(figure_triangles(&with_piece_at(DVec3::new(20.0, 0.0, 0.0), 1.0)).is_none());
+        assert!(figure_mesh(&with_piece_at(DVec3::new(20.0, 0.0, 0.0), 1.0)).is_none());
         // One piece: nothing to do.
-        assert!(figure_triangles(&Mesh::capsule(DVec3::ZERO, 0.2, 1.0, 8, 16)).is_none());
+        assert!(figure_mesh(&Mesh::capsule(DVec3::ZERO, 0.2, 1.0, 8, 16)).is_none());
     }
 }

@@ -1,7 +1,7 @@
 //! The voxelization driver: grid sizing, classification, component filtering.
 
 use super::components::keep_largest_component;
-use super::figure::figure_triangles;
+use super::figure::{figure_mesh, LeftOut};
 use super::surface::surface_voxels;
 use super::winding::winding_votes;
 use super::{Grid, Solid, VoxelError, VoxelOptions, VoxelReport, VoxelSize};
@@ -26,18 +26,10 @@ use rayon::prelude::*;
 /// would exceed `options.max_voxels` (the error names a voxel size that fits), and
 /// [`VoxelError::EmptyInterior`] when no voxel centre is inside.
 pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError> {
-    let figure = figure_triangles(mesh);
-    let left_out = figure.as_ref().map(|f| f.1).unwrap_or_default();
-    let figure_mesh;
-    let mesh = match figure {
-        Some((triangles, _)) => {
-            figure_mesh = Mesh {
-                positions: mesh.positions.clone(),
-                triangles,
-            };
-            &figure_mesh
-        }
-        None => mesh,
+    let figure = figure_mesh(mesh);
+    let (mesh, left_out) = match &figure {
+        Some((figure, left_out)) => (figure, *left_out),
+        None => (mesh, LeftOut::default()),
     };
     let grid = grid_of(mesh, options)?;
     let h = grid.voxel_size;
@@ -108,16 +100,8 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
 /// # Errors
 /// As [`voxelize`], except `EmptyInterior`.
 pub fn grid_for(mesh: &Mesh, options: &VoxelOptions) -> Result<Grid, VoxelError> {
-    match figure_triangles(mesh) {
-        Some((triangles, _)) => grid_of(
-            &Mesh {
-                positions: mesh.positions.clone(),
-                triangles,
-            },
-            options,
-        ),
-        None => grid_of(mesh, options),
-    }
+    let figure = figure_mesh(mesh);
+    grid_of(figure.as_ref().map_or(mesh, |f| &f.0), options)
 }
 
 fn grid_of(mesh: &Mesh, options: &VoxelOptions) -> Result<Grid, VoxelError> {
