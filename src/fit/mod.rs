@@ -782,20 +782,16 @@ fn assemble(
 /// chest; ties to the lower joint). Called by the fit, and again after the refinement has
 /// moved the trunk joints onto the spine curve, so the keys follow the joints' final places.
 /// Removes both keys when the chain has no joint between pelvis and neck, one when it has one
-/// (`chest` then goes); returns whether the map changed.
+/// (`chest` then goes).
 pub fn assign_trunk_keys(
     skeleton: &Skeleton,
     canonical: &mut BTreeMap<String, JointId>,
     axial: &crate::template::AxialRules,
-) -> bool {
-    let before = (
-        canonical.get("spine").copied(),
-        canonical.get("chest").copied(),
-    );
+) {
     canonical.remove("spine");
     canonical.remove("chest");
     let (Some(&pelvis), Some(&neck)) = (canonical.get("pelvis"), canonical.get("neck")) else {
-        return before != (None, None);
+        return;
     };
     // The chain pelvis -> ... -> neck, pelvis first.
     let mut chain = vec![neck];
@@ -808,7 +804,7 @@ pub fn assign_trunk_keys(
         k = skeleton.joint(p).parent;
     }
     if chain.last() != Some(&pelvis) {
-        return before != (None, None);
+        return;
     }
     chain.reverse();
     let mut along = vec![0.0];
@@ -843,11 +839,6 @@ pub fn assign_trunk_keys(
     if let Some(c) = chest {
         canonical.insert("chest".into(), chain[c]);
     }
-    before
-        != (
-            canonical.get("spine").copied(),
-            canonical.get("chest").copied(),
-        )
 }
 
 #[allow(clippy::too_many_arguments)]
