@@ -42,6 +42,7 @@
 //! ```
 
 mod bind;
+pub mod check;
 mod deform;
 mod error;
 mod influence;
