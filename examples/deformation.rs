@@ -43,7 +43,8 @@ fn check(
 
 fn ours(dir: &Path, kind: SweepKind) -> Result<DeformationCheck, String> {
     let mesh = load(&dir.join("mesh.obj")).map_err(|e| e.to_string())?;
-    let rig = rig(&mesh, &RigOptions::default()).map_err(|e| e.to_string())?;
+    let options = RigOptions::default();
+    let rig = rig(&mesh, &options).map_err(|e| e.to_string())?;
     let engine = &rig.skin.engine;
     let weights: Vec<Vec<(JointId, f64)>> = engine
         .joints

@@ -1,9 +1,10 @@
 //! The skinning stage driver and its result.
 
+use super::geodesic::geodesic_weights;
 use super::weights::segment_distance;
 use super::{
     anchor_weights, bone_segments, engine_weights, influence, EngineWeights, SegmentVoxels,
-    SkinError, SkinOptions, SkinWarning,
+    SkinError, SkinMethod, SkinOptions, SkinWarning,
 };
 use crate::distance::DistanceMap;
 use crate::mesh::Mesh;
@@ -63,8 +64,76 @@ pub fn skin(
             }
         }
     }
-    let influence = influence(solid, distance, mesh, segments, options)?;
     let mut warnings = Vec::new();
+    let (weights, unreached) = match options.method {
+        SkinMethod::Geodesic => {
+            for (segment, s) in segments.iter().enumerate() {
+                if let Some(&voxel) = s.voxels.iter().find(|&&v| v >= solid.grid.len()) {
+                    return Err(SkinError::VoxelOutOfRange {
+                        segment,
+                        voxel,
+                        voxels: solid.grid.len(),
+                    });
+                }
+                if s.voxels.is_empty() {
+                    warnings.push(SkinWarning::SegmentOutside {
+                        segment,
+                        joint: skeleton.joint(s.joint).name.clone(),
+                    });
+                }
+            }
+            if segments.iter().all(|s| s.voxels.is_empty()) {
+                return Err(SkinError::NoInfluence);
+            }
+            geodesic_weights(mesh, skeleton, solid, distance, segments, options)
+        }
+        SkinMethod::Anchor => anchor_skin(
+            mesh,
+            skeleton,
+            solid,
+            distance,
+            segments,
+            options,
+            &mut warnings,
+        )?,
+    };
+    if let Some(&first) = unreached.first() {
+        warnings.push(SkinWarning::UnreachedVertices {
+            count: unreached.len(),
+            first,
+        });
+    }
+    let (engine, dropped) = engine_weights(&weights);
+    let truncated = dropped.iter().filter(|&&d| d > 0.0).count();
+    if truncated > 0 {
+        warnings.push(SkinWarning::TruncatedInfluences {
+            count: truncated,
+            max_dropped: dropped.iter().copied().fold(0.0, f64::max),
+        });
+    }
+    debug_assert!(weights
+        .iter()
+        .all(|w| (w.iter().map(|(_, x)| x).sum::<f64>() - 1.0).abs() < 1e-9));
+    Ok(Skin {
+        weights,
+        engine,
+        warnings,
+    })
+}
+
+/// The dissertation's anchor weights ([`SkinMethod::Anchor`]): every vertex takes the
+/// influence set of its voxel and [`anchor_weights`] over those segments. Returns the weights
+/// and the vertices whose voxel no influence reached (bound to the nearest segment).
+fn anchor_skin(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    solid: &Solid,
+    distance: &DistanceMap,
+    segments: &[SegmentVoxels],
+    options: &SkinOptions,
+    warnings: &mut Vec<SkinWarning>,
+) -> Result<(Vec<Vec<(JointId, f64)>>, Vec<usize>), SkinError> {
+    let influence = influence(solid, distance, mesh, segments, options)?;
     let mut used = vec![false; segments.len()];
     for set in &influence.sets {
         for &s in set {
@@ -119,29 +188,7 @@ pub fn skin(
     let unreached: Vec<usize> = (0..per_vertex.len())
         .filter(|&v| !per_vertex[v].1)
         .collect();
-    if let Some(&first) = unreached.first() {
-        warnings.push(SkinWarning::UnreachedVertices {
-            count: unreached.len(),
-            first,
-        });
-    }
-    let weights: Vec<Vec<(JointId, f64)>> = per_vertex.into_iter().map(|(w, _)| w).collect();
-    let (engine, dropped) = engine_weights(&weights);
-    let truncated = dropped.iter().filter(|&&d| d > 0.0).count();
-    if truncated > 0 {
-        warnings.push(SkinWarning::TruncatedInfluences {
-            count: truncated,
-            max_dropped: dropped.iter().copied().fold(0.0, f64::max),
-        });
-    }
-    debug_assert!(weights
-        .iter()
-        .all(|w| (w.iter().map(|(_, x)| x).sum::<f64>() - 1.0).abs() < 1e-9));
-    Ok(Skin {
-        weights,
-        engine,
-        warnings,
-    })
+    Ok((per_vertex.into_iter().map(|(w, _)| w).collect(), unreached))
 }
 
 /// Skins `mesh` to `skeleton` with segments derived from its bones ([`bone_segments`]), for

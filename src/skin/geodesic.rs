@@ -1,0 +1,455 @@
+//! Geodesic voxel binding (after Dionne & de Lasa 2013, "Geodesic Voxel Binding for
+//! Production Character Meshes"): weights that fall off with the distance from each bone
+//! measured *through the solid*, so skin only follows bones it is connected to inside the
+//! body (the torso under the armpit does not follow the arm lying against it), and that vary
+//! continuously over the surface, so no edge is torn when a joint turns.
+//!
+//! ```text
+//! bone voxels (SegmentVoxels, one label per joint)
+//!   │ K-nearest-label Dijkstra through the interior voxels (26-neighbourhood, lengths 1, √2,
+//!   │ √3, each step costing its length × depth^-depth_exponent: shallow contacts cost more)
+//!   ▼
+//! per interior voxel: the K nearest joints and their geodesic distances
+//!   │ every grid voxel → its nearest interior voxel (breadth-first), distance + offset
+//!   ▼
+//! per vertex: trilinear blend of the weight vectors of the 8 voxel centres around it
+//!   │ w_j = f(d_j) − f(d_(K+1)), f(d) = d^(−falloff): the (K+1)-th nearest joint's
+//!   ▼ weight is subtracted, so a joint leaves the set with weight 0 (no jump)
+//! ≤ 4 influences per vertex, normalised
+//!   │ Laplacian smoothing over the mesh edges, each edge's share scaled by (voxel / length)²
+//!   ▼
+//! weights
+//! ```
+//!
+//! Why this and not the dissertation's anchor weights (5.2.5): those give each vertex the
+//! equal-share weights of the influence set of its voxel, which changes abruptly between
+//! neighbouring voxels (one vertex 100 % on one bone, its neighbour 25 % on four), and the
+//! mesh tears when a joint turns. A weight field that is continuous in space cannot tear
+//! under linear blend skinning, whatever the mesh's tessellation or its number of pieces;
+//! measured with [`check`](super::check): `reports/deformation/`.
+
+use super::weights::segment_distance;
+use super::{SegmentVoxels, SkinOptions};
+use crate::distance::DistanceMap;
+use crate::mesh::Mesh;
+use crate::skeleton::{JointId, Skeleton};
+use crate::voxel::{Connectivity, Solid};
+use glam::DVec3;
+use rayon::prelude::*;
+use std::collections::VecDeque;
+
+/// Nearest joints kept per interior voxel: the four influences a vertex may keep, and one
+/// more whose weight is subtracted so that joints enter and leave the set smoothly.
+const LABELS: usize = super::MAX_ENGINE_INFLUENCES + 1;
+
+/// No label / no voxel.
+const NONE: u32 = u32::MAX;
+
+/// The K nearest joints of every interior voxel by geodesic distance through the interior.
+struct Field {
+    /// Interior voxel → compact index, `NONE` elsewhere.
+    compact: Vec<u32>,
+    /// Compact index → grid index.
+    interior: Vec<usize>,
+    /// `LABELS` joint ids per compact voxel, nearest first, `NONE` for unused slots.
+    labels: Vec<u32>,
+    /// The geodesic distances (voxel units) of `labels`.
+    distances: Vec<f32>,
+    /// For every grid voxel, the compact index of its nearest interior voxel (breadth-first
+    /// over the 26-neighbourhood), `NONE` when the grid has no interior voxel.
+    nearest: Vec<u32>,
+}
+
+/// Geodesic weights of every vertex of `mesh` (at most [`MAX_ENGINE_INFLUENCES`] joints,
+/// positive, summing to one), and the vertices that no bone reached through the interior
+/// (bound to the nearest segment's joint instead).
+///
+/// [`MAX_ENGINE_INFLUENCES`]: super::MAX_ENGINE_INFLUENCES
+pub(crate) fn geodesic_weights(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    solid: &Solid,
+    distance: &DistanceMap,
+    segments: &[SegmentVoxels],
+    options: &SkinOptions,
+) -> (Vec<Vec<(JointId, f64)>>, Vec<usize>) {
+    let field = field(solid, distance, segments, options);
+    let grid = solid.grid;
+    let lines: Vec<_> = segments.iter().map(|s| s.line(skeleton)).collect();
+    let mut weights: Vec<Vec<(JointId, f64)>> = mesh
+        .positions
+        .par_iter()
+        .map(|&p| vertex_weights(&field, &grid, p, options.falloff))
+        .collect();
+    let adjacency = Adjacency::new(mesh);
+    // A vertex the field does not reach (no joint reached any interior voxel near it) takes
+    // the weights of the nearest weighted vertex of the same piece along the mesh's edges; a
+    // piece with no weighted vertex at all follows the joint of its nearest bone.
+    let mut queue: VecDeque<u32> = (0..weights.len() as u32)
+        .filter(|&v| !weights[v as usize].is_empty())
+        .collect();
+    while let Some(v) = queue.pop_front() {
+        for &u in adjacency.around(v as usize) {
+            if weights[u as usize].is_empty() {
+                weights[u as usize] = weights[v as usize].clone();
+                queue.push_back(u);
+            }
+        }
+    }
+    let mut isolated = Vec::new();
+    for (v, w) in weights.iter_mut().enumerate() {
+        if w.is_empty() {
+            let p = mesh.positions[v];
+            let nearest = (0..lines.len())
+                .map(|s| (segment_distance(p, lines[s].0, lines[s].1), s))
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+                .map_or(JointId(0), |(_, s)| segments[s].joint);
+            *w = vec![(nearest, 1.0)];
+            isolated.push(v);
+        }
+    }
+    smooth(
+        mesh,
+        &adjacency,
+        &mut weights,
+        options.smoothing_iterations,
+        solid.grid.voxel_size,
+    );
+    (weights, isolated)
+}
+
+/// The mesh's vertex adjacency (compressed rows).
+struct Adjacency {
+    start: Vec<usize>,
+    adjacent: Vec<u32>,
+}
+
+impl Adjacency {
+    fn new(mesh: &Mesh) -> Self {
+        let n = mesh.positions.len();
+        let edges = super::check::mesh_edges(mesh);
+        let mut start = vec![0usize; n + 1];
+        for &(a, b) in &edges {
+            start[a as usize + 1] += 1;
+            start[b as usize + 1] += 1;
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut next = start.clone();
+        let mut adjacent = vec![0u32; start[n]];
+        for &(a, b) in &edges {
+            adjacent[next[a as usize]] = b;
+            next[a as usize] += 1;
+            adjacent[next[b as usize]] = a;
+            next[b as usize] += 1;
+        }
+        Self { start, adjacent }
+    }
+
+    fn around(&self, v: usize) -> &[u32] {
+        &self.adjacent[self.start[v]..self.start[v + 1]]
+    }
+}
+
+/// `iterations` rounds of Laplacian smoothing over the mesh's edges: each vertex's weights
+/// move towards its neighbours' by half their mean difference, each edge's share scaled by
+/// (voxel size / edge length)² so that meshes coarser than the voxels are barely smoothed,
+/// then pruned to four joints as in [`prune`]. Removes what is left of the voxel scale in the
+/// weight field; separate pieces smooth within themselves.
+fn smooth(
+    mesh: &Mesh,
+    adjacency: &Adjacency,
+    weights: &mut [Vec<(JointId, f64)>],
+    iterations: usize,
+    h: f64,
+) {
+    for _ in 0..iterations {
+        let smoothed: Vec<Vec<(JointId, f64)>> = (0..weights.len())
+            .into_par_iter()
+            .map_init(Vec::new, |mixed: &mut Vec<(u32, f64)>, v| {
+                let around = adjacency.around(v);
+                if around.is_empty() {
+                    return weights[v].clone();
+                }
+                let p = mesh.positions[v];
+                let scale = 0.5 / around.len() as f64;
+                let share = |u: u32| {
+                    let len2 = p.distance_squared(mesh.positions[u as usize]);
+                    scale * (h * h / len2.max(f64::MIN_POSITIVE)).min(1.0)
+                };
+                let keep = 1.0 - around.iter().map(|&u| share(u)).sum::<f64>();
+                mixed.clear();
+                mixed.extend(weights[v].iter().map(|&(j, w)| (j.0 as u32, keep * w)));
+                for &u in around {
+                    let share = share(u);
+                    for &(j, w) in &weights[u as usize] {
+                        match mixed.iter_mut().find(|(k, _)| *k == j.0 as u32) {
+                            Some(entry) => entry.1 += share * w,
+                            None => mixed.push((j.0 as u32, share * w)),
+                        }
+                    }
+                }
+                prune(mixed);
+                mixed
+                    .iter()
+                    .map(|&(j, w)| (JointId(j as usize), w))
+                    .collect()
+            })
+            .collect();
+        weights.clone_from_slice(&smoothed);
+    }
+}
+
+/// The labelled distance field: a Dijkstra from every joint's bone voxels at once in which
+/// each interior voxel accepts the first `LABELS` distinct joints that reach it (the nearest
+/// ones), then the nearest interior voxel of every grid voxel.
+fn field(
+    solid: &Solid,
+    distance: &DistanceMap,
+    segments: &[SegmentVoxels],
+    options: &SkinOptions,
+) -> Field {
+    let connectivity = options.connectivity;
+    let grid = solid.grid;
+    let mut compact = vec![NONE; grid.len()];
+    let mut interior = Vec::new();
+    for (index, &inside) in solid.inside.iter().enumerate() {
+        if inside {
+            compact[index] = interior.len() as u32;
+            interior.push(index);
+        }
+    }
+    let n = interior.len();
+    // Shallow voxels cost more to cross, so a bone's distance does not leak through a thin
+    // contact (an arm lying against the torso) as cheaply as through the body's core.
+    let step_cost: Vec<f64> = interior
+        .iter()
+        .map(|&i| distance.distance(i).max(1.0).powf(-options.depth_exponent))
+        .collect();
+    let mut labels = vec![NONE; n * LABELS];
+    let mut distances = vec![f32::INFINITY; n * LABELS];
+    let mut count = vec![0u8; n];
+    // A bucket queue (Dial's algorithm) over distances rounded down to `BUCKET`: entries
+    // leave in distance order up to one bucket's width, each in O(1); within a bucket, in
+    // the order pushed, so the result does not depend on timing or threads.
+    let mut queue = BucketQueue::default();
+    for s in segments {
+        for &v in &s.voxels {
+            if let Some(&c) = compact.get(v) {
+                if c != NONE {
+                    queue.push(0.0, c, s.joint.0 as u32);
+                }
+            }
+        }
+    }
+    let neighbours = connectivity.neighbours();
+    while let Some((d, c, joint)) = queue.pop() {
+        let slot = c as usize * LABELS;
+        let k = usize::from(count[c as usize]);
+        if k == LABELS || labels[slot..slot + k].contains(&joint) {
+            continue;
+        }
+        labels[slot + k] = joint;
+        distances[slot + k] = d as f32;
+        count[c as usize] += 1;
+        let coords = grid.coords(interior[c as usize]);
+        for nb in neighbours {
+            let Some(next) = grid.offset(coords, nb.offset) else {
+                continue;
+            };
+            let m = compact[next];
+            if m == NONE {
+                continue;
+            }
+            let ms = m as usize * LABELS;
+            let mk = usize::from(count[m as usize]);
+            if mk == LABELS || labels[ms..ms + mk].contains(&joint) {
+                continue;
+            }
+            queue.push(d + nb.distance * step_cost[m as usize], m, joint);
+        }
+    }
+    // Nearest interior voxel of every grid voxel, breadth-first: pieces apart from the solid
+    // (a head modelled as a separate shell whose interior was not kept, a hat, a sword) take
+    // the field of the solid nearest to them, continuously.
+    let mut nearest = compact.clone();
+    let mut queue: VecDeque<usize> = interior.iter().copied().collect();
+    while let Some(index) = queue.pop_front() {
+        let coords = grid.coords(index);
+        for nb in Connectivity::TwentySix.neighbours() {
+            if let Some(next) = grid.offset(coords, nb.offset) {
+                if nearest[next] == NONE {
+                    nearest[next] = nearest[index];
+                    queue.push_back(next);
+                }
+            }
+        }
+    }
+    Field {
+        compact,
+        interior,
+        labels,
+        distances,
+        nearest,
+    }
+}
+
+/// Width of a bucket of [`BucketQueue`], in voxel lengths: the distance error it allows.
+const BUCKET: f64 = 1.0 / 32.0;
+
+/// A monotone priority queue of `(distance, voxel, joint)` with buckets [`BUCKET`] wide.
+#[derive(Default)]
+struct BucketQueue {
+    buckets: Vec<Vec<(f64, u32, u32)>>,
+    current: usize,
+}
+
+impl BucketQueue {
+    fn push(&mut self, d: f64, voxel: u32, joint: u32) {
+        let b = ((d / BUCKET) as usize).max(self.current);
+        if b >= self.buckets.len() {
+            self.buckets.resize_with(b + 1, Vec::new);
+        }
+        self.buckets[b].push((d, voxel, joint));
+    }
+
+    fn pop(&mut self) -> Option<(f64, u32, u32)> {
+        while self.current < self.buckets.len() {
+            if let Some(entry) = self.buckets[self.current].pop() {
+                return Some(entry);
+            }
+            self.current += 1;
+        }
+        None
+    }
+}
+
+/// The weight of a joint at geodesic distance `d` (voxel units), before normalisation.
+fn falloff(d: f64, power: f64) -> f64 {
+    d.max(0.5).powf(-power)
+}
+
+/// Keeps the `LABELS` largest of `weights` (joint id, weight), subtracts the smallest of them
+/// from the others (so that a joint whose rank crosses the cut enters or leaves with weight
+/// zero), drops what is left at zero and normalises. Sorted by joint id.
+fn prune(weights: &mut Vec<(u32, f64)>) {
+    weights.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+    let floor = if weights.len() >= LABELS {
+        weights[LABELS - 1].1
+    } else {
+        0.0
+    };
+    weights.truncate(LABELS - 1);
+    let mut sum = 0.0;
+    for w in weights.iter_mut() {
+        w.1 -= floor;
+        sum += w.1;
+    }
+    if sum > 0.0 && sum.is_finite() {
+        weights.retain(|w| w.1 > 0.0);
+        for w in weights.iter_mut() {
+            w.1 /= sum;
+        }
+    } else {
+        // Every kept joint ties with the cut: share equally.
+        let share = 1.0 / weights.len().max(1) as f64;
+        for w in weights.iter_mut() {
+            w.1 = share;
+        }
+    }
+    weights.sort_by_key(|w| w.0);
+}
+
+/// The weights of the grid voxel `index`: those of its nearest interior voxel, with the
+/// distance between the two centres added to every geodesic distance.
+fn voxel_weights(
+    field: &Field,
+    grid: &crate::voxel::Grid,
+    index: usize,
+    power: f64,
+    out: &mut Vec<(u32, f64)>,
+) {
+    out.clear();
+    let c = field.nearest[index];
+    if c == NONE {
+        return;
+    }
+    let extra = if field.compact[index] == NONE {
+        let here = grid.coords(index);
+        let there = grid.coords(field.interior[c as usize]);
+        let d: f64 = (0..3)
+            .map(|a| (here[a] as f64 - there[a] as f64).powi(2))
+            .sum();
+        d.sqrt()
+    } else {
+        0.0
+    };
+    let slot = c as usize * LABELS;
+    for k in 0..LABELS {
+        let joint = field.labels[slot + k];
+        if joint == NONE {
+            break;
+        }
+        let d = f64::from(field.distances[slot + k]) + extra;
+        out.push((joint, falloff(d, power)));
+    }
+    if !out.is_empty() {
+        prune(out);
+    }
+}
+
+/// The weights of a vertex at `p`: the trilinear blend of the weight vectors of the eight
+/// voxel centres around it (clamped to the grid), pruned to four joints.
+fn vertex_weights(
+    field: &Field,
+    grid: &crate::voxel::Grid,
+    p: DVec3,
+    power: f64,
+) -> Vec<(JointId, f64)> {
+    let g = grid.to_voxel(p) - DVec3::splat(0.5);
+    let mut base = [0usize; 3];
+    let mut t = [0f64; 3];
+    for a in 0..3 {
+        let top = grid.dims[a].saturating_sub(1) as f64;
+        let x = if g[a].is_finite() {
+            g[a].clamp(0.0, top)
+        } else {
+            0.0
+        };
+        let b = x.floor().min((top - 1.0).max(0.0));
+        base[a] = b as usize;
+        t[a] = (x - b).clamp(0.0, 1.0);
+    }
+    let mut blended: Vec<(u32, f64)> = Vec::with_capacity(4 * LABELS);
+    let mut corner = Vec::with_capacity(LABELS);
+    for k in 0..8 {
+        let mut coords = base;
+        let mut factor = 1.0;
+        for a in 0..3 {
+            let up = (k >> a) & 1 == 1;
+            if up && coords[a] + 1 < grid.dims[a] {
+                coords[a] += 1;
+            }
+            factor *= if up { t[a] } else { 1.0 - t[a] };
+        }
+        if factor <= 0.0 {
+            continue;
+        }
+        voxel_weights(field, grid, grid.index(coords), power, &mut corner);
+        for &(joint, w) in &corner {
+            match blended.iter_mut().find(|(j, _)| *j == joint) {
+                Some(entry) => entry.1 += factor * w,
+                None => blended.push((joint, factor * w)),
+            }
+        }
+    }
+    if blended.is_empty() {
+        return Vec::new();
+    }
+    prune(&mut blended);
+    blended
+        .into_iter()
+        .map(|(j, w)| (JointId(j as usize), w))
+        .collect()
+}
