@@ -5,6 +5,7 @@
 
 mod bench;
 mod bones;
+mod check;
 mod common;
 mod demo;
 mod eval;
@@ -38,6 +39,10 @@ enum Command {
     /// Rig a figure and build its bone meshes (dissertation 9.1): a .glb with every bone as a
     /// child node of its joint (plus OBJ and an SVG preview on request).
     Bones(bones::BonesArgs),
+    /// Pose a skinned .glb through the standard sweep (shoulders, elbows, wrists, hips, knees,
+    /// chest, neck; or an animal's legs, neck, spine and tail) and count the mesh edges
+    /// stretched past 1.5x and 2x: where the skin weights tear.
+    Check(check::CheckArgs),
     /// Run the main job on the bundled data: statistics, voxelization and distance maps of every
     /// model below data/, results in reports/demo/.
     Demo(demo::DemoArgs),
@@ -79,6 +84,7 @@ pub fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Bench(args) => bench::run(args),
         Command::Bones(args) => bones::run(args),
+        Command::Check(args) => check::run(args),
         Command::Demo(args) => demo::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Info(args) => info::run(args),

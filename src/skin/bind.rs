@@ -121,6 +121,9 @@ pub fn skin(
     })
 }
 
+/// Per-vertex weights and the vertices no influence reached.
+type WeightsAndUnreached = (Vec<Vec<(JointId, f64)>>, Vec<usize>);
+
 /// The dissertation's anchor weights ([`SkinMethod::Anchor`]): every vertex takes the
 /// influence set of its voxel and [`anchor_weights`] over those segments. Returns the weights
 /// and the vertices whose voxel no influence reached (bound to the nearest segment).
@@ -132,7 +135,7 @@ fn anchor_skin(
     segments: &[SegmentVoxels],
     options: &SkinOptions,
     warnings: &mut Vec<SkinWarning>,
-) -> Result<(Vec<Vec<(JointId, f64)>>, Vec<usize>), SkinError> {
+) -> Result<WeightsAndUnreached, SkinError> {
     let influence = influence(solid, distance, mesh, segments, options)?;
     let mut used = vec![false; segments.len()];
     for set in &influence.sets {

@@ -13,8 +13,10 @@
 //!   │ every grid voxel → its nearest interior voxel (breadth-first), distance + offset
 //!   ▼
 //! per vertex: trilinear blend of the weight vectors of the 8 voxel centres around it
-//!   │ w_j = f(d_j) − f(d_(K+1)), f(d) = d^(−falloff): the (K+1)-th nearest joint's
-//!   ▼ weight is subtracted, so a joint leaves the set with weight 0 (no jump)
+//!   │ w_j = f(d_j) − max(f(d_(K+1)), f(blend_ratio · d_1)), f(d) = d^(−falloff): the
+//!   │ (K+1)-th nearest joint's weight, or that of a joint `blend_ratio` times farther
+//!   │ than the nearest, is subtracted, so a joint leaves the set with weight 0 (no jump)
+//!   ▼ and far bones get none
 //! ≤ 4 influences per vertex, normalised
 //!   │ Laplacian smoothing over the mesh edges, each edge's share scaled by (voxel / length)²
 //!   ▼
@@ -42,6 +44,11 @@ use std::collections::VecDeque;
 /// more whose weight is subtracted so that joints enter and leave the set smoothly.
 const LABELS: usize = super::MAX_ENGINE_INFLUENCES + 1;
 
+/// A weight this small (of a vertex's total of one) is subtracted from every weight after
+/// blending and smoothing, so that what smoothing carries along long edges or across a piece
+/// fades to exactly zero instead of a trace of a far bone.
+const NEGLIGIBLE: f64 = 0.01;
+
 /// No label / no voxel.
 const NONE: u32 = u32::MAX;
 
@@ -53,8 +60,10 @@ struct Field {
     interior: Vec<usize>,
     /// `LABELS` joint ids per compact voxel, nearest first, `NONE` for unused slots.
     labels: Vec<u32>,
-    /// The geodesic distances (voxel units) of `labels`.
+    /// The depth-weighted geodesic distances of `labels` (the Dijkstra's order).
     distances: Vec<f32>,
+    /// The lengths (voxel units) of the same shortest paths, for the blend ratio.
+    lengths: Vec<f32>,
     /// For every grid voxel, the compact index of its nearest interior voxel (breadth-first
     /// over the 26-neighbourhood), `NONE` when the grid has no interior voxel.
     nearest: Vec<u32>,
@@ -79,7 +88,7 @@ pub(crate) fn geodesic_weights(
     let mut weights: Vec<Vec<(JointId, f64)>> = mesh
         .positions
         .par_iter()
-        .map(|&p| vertex_weights(&field, &grid, p, options.falloff))
+        .map(|&p| vertex_weights(&field, &grid, p, options.falloff, options.blend_ratio))
         .collect();
     let adjacency = Adjacency::new(mesh);
     // A vertex the field does not reach (no joint reached any interior voxel near it) takes
@@ -190,7 +199,7 @@ fn smooth(
                         }
                     }
                 }
-                prune(mixed);
+                prune(mixed, 0.0);
                 mixed
                     .iter()
                     .map(|&(j, w)| (JointId(j as usize), w))
@@ -199,6 +208,14 @@ fn smooth(
             .collect();
         weights.clone_from_slice(&smoothed);
     }
+    weights.par_iter_mut().for_each(|w| {
+        let mut pruned: Vec<(u32, f64)> = w.iter().map(|&(j, x)| (j.0 as u32, x)).collect();
+        prune(&mut pruned, NEGLIGIBLE);
+        *w = pruned
+            .into_iter()
+            .map(|(j, x)| (JointId(j as usize), x))
+            .collect();
+    });
 }
 
 /// The labelled distance field: a Dijkstra from every joint's bone voxels at once in which
@@ -229,6 +246,7 @@ fn field(
         .collect();
     let mut labels = vec![NONE; n * LABELS];
     let mut distances = vec![f32::INFINITY; n * LABELS];
+    let mut lengths = vec![f32::INFINITY; n * LABELS];
     let mut count = vec![0u8; n];
     // A bucket queue (Dial's algorithm) over distances rounded down to `BUCKET`: entries
     // leave in distance order up to one bucket's width, each in O(1); within a bucket, in
@@ -238,13 +256,13 @@ fn field(
         for &v in &s.voxels {
             if let Some(&c) = compact.get(v) {
                 if c != NONE {
-                    queue.push(0.0, c, s.joint.0 as u32);
+                    queue.push(0.0, 0.0, c, s.joint.0 as u32);
                 }
             }
         }
     }
     let neighbours = connectivity.neighbours();
-    while let Some((d, c, joint)) = queue.pop() {
+    while let Some((d, length, c, joint)) = queue.pop() {
         let slot = c as usize * LABELS;
         let k = usize::from(count[c as usize]);
         if k == LABELS || labels[slot..slot + k].contains(&joint) {
@@ -252,6 +270,7 @@ fn field(
         }
         labels[slot + k] = joint;
         distances[slot + k] = d as f32;
+        lengths[slot + k] = length as f32;
         count[c as usize] += 1;
         let coords = grid.coords(interior[c as usize]);
         for nb in neighbours {
@@ -267,7 +286,12 @@ fn field(
             if mk == LABELS || labels[ms..ms + mk].contains(&joint) {
                 continue;
             }
-            queue.push(d + nb.distance * step_cost[m as usize], m, joint);
+            queue.push(
+                d + nb.distance * step_cost[m as usize],
+                length + nb.distance,
+                m,
+                joint,
+            );
         }
     }
     // Nearest interior voxel of every grid voxel, breadth-first: pieces apart from the solid
@@ -291,6 +315,7 @@ fn field(
         interior,
         labels,
         distances,
+        lengths,
         nearest,
     }
 }
@@ -301,20 +326,21 @@ const BUCKET: f64 = 1.0 / 32.0;
 /// A monotone priority queue of `(distance, voxel, joint)` with buckets [`BUCKET`] wide.
 #[derive(Default)]
 struct BucketQueue {
-    buckets: Vec<Vec<(f64, u32, u32)>>,
+    buckets: Vec<Vec<(f64, f64, u32, u32)>>,
     current: usize,
 }
 
 impl BucketQueue {
-    fn push(&mut self, d: f64, voxel: u32, joint: u32) {
+    /// Queues `voxel` reached from `joint` at weighted distance `d` by a path `length` long.
+    fn push(&mut self, d: f64, length: f64, voxel: u32, joint: u32) {
         let b = ((d / BUCKET) as usize).max(self.current);
         if b >= self.buckets.len() {
             self.buckets.resize_with(b + 1, Vec::new);
         }
-        self.buckets[b].push((d, voxel, joint));
+        self.buckets[b].push((d, length, voxel, joint));
     }
 
-    fn pop(&mut self) -> Option<(f64, u32, u32)> {
+    fn pop(&mut self) -> Option<(f64, f64, u32, u32)> {
         while self.current < self.buckets.len() {
             if let Some(entry) = self.buckets[self.current].pop() {
                 return Some(entry);
@@ -333,17 +359,18 @@ fn falloff(d: f64, power: f64) -> f64 {
 /// Keeps the `LABELS` largest of `weights` (joint id, weight), subtracts the smallest of them
 /// from the others (so that a joint whose rank crosses the cut enters or leaves with weight
 /// zero), drops what is left at zero and normalises. Sorted by joint id.
-fn prune(weights: &mut Vec<(u32, f64)>) {
+fn prune(weights: &mut Vec<(u32, f64)>, cut: f64) {
     weights.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
     let floor = if weights.len() >= LABELS {
         weights[LABELS - 1].1
     } else {
         0.0
-    };
+    }
+    .max(cut.min(weights.first().map_or(0.0, |w| w.1)));
     weights.truncate(LABELS - 1);
     let mut sum = 0.0;
     for w in weights.iter_mut() {
-        w.1 -= floor;
+        w.1 = (w.1 - floor).max(0.0);
         sum += w.1;
     }
     if sum > 0.0 && sum.is_finite() {
@@ -368,6 +395,7 @@ fn voxel_weights(
     grid: &crate::voxel::Grid,
     index: usize,
     power: f64,
+    blend_ratio: f64,
     out: &mut Vec<(u32, f64)>,
 ) {
     out.clear();
@@ -392,10 +420,17 @@ fn voxel_weights(
             break;
         }
         let d = f64::from(field.distances[slot + k]) + extra;
-        out.push((joint, falloff(d, power)));
+        // Joints whose path is `blend_ratio` times as long as the nearest joint's get nothing,
+        // fading linearly from the nearest's length.
+        let ratio = (f64::from(field.lengths[slot + k]) + extra)
+            / (f64::from(field.lengths[slot]) + extra).max(0.5);
+        let taper = ((blend_ratio - ratio) / (blend_ratio - 1.0)).clamp(0.0, 1.0);
+        if taper > 0.0 {
+            out.push((joint, taper * falloff(d, power)));
+        }
     }
     if !out.is_empty() {
-        prune(out);
+        prune(out, 0.0);
     }
 }
 
@@ -406,6 +441,7 @@ fn vertex_weights(
     grid: &crate::voxel::Grid,
     p: DVec3,
     power: f64,
+    blend_ratio: f64,
 ) -> Vec<(JointId, f64)> {
     let g = grid.to_voxel(p) - DVec3::splat(0.5);
     let mut base = [0usize; 3];
@@ -436,7 +472,14 @@ fn vertex_weights(
         if factor <= 0.0 {
             continue;
         }
-        voxel_weights(field, grid, grid.index(coords), power, &mut corner);
+        voxel_weights(
+            field,
+            grid,
+            grid.index(coords),
+            power,
+            blend_ratio,
+            &mut corner,
+        );
         for &(joint, w) in &corner {
             match blended.iter_mut().find(|(j, _)| *j == joint) {
                 Some(entry) => entry.1 += factor * w,
@@ -447,9 +490,190 @@ fn vertex_weights(
     if blended.is_empty() {
         return Vec::new();
     }
-    prune(&mut blended);
+    prune(&mut blended, 0.0);
     blended
         .into_iter()
         .map(|(j, w)| (JointId(j as usize), w))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::distance::edt;
+    use crate::skeleton::Joint;
+    use crate::skin::check::{check_deformation, sweep, SweepKind};
+    use crate::skin::{deform, skin_from_bones};
+    use crate::voxel::{voxelize, VoxelOptions, VoxelSize};
+    use std::collections::BTreeMap;
+
+    /// A leg: a finely ringed tube from y = 0 to y = 2, hip at the top, knee in the middle,
+    /// plus optional loose pieces.
+    fn leg(pieces: &[Mesh]) -> (Mesh, Skeleton) {
+        let rings: Vec<(f64, f64)> = (0..=60).map(|r| (0.2, 1.0 - r as f64 / 30.0)).collect();
+        let mut mesh = Mesh::lathe(DVec3::new(0.0, 1.0, 0.0), 1.0, &rings, -1.0, 16);
+        for piece in pieces {
+            let offset = mesh.positions.len() as u32;
+            mesh.positions.extend(&piece.positions);
+            mesh.triangles
+                .extend(piece.triangles.iter().map(|t| t.map(|i| i + offset)));
+        }
+        let skeleton = Skeleton {
+            joints: vec![
+                Joint::new("hip_L", None, DVec3::new(0.0, 1.95, 0.0)),
+                Joint::new("knee_L", Some(JointId(0)), DVec3::new(0.0, 1.0, 0.0)),
+                Joint::new("ankle_L", Some(JointId(1)), DVec3::new(0.0, 0.05, 0.0)),
+            ],
+        };
+        (mesh, skeleton)
+    }
+
+    fn skin_of(mesh: &Mesh, skeleton: &Skeleton, fraction: f64) -> crate::skin::Skin {
+        let options = VoxelOptions {
+            size: VoxelSize::Fraction(fraction),
+            ..Default::default()
+        };
+        let solid = voxelize(mesh, &options).unwrap();
+        let distance = edt(&solid);
+        skin_from_bones(mesh, skeleton, &solid, &distance, &SkinOptions::default()).unwrap()
+    }
+
+    #[test]
+    fn the_weights_change_gradually_along_the_leg_and_the_knee_bends_cleanly() {
+        let (mesh, skeleton) = leg(&[]);
+        let skin = skin_of(&mesh, &skeleton, 1.0 / 40.0);
+        let weight = |v: usize, j: usize| {
+            skin.weights[v]
+                .iter()
+                .find(|(k, _)| k.0 == j)
+                .map_or(0.0, |w| w.1)
+        };
+        let mut worst_jump = 0.0f64;
+        for (a, b) in crate::skin::check::mesh_edges(&mesh) {
+            for j in 0..3 {
+                worst_jump = worst_jump.max((weight(a as usize, j) - weight(b as usize, j)).abs());
+            }
+        }
+        assert!(
+            worst_jump < 0.25,
+            "a weight jumps by {worst_jump} across one edge"
+        );
+        // Far from the knee the leg follows one bone; at the knee both share.
+        let near = |y: f64| {
+            (0..mesh.positions.len())
+                .min_by(|&a, &b| {
+                    let da = (mesh.positions[a] - DVec3::new(0.2, y, 0.0)).length();
+                    let db = (mesh.positions[b] - DVec3::new(0.2, y, 0.0)).length();
+                    da.total_cmp(&db)
+                })
+                .unwrap()
+        };
+        assert!(weight(near(1.7), 0) > 0.9, "{:?}", skin.weights[near(1.7)]);
+        assert!(weight(near(0.3), 1) > 0.9, "{:?}", skin.weights[near(0.3)]);
+        let knee = skin.weights[near(1.0)].clone();
+        assert!(
+            weight(near(1.0), 0) > 0.2 && weight(near(1.0), 1) > 0.2,
+            "{knee:?}"
+        );
+        let canonical: BTreeMap<String, JointId> = skeleton
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(k, j)| (j.name.clone(), JointId(k)))
+            .collect();
+        let (poses, missing) = sweep(
+            &skeleton,
+            &canonical,
+            SweepKind::Humanoid,
+            DVec3::Y,
+            DVec3::Z,
+        );
+        let check = check_deformation(
+            &mesh,
+            &skeleton,
+            &skin.weights,
+            SweepKind::Humanoid,
+            &poses,
+            missing,
+        )
+        .unwrap();
+        assert_eq!(check.total_over_2(), 0, "{check:?}");
+    }
+
+    #[test]
+    fn the_dissertation_anchor_weights_tear_the_same_knee() {
+        let (mesh, skeleton) = leg(&[]);
+        let options = VoxelOptions {
+            size: VoxelSize::Fraction(1.0 / 40.0),
+            ..Default::default()
+        };
+        let solid = voxelize(&mesh, &options).unwrap();
+        let distance = edt(&solid);
+        let anchor = SkinOptions {
+            method: crate::skin::SkinMethod::Anchor,
+            ..Default::default()
+        };
+        let skin = skin_from_bones(&mesh, &skeleton, &solid, &distance, &anchor).unwrap();
+        let canonical: BTreeMap<String, JointId> = [
+            ("knee_L".to_string(), JointId(1)),
+            ("ankle_L".to_string(), JointId(2)),
+        ]
+        .into();
+        let (poses, missing) = sweep(
+            &skeleton,
+            &canonical,
+            SweepKind::Humanoid,
+            DVec3::Y,
+            DVec3::Z,
+        );
+        let anchor_check = check_deformation(
+            &mesh,
+            &skeleton,
+            &skin.weights,
+            SweepKind::Humanoid,
+            &poses,
+            missing.clone(),
+        )
+        .unwrap();
+        let geodesic = skin_of(&mesh, &skeleton, 1.0 / 40.0);
+        let geodesic_check = check_deformation(
+            &mesh,
+            &skeleton,
+            &geodesic.weights,
+            SweepKind::Humanoid,
+            &poses,
+            missing,
+        )
+        .unwrap();
+        assert!(
+            geodesic_check.worst() < anchor_check.worst(),
+            "geodesic {geodesic_check:?} anchor {anchor_check:?}"
+        );
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(16))]
+        #[test]
+        fn weights_are_a_partition_of_one_on_every_vertex(
+            fraction in 1.0f64 / 48.0..1.0 / 16.0,
+            knee_x in -0.1f64..0.1,
+            piece in proptest::option::of((-1.0f64..1.0, -0.5f64..2.5, 0.02f64..0.2)),
+        ) {
+            let pieces: Vec<Mesh> = piece
+                .map(|(x, y, r)| Mesh::uv_sphere(DVec3::new(x, y, 0.3), r, 6, 8))
+                .into_iter()
+                .collect();
+            let (mesh, mut skeleton) = leg(&pieces);
+            skeleton.joints[1].position.x = knee_x;
+            let skin = skin_of(&mesh, &skeleton, fraction);
+            proptest::prop_assert_eq!(skin.weights.len(), mesh.positions.len());
+            for w in &skin.weights {
+                proptest::prop_assert!(!w.is_empty() && w.len() <= crate::skin::MAX_ENGINE_INFLUENCES);
+                proptest::prop_assert!(w.iter().all(|&(j, x)| x > 0.0 && x.is_finite() && j.0 < 3));
+                proptest::prop_assert!((w.iter().map(|x| x.1).sum::<f64>() - 1.0).abs() < 1e-9);
+            }
+            let rest = deform(&mesh, &skeleton, &skin, &skeleton.rest_pose()).unwrap();
+            proptest::prop_assert_eq!(rest, mesh);
+        }
+    }
 }

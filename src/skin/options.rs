@@ -26,15 +26,20 @@ pub struct SkinOptions {
     /// nearest joint's weight is subtracted ([`SkinMethod::Geodesic`] only). Larger values
     /// give narrower blends around the joints. Default 2.
     pub falloff: f64,
+    /// How much longer than the nearest joint's path through the solid a joint's may be and
+    /// still weigh on a point ([`SkinMethod::Geodesic`] only): a joint's weight fades linearly
+    /// from the nearest's path length to zero at this ratio, so blends stay local to the
+    /// joints (a forearm does not move the waist beside it). Default 2.
+    pub blend_ratio: f64,
     /// Exponent of the depth weighting of the geodesic distance ([`SkinMethod::Geodesic`]
     /// only): a step into a voxel at depth `d` (voxels from the outside) costs its length
     /// times `d^-depth_exponent`, so a bone's distance leaks less through a thin contact of
-    /// two body parts than through the core. Default 1 (0 is the plain geodesic distance):
-    /// edges past 2× over the MakeHuman sweep 13-36 instead of 51-190.
+    /// two body parts than through the core. Default 1 (0 is the plain geodesic distance,
+    /// which roughly triples the edges torn at the MakeHuman shoulders).
     pub depth_exponent: f64,
     /// Rounds of Laplacian smoothing of the geodesic weights over the mesh's edges
     /// ([`SkinMethod::Geodesic`] only); an edge's share is scaled by (voxel size / edge
-    /// length)², so coarse low-poly meshes are barely smoothed. Default 16.
+    /// length)², so coarse low-poly meshes are barely smoothed. Default 32.
     pub smoothing_iterations: usize,
     /// Scale applied to every distance-map sphere radius before marking the voxels it covers.
     /// Default 1.0: the sphere of a chain voxel is exactly its maximal inscribed ball, as in
@@ -68,7 +73,8 @@ impl Default for SkinOptions {
             method: SkinMethod::Geodesic,
             falloff: 2.0,
             depth_exponent: 1.0,
-            smoothing_iterations: 16,
+            blend_ratio: 2.0,
+            smoothing_iterations: 32,
             sphere_scale: 1.0,
             connectivity: Connectivity::TwentySix,
             bone_sample_spacing: 0.5,
@@ -104,6 +110,12 @@ impl SkinOptions {
                 self.falloff,
                 self.falloff > 0.0 && self.falloff <= 16.0,
                 "give a finite number above zero and at most 16",
+            ),
+            (
+                "blend_ratio",
+                self.blend_ratio,
+                self.blend_ratio > 1.0,
+                "give a finite number above 1",
             ),
             (
                 "depth_exponent",

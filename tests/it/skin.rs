@@ -220,7 +220,9 @@ fn bending_a_humanoid_joint_moves_only_its_own_limb() {
     type Region = fn(DVec3) -> bool;
     let cases: [(&str, Region); 3] = [
         ("lowerarm_l", |p| p.x > 0.2 && p.y > 0.8),
-        ("calf_r", |p| p.x < -0.05 && p.y < 0.6),
+        // The right leg below mid-thigh: the calf's weight blends into the thigh above the
+        // knee (at y 0.48; the hip at 0.9), inner thigh included, never the other leg.
+        ("calf_r", |p| p.x < -0.03 && p.y < 0.7),
         ("head", |p| p.y > 1.4 && p.x.abs() < 0.1),
     ];
     for (name, region) in cases {
@@ -236,13 +238,17 @@ fn bending_a_humanoid_joint_moves_only_its_own_limb() {
             "{name} moved only {} vertices",
             moved.len()
         );
-        for v in moved {
-            assert!(
-                region(mesh.positions[v]),
-                "{name} moved vertex {v} at {}",
-                mesh.positions[v]
-            );
-        }
+        let outside: Vec<DVec3> = moved
+            .iter()
+            .map(|&v| mesh.positions[v])
+            .filter(|&p| !region(p))
+            .collect();
+        assert!(
+            outside.is_empty(),
+            "{name} moved {} vertices outside: {:?}",
+            outside.len(),
+            &outside[..outside.len().min(20)]
+        );
     }
 }
 
