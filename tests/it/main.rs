@@ -10,6 +10,7 @@ mod eval;
 mod export;
 mod fit;
 mod general;
+mod hardening;
 mod medial;
 mod mesh;
 mod outline;
