@@ -25,7 +25,7 @@ pub struct VoxelArgs {
 }
 
 impl VoxelArgs {
-    /// Validated voxel options.
+    /// Validated voxel options ([`VoxelOptions::validate`]), checked before any work.
     pub fn options(&self) -> anyhow::Result<VoxelOptions> {
         let size = match (self.voxel_length, self.resolution) {
             (Some(length), _) => VoxelSize::Absolute(length),
@@ -33,11 +33,15 @@ impl VoxelArgs {
             (None, Some(n)) => VoxelSize::Fraction(1.0 / n as f64),
             (None, None) => VoxelSize::Fraction(self.voxel_size),
         };
-        Ok(VoxelOptions {
+        let options = VoxelOptions {
             size,
             max_voxels: self.max_voxels,
             ..Default::default()
-        })
+        };
+        options
+            .validate()
+            .context("invalid --voxel-size, --voxel-length, --resolution or --max-voxels")?;
+        Ok(options)
     }
 }
 

@@ -2,9 +2,10 @@
 
 use super::components::keep_largest_component;
 use super::figure::{figure_mesh, LeftOut};
+use super::sizing::grid_of;
 use super::surface::surface_voxels;
 use super::winding::winding_votes;
-use super::{Grid, Solid, VoxelError, VoxelOptions, VoxelReport, VoxelSize};
+use super::{Grid, Solid, VoxelError, VoxelOptions, VoxelReport};
 use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -21,9 +22,11 @@ use rayon::prelude::*;
 /// voxels the triangles touch; keep the largest 26-connected interior component.
 ///
 /// # Errors
-/// [`VoxelError::NoTriangles`] for a mesh without triangles, [`VoxelError::InvalidSize`],
-/// [`VoxelError::Flat`] for a bounding box without volume, [`VoxelError::TooLarge`] when the grid
-/// would exceed `options.max_voxels` (the error names a voxel size that fits), and
+/// What [`VoxelOptions::validate`] reports for invalid options,
+/// [`VoxelError::NoTriangles`] for a mesh without triangles, [`VoxelError::Flat`] for a
+/// bounding box without volume, [`VoxelError::TooLarge`] when the grid would exceed
+/// `options.max_voxels` (the error names a voxel size that fits), [`VoxelError::OutOfMemory`]
+/// when the grid's working memory exceeds the memory available, and
 /// [`VoxelError::EmptyInterior`] when no voxel centre is inside.
 pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError> {
     let figure = figure_mesh(mesh);
@@ -102,52 +105,4 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
 pub fn grid_for(mesh: &Mesh, options: &VoxelOptions) -> Result<Grid, VoxelError> {
     let figure = figure_mesh(mesh);
     grid_of(figure.as_ref().map_or(mesh, |f| &f.0), options)
-}
-
-fn grid_of(mesh: &Mesh, options: &VoxelOptions) -> Result<Grid, VoxelError> {
-    let (min, max) = mesh.bounding_box().ok_or(VoxelError::NoTriangles)?;
-    let extent = max - min;
-    let longest = extent.max_element();
-    if !extent.is_finite() || extent.min_element() <= 0.0 {
-        return Err(VoxelError::Flat {
-            extent: extent.to_array(),
-        });
-    }
-    let h = match options.size {
-        VoxelSize::Absolute(h) if h > 0.0 && h.is_finite() => h,
-        VoxelSize::Fraction(f) if f > 0.0 && f <= 1.0 => f * longest,
-        VoxelSize::Absolute(value) | VoxelSize::Fraction(value) => {
-            return Err(VoxelError::InvalidSize { value })
-        }
-    };
-    let pad = options.padding.max(1);
-    let dims_for = |h: f64| -> [usize; 3] {
-        let d = |k: usize| (extent[k] / h).ceil().max(1.0) as usize + 2 * pad;
-        [d(0), d(1), d(2)]
-    };
-    let dims = dims_for(h);
-    let voxels = dims.iter().try_fold(1usize, |acc, &d| acc.checked_mul(d));
-    if voxels.is_none_or(|v| v > options.max_voxels) {
-        // Smallest size that fits: start from the volume ratio and grow by 0.5 % steps.
-        let ratio =
-            dims.iter().map(|&d| d as f64).product::<f64>() / options.max_voxels.max(1) as f64;
-        let mut fit = h * ratio.cbrt().max(1.0);
-        while dims_for(fit).iter().map(|&d| d as f64).product::<f64>() > options.max_voxels as f64 {
-            fit *= 1.005;
-        }
-        return Err(VoxelError::TooLarge {
-            dims,
-            voxels: voxels.unwrap_or(usize::MAX),
-            budget: options.max_voxels,
-            fitting_size: fit,
-            fitting_fraction: fit / longest,
-        });
-    }
-    // Align voxel boundaries with the minimum corner: a flat face there is then sampled exactly,
-    // and each axis rounds to the nearest voxel rather than up to a whole extra one.
-    Ok(Grid {
-        dims,
-        origin: min - DVec3::splat(pad as f64 * h),
-        voxel_size: h,
-    })
 }

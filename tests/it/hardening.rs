@@ -3,6 +3,7 @@
 
 use crate::mesh::{cube, gltf_parts, write};
 use skelfit::mesh::{load, MeshError};
+use skelfit::voxel::{grid_for, VoxelError, VoxelOptions, VoxelSize};
 use std::path::Path;
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
@@ -175,4 +176,101 @@ fn base64(bytes: &[u8]) -> String {
         }
     }
     out
+}
+
+// ---------------------------------------------------------------- 2, 3: voxel grid sizing
+
+fn cube_voxels(size: VoxelSize, max_voxels: usize) -> Result<skelfit::voxel::Grid, VoxelError> {
+    grid_for(
+        &cube(),
+        &VoxelOptions {
+            size,
+            max_voxels,
+            ..Default::default()
+        },
+    )
+}
+
+#[test]
+fn max_voxels_below_the_smallest_grid_fails_at_once_instead_of_looping() {
+    for budget in [0, 1, 100, 124] {
+        let start = Instant::now();
+        let err = cube_voxels(VoxelSize::Fraction(0.01), budget).unwrap_err();
+        assert!(start.elapsed() < Duration::from_secs(1));
+        assert_eq!(
+            err,
+            VoxelError::BudgetTooSmall {
+                budget,
+                minimum: 125
+            }
+        );
+    }
+    assert!(cube_voxels(VoxelSize::Fraction(1.0), 125).is_ok());
+    // The command line refuses it before reading the mesh (which does not even exist here).
+    let start = Instant::now();
+    let out = skelfit(&["voxelize", "no-such-mesh.obj", "--max-voxels", "100"]);
+    assert!(start.elapsed() < Duration::from_secs(1));
+    assert_eq!(out.status.code(), Some(1));
+    let message = stderr(&out);
+    assert!(message.contains("--max-voxels"), "{message}");
+    assert!(message.contains("at least 125"), "{message}");
+    assert!(!message.contains("no-such-mesh"), "{message}");
+}
+
+#[test]
+fn max_voxels_130_suggests_a_fraction_that_voxel_size_accepts() {
+    for budget in [125, 130, 200, 1000, 54_321] {
+        let err = cube_voxels(VoxelSize::Fraction(0.01), budget).unwrap_err();
+        let VoxelError::TooLarge {
+            fitting_size,
+            fitting_fraction,
+            ..
+        } = err
+        else {
+            panic!("expected TooLarge, got {err}");
+        };
+        assert!(fitting_fraction > 0.0 && fitting_fraction <= 1.0, "{err}");
+        // Both suggestions, as printed, are accepted and fit the budget.
+        let message = err.to_string();
+        assert!(
+            message.contains(&format!("fraction {fitting_fraction})")),
+            "{message}"
+        );
+        let grid = cube_voxels(VoxelSize::Fraction(fitting_fraction), budget).unwrap();
+        assert!(grid.len() <= budget);
+        let grid = cube_voxels(VoxelSize::Absolute(fitting_size), budget).unwrap();
+        assert!(grid.len() <= budget);
+    }
+}
+
+#[test]
+fn tiny_voxel_length_overflows_to_too_large_not_a_wrapped_grid() {
+    for length in [1e-19, 1e-20, 1e-300, f64::MIN_POSITIVE] {
+        let err = cube_voxels(VoxelSize::Absolute(length), 1_000_000).unwrap_err();
+        let VoxelError::TooLarge {
+            voxels,
+            fitting_size,
+            ..
+        } = err
+        else {
+            panic!("{length}: expected TooLarge, got {err}");
+        };
+        assert_eq!(voxels, usize::MAX, "{err}");
+        assert!(err.to_string().contains("overflow"), "{err}");
+        assert!(!err.to_string().contains("smaller voxel size"), "{err}");
+        assert!(cube_voxels(VoxelSize::Absolute(fitting_size), 1_000_000).is_ok());
+    }
+}
+
+#[test]
+fn huge_max_voxels_grid_beyond_the_memory_is_refused_before_allocating() {
+    // 10^4 voxels per side of the cube's longest edge: about 10^12 voxels, terabytes.
+    let start = Instant::now();
+    let err = cube_voxels(VoxelSize::Fraction(1e-4), usize::MAX).unwrap_err();
+    assert!(start.elapsed() < Duration::from_secs(1));
+    let VoxelError::OutOfMemory { fitting_size, .. } = err else {
+        panic!("expected OutOfMemory, got {err}");
+    };
+    assert!(err.to_string().contains("MiB"), "{err}");
+    assert!(fitting_size > 3e-4, "{err}");
 }
