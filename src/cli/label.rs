@@ -3,7 +3,7 @@
 //! (dissertation ch.7); and
 //! `skelfit label --table REFDATA -o DIR`: the labelling accuracy table over reference models.
 
-use super::common::{load_mesh, write_file, VoxelArgs};
+use super::common::{load_mesh, write_file, Outputs, VoxelArgs};
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
 use skelfit::anatomy::{
@@ -135,6 +135,18 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     let Some(mesh_path) = &args.mesh else {
         bail!("give a MESH or --table REFDATA");
     };
+    let mut outputs = Outputs::check(
+        [
+            Some(args.output.as_path()),
+            args.ply.as_deref(),
+            args.svg.as_deref(),
+        ]
+        .into_iter()
+        .flatten(),
+        [Some(mesh_path.as_path()), args.labels.as_deref()]
+            .into_iter()
+            .flatten(),
+    )?;
     let (mesh, source) = skelfit::mesh::load_with_source_map(mesh_path)
         .with_context(|| format!("loading mesh {}", mesh_path.display()))?;
     let overrides = match &args.labels {
@@ -155,13 +167,14 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     }
     .with_context(|| format!("labelling {}", mesh_path.display()))?;
     let json = serde_json::to_string_pretty(&labels_json(&labels, Some(&source)))?;
-    write_file(&args.output, json.as_bytes())?;
+    outputs.add(&args.output, json);
     if let Some(p) = &args.ply {
-        write_file(p, labels_ply(&mesh, &labels).as_bytes())?;
+        outputs.add(p, labels_ply(&mesh, &labels));
     }
     if let Some(p) = &args.svg {
-        write_file(p, labels_svg(&mesh, &labels, 320.0).as_bytes())?;
+        outputs.add(p, labels_svg(&mesh, &labels, 320.0));
     }
+    outputs.write()?;
     println!("figure          {}", labels.figure.name());
     println!("parts           {}", summary(&labels));
     let fell_back = labels

@@ -1,7 +1,8 @@
 //! Command-line front end. Each subcommand has a module with its clap `Args` and a `run`.
 //!
 //! Exit codes: 0 success, 1 an error while working (printed as `skelfit: error: ...` with its
-//! chain of causes), 2 invalid command-line usage (printed by clap).
+//! chain of causes), 2 invalid command-line usage (printed by clap), 130 interrupted (SIGINT,
+//! SIGTERM or SIGHUP; temporary output files are removed and no output is written).
 
 mod bench;
 mod bones;
@@ -92,6 +93,12 @@ fn parse() -> Cli {
 /// Runs the tool and maps the outcome to an exit code.
 pub fn main() -> ExitCode {
     let cli = parse();
+    // On SIGINT, SIGTERM or SIGHUP: remove the temporary output files, write nothing more.
+    let _ = ctrlc::set_handler(|| {
+        skelfit::output::remove_temporaries();
+        eprintln!("skelfit: interrupted; no output written");
+        std::process::exit(130);
+    });
     let result = match &cli.command {
         Command::Bench(args) => bench::run(args),
         Command::Bones(args) => bones::run(args),

@@ -274,3 +274,178 @@ fn huge_max_voxels_grid_beyond_the_memory_is_refused_before_allocating() {
     assert!(err.to_string().contains("MiB"), "{err}");
     assert!(fitting_size > 3e-4, "{err}");
 }
+
+// ---------------------------------------------------------------- 4, 5: outputs
+
+fn humanoid() -> String {
+    crate::common::data_dir()
+        .join("humanoid/mh_neutral_default/mesh.obj")
+        .display()
+        .to_string()
+}
+
+/// The names in `dir`, sorted.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn missing_output_folder_is_refused_before_the_voxelization_starts() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("o.json");
+    let glb = dir.path().join("no/such/dir/o.glb");
+    let start = Instant::now();
+    // A fine grid that would take seconds and gigabytes to rig.
+    let out = skelfit(&[
+        "rig",
+        &humanoid(),
+        "--voxel-size",
+        "0.0015",
+        "-o",
+        glb.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(
+        start.elapsed() < Duration::from_secs(1),
+        "{:?}",
+        start.elapsed()
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("does not exist"), "{}", stderr(&out));
+    assert!(listing(dir.path()).is_empty(), "{:?}", listing(dir.path()));
+}
+
+#[test]
+fn unwritable_json_output_leaves_no_output_at_all() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "file.txt", b"not a folder");
+    let out = skelfit(&[
+        "rig",
+        &humanoid(),
+        "-o",
+        dir.path().join("o.glb").to_str().unwrap(),
+        "--bvh",
+        dir.path().join("o.bvh").to_str().unwrap(),
+        "--json",
+        dir.path().join("file.txt/o.json").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("file.txt"), "{}", stderr(&out));
+    assert_eq!(listing(dir.path()), ["file.txt"]);
+}
+
+#[test]
+fn gltf_named_output_is_refused_instead_of_holding_glb_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = skelfit(&[
+        "rig",
+        &humanoid(),
+        "-o",
+        dir.path().join("o.gltf").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains(".glb"), "{}", stderr(&out));
+    assert!(listing(dir.path()).is_empty());
+}
+
+#[test]
+fn output_that_is_an_input_or_named_twice_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("mesh.obj");
+    std::fs::copy(humanoid(), &mesh).unwrap();
+    let before = std::fs::read(&mesh).unwrap();
+    let glb = dir.path().join("o.glb");
+    for args in [
+        vec![
+            "-o",
+            glb.to_str().unwrap(),
+            "--json",
+            mesh.to_str().unwrap(),
+        ],
+        vec!["-o", glb.to_str().unwrap(), "--json", glb.to_str().unwrap()],
+    ] {
+        let mut all = vec!["rig", mesh.to_str().unwrap()];
+        all.extend(args);
+        let out = skelfit(&all);
+        assert_eq!(out.status.code(), Some(1), "{all:?}");
+        assert_eq!(listing(dir.path()), ["mesh.obj"]);
+    }
+    assert_eq!(std::fs::read(&mesh).unwrap(), before);
+}
+
+#[test]
+fn failed_output_set_writes_none_of_its_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let first = write(dir.path(), "first.txt", b"old");
+    let second = dir.path().join("missing/second.txt");
+    let err = skelfit::output::write_all_atomic(&[(&first, b"new"), (&second, b"new")]);
+    assert!(err.is_err());
+    assert_eq!(std::fs::read(&first).unwrap(), b"old");
+    assert_eq!(listing(dir.path()), ["first.txt"]);
+    let third = dir.path().join("third.txt");
+    skelfit::output::write_all_atomic(&[(&first, b"new"), (&third, b"3")]).unwrap();
+    assert_eq!(std::fs::read(&first).unwrap(), b"new");
+    assert_eq!(listing(dir.path()), ["first.txt", "third.txt"]);
+}
+
+#[cfg(unix)]
+#[test]
+fn atomic_write_through_a_symlink_keeps_the_link_and_the_mode() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let target = write(dir.path(), "target.glb", b"old");
+    std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o640)).unwrap();
+    let link = dir.path().join("link.glb");
+    std::os::unix::fs::symlink("target.glb", &link).unwrap();
+    skelfit::output::write_atomic(&link, b"new").unwrap();
+    assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
+    assert_eq!(std::fs::read(&target).unwrap(), b"new");
+    let mode = std::fs::metadata(&target).unwrap().permissions().mode();
+    assert_eq!(mode & 0o777, 0o640);
+    skelfit::output::write_all_atomic(&[(&link, b"newer")]).unwrap();
+    assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
+    assert_eq!(std::fs::read(&target).unwrap(), b"newer");
+    assert_eq!(listing(dir.path()), ["link.glb", "target.glb"]);
+}
+
+#[cfg(unix)]
+#[test]
+fn interrupted_rig_leaves_every_output_or_none_and_no_temporaries() {
+    // SIGTERM at several moments of a run: afterwards the folder holds either the whole
+    // output set (the run finished) or nothing at all, never a temporary file.
+    for delay_ms in [50, 200, 400, 800] {
+        let dir = tempfile::tempdir().unwrap();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_skelfit"))
+            .args([
+                "rig",
+                &humanoid(),
+                "-o",
+                dir.path().join("o.glb").to_str().unwrap(),
+                "--json",
+                dir.path().join("o.json").to_str().unwrap(),
+                "--bvh",
+                dir.path().join("o.bvh").to_str().unwrap(),
+            ])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        let _ = Command::new("kill")
+            .args(["-TERM", &child.id().to_string()])
+            .status();
+        let status = child.wait().unwrap();
+        let names = listing(dir.path());
+        match status.code() {
+            Some(0) => assert_eq!(names, ["o.bvh", "o.glb", "o.json"], "{delay_ms} ms"),
+            Some(130) => assert!(names.is_empty(), "{delay_ms} ms: {names:?}"),
+            other => panic!("{delay_ms} ms: exit {other:?}, files {names:?}"),
+        }
+    }
+}
