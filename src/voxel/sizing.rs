@@ -101,8 +101,9 @@ impl Sizing {
         let mut dims = [0usize; 3];
         for (k, d) in dims.iter_mut().enumerate() {
             let cells = (self.extent[k] / h).ceil().max(1.0);
-            // Below 2^53 the f64 holds the integer exactly, and fits any 64-bit usize.
-            if !(cells < 9_007_199_254_740_992.0) {
+            // Below 2^53 the f64 holds the integer exactly, and fits any 64-bit usize; NaN
+            // (never the case for a validated size) fails too.
+            if cells.is_nan() || cells >= 9_007_199_254_740_992.0 {
                 return None;
             }
             *d = usize::try_from(cells as u64)
@@ -169,7 +170,7 @@ impl Sizing {
 
 /// `x > 0` rounded up to four significant digits.
 fn round_up(x: f64) -> f64 {
-    if !(x > 0.0 && x.is_finite()) {
+    if x.is_nan() || x <= 0.0 || x.is_infinite() {
         return x;
     }
     let scale = 10f64.powi(3 - x.log10().floor() as i32);

@@ -449,3 +449,207 @@ fn interrupted_rig_leaves_every_output_or_none_and_no_temporaries() {
         }
     }
 }
+
+// ---------------------------------------------------------------- 6, 9: OBJ and glTF reading
+
+#[test]
+fn obj_vertex_with_w_is_divided_by_w() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(
+        dir.path(),
+        "w.obj",
+        "v 0 0 0 2\nv 2 0 0 2\nv 0 4 0 2.0\nv 0 0 1 1\nf 1 2 3\nf 1 2 4\n",
+    );
+    let mesh = load(&path).unwrap();
+    assert_eq!(mesh.positions[1], glam::DVec3::new(1.0, 0.0, 0.0));
+    assert_eq!(mesh.positions[2], glam::DVec3::new(0.0, 2.0, 0.0));
+    assert_eq!(mesh.positions[3], glam::DVec3::new(0.0, 0.0, 1.0));
+    let zero = write(
+        dir.path(),
+        "w0.obj",
+        "v 0 0 0\nv 1 0 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
+    let message = load(&zero).unwrap_err().to_string();
+    assert!(
+        message.contains("line 2") && message.contains("w = 0"),
+        "{message}"
+    );
+}
+
+#[test]
+fn obj_coordinates_are_parsed_as_f64_far_from_the_origin() {
+    let offset = glam::DVec3::new(1e7, -3e7, 2e7);
+    let body = skelfit::mesh::Mesh::cuboid(offset, offset + glam::DVec3::new(0.31, 1.7, 0.23));
+    let dir = tempfile::tempdir().unwrap();
+    let mut text = String::new();
+    for p in &body.positions {
+        text += &format!("v {} {} {}\n", p.x, p.y, p.z);
+    }
+    for t in &body.triangles {
+        text += &format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    }
+    let mesh = load(&write(dir.path(), "far.obj", text)).unwrap();
+    assert_eq!(
+        mesh.positions, body.positions,
+        "f64 coordinates kept exactly"
+    );
+    let volume = mesh.transformed(|p| p - offset).signed_volume();
+    assert!((volume - 0.31 * 1.7 * 0.23).abs() < 1e-6, "{volume}");
+}
+
+#[test]
+fn obj_parse_errors_give_the_line_number() {
+    let dir = tempfile::tempdir().unwrap();
+    for (text, line) in [
+        ("v 0 0 0\nv 1 0 0\nv 0 one 0\nf 1 2 3\n", "line 3"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 x\n", "line 5"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "line 4"),
+        ("v 0 0\n", "line 1"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2 3\n", "line 4"),
+    ] {
+        let path = write(dir.path(), "bad.obj", text);
+        let error = load(&path).unwrap_err();
+        assert!(matches!(error, MeshError::Parse { .. }), "{error}");
+        assert!(error.to_string().contains(line), "{text:?}: {error}");
+    }
+    let path = write(dir.path(), "latin1.obj", b"v 0 0 0\n# caf\xe9\n");
+    assert!(load(&path).unwrap_err().to_string().contains("line 2"));
+}
+
+#[test]
+fn obj_out_of_range_index_is_reported_1_based_as_in_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(
+        dir.path(),
+        "index.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+    );
+    let message = load(&path).unwrap_err().to_string();
+    assert!(message.contains("vertex 9 counting from 1"), "{message}");
+}
+
+#[test]
+fn gltf_extras_that_are_arrays_strings_or_numbers_are_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    let (json, bin) = gltf_parts(&cube(), [0.0; 3], None);
+    let mut value: serde_json::Value = serde_json::from_str(&json).unwrap();
+    value["asset"]["extras"] = serde_json::json!([1, 2, 3]);
+    value["nodes"][0]["extras"] = serde_json::json!("a string");
+    value["meshes"][0]["extras"] = serde_json::json!(1);
+    value["meshes"][0]["primitives"][0]["extras"] = serde_json::json!(null);
+    value["accessors"][0]["extras"] = serde_json::json!({"any": ["thing"]});
+    value["buffers"][0]["extras"] = serde_json::json!(true);
+    let text = serde_json::to_string(&value).unwrap();
+    let path = write(dir.path(), "extras.glb", crate::mesh::glb(&text, &bin));
+    assert_eq!(load(&path).unwrap().triangles.len(), 12);
+}
+
+// ---------------------------------------------------------------- 8: messages
+
+/// A skelfit skeleton JSON of a chain of joints `names` at `positions`, written in `dir`.
+fn skeleton_file(dir: &Path, file: &str, names: &[String], positions: &[glam::DVec3]) -> String {
+    use skelfit::skeleton::{Joint, JointId, Skeleton};
+    let joints = names
+        .iter()
+        .zip(positions)
+        .enumerate()
+        .map(|(i, (name, &p))| Joint::new(name.clone(), i.checked_sub(1).map(JointId), p))
+        .collect();
+    let skeleton = Skeleton { joints };
+    let text = skelfit::export::skeleton_json(&skeleton, &Default::default()).unwrap();
+    write(dir, file, text).display().to_string()
+}
+
+#[test]
+fn os_errors_are_printed_once() {
+    let out = skelfit(&["info", "/no/such/mesh.obj"]);
+    assert_eq!(out.status.code(), Some(1));
+    let message = stderr(&out);
+    assert_eq!(message.matches("os error 2").count(), 1, "{message}");
+}
+
+#[test]
+fn ply_parse_errors_have_no_debug_dump() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(
+        dir.path(),
+        "bad.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_heade\n",
+    );
+    let message = load(&path).unwrap_err().to_string();
+    assert!(!message.contains("ParseError {"), "{message}");
+    assert!(!message.contains('\n'), "{message}");
+    assert!(
+        message.contains("line 5") && message.contains("end_heade"),
+        "{message}"
+    );
+}
+
+#[test]
+fn eval_with_a_joint_at_1e300_is_an_error_naming_the_joint() {
+    let dir = tempfile::tempdir().unwrap();
+    let names: Vec<String> = ["hips", "spine", "head"].map(String::from).to_vec();
+    let near = [glam::DVec3::ZERO, glam::DVec3::Y, 2.0 * glam::DVec3::Y];
+    let mut far = near;
+    far[1].x = 1e300;
+    let reference = skeleton_file(dir.path(), "ref.json", &names, &near);
+    let predicted = skeleton_file(dir.path(), "pred.json", &names, &far);
+    for extra in [None, Some("--chamfer-only")] {
+        let mut args = vec![
+            "eval",
+            predicted.as_str(),
+            reference.as_str(),
+            "--all-joints",
+        ];
+        args.extend(extra);
+        let out = skelfit(&args);
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        let message = stderr(&out);
+        assert!(message.contains("\"spine\""), "{message}");
+        assert!(!String::from_utf8_lossy(&out.stdout).contains("inf"));
+    }
+}
+
+#[test]
+fn eval_share_no_joints_error_lists_a_capped_number_of_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let count = 500;
+    let positions: Vec<glam::DVec3> = (0..count).map(|i| glam::DVec3::Y * i as f64).collect();
+    let a: Vec<String> = (0..count)
+        .map(|i| format!("a_{i}_{}", "x".repeat(200)))
+        .collect();
+    let b: Vec<String> = (0..count).map(|i| format!("b_{i}")).collect();
+    let predicted = skeleton_file(dir.path(), "a.json", &a, &positions);
+    let reference = skeleton_file(dir.path(), "b.json", &b, &positions);
+    let out = skelfit(&["eval", &predicted, &reference, "--all-joints"]);
+    assert_eq!(out.status.code(), Some(1));
+    let message = stderr(&out);
+    assert!(message.contains("share no joints"), "{message}");
+    assert!(message.contains("and 488 more"), "{message}");
+    assert!(message.len() < 2000, "{} bytes", message.len());
+}
+
+#[test]
+fn eval_encoding_error_does_not_blame_the_path_and_permissions() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = write(dir.path(), "latin1.json", b"{\"joints\": \"caf\xe9\"}");
+    let out = skelfit(&["eval", bad.to_str().unwrap(), bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let message = stderr(&out);
+    assert!(message.contains("UTF-8"), "{message}");
+    assert!(!message.contains("permissions"), "{message}");
+}
+
+#[test]
+fn negative_voxel_size_reaches_validation_instead_of_an_unknown_flag() {
+    let out = skelfit(&["voxelize", &humanoid(), "--voxel-size", "-0.01"]);
+    assert_eq!(out.status.code(), Some(1));
+    let message = stderr(&out);
+    assert!(message.contains("invalid voxel size -0.01"), "{message}");
+    let out = skelfit(&["voxelize", &humanoid(), "--voxel-length", "-1e3"]);
+    assert!(
+        stderr(&out).contains("invalid voxel size -1000"),
+        "{}",
+        stderr(&out)
+    );
+}
