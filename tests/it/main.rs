@@ -9,6 +9,7 @@ mod distance;
 mod eval;
 mod export;
 mod fit;
+mod fuzz;
 mod general;
 mod hardening;
 mod medial;
