@@ -64,6 +64,19 @@ pub enum VoxelError {
         /// four significant digits; at most 1).
         fitting_fraction: f64,
     },
+    /// No voxel centre lies inside because one vertex far outside the rest of the mesh
+    /// stretched the bounding box (and so the voxels).
+    #[error("vertex {vertex} at {position:?} lies far outside the rest of the mesh (which spans {core_size:.6}), so the voxels ({voxel_size:.6}) are too coarse to find an inside: remove or fix that vertex in the modelling tool")]
+    Outlier {
+        /// Index of the vertex in the (welded) mesh.
+        vertex: usize,
+        /// Its position, mesh units.
+        position: [f64; 3],
+        /// Longest side of the box holding the other vertices (1st to 99th percentile).
+        core_size: f64,
+        /// The voxel size used, mesh units.
+        voxel_size: f64,
+    },
     /// No voxel centre lies inside the mesh.
     #[error("no voxel lies inside the mesh at voxel size {voxel_size}: the mesh is open, flat or thinner than a voxel; use a smaller voxel size or close the mesh")]
     EmptyInterior {

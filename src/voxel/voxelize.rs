@@ -2,6 +2,7 @@
 
 use super::components::keep_largest_component;
 use super::figure::{figure_mesh, LeftOut};
+use super::outlier::far_outlier;
 use super::sizing::grid_of;
 use super::surface::surface_voxels;
 use super::winding::winding_votes;
@@ -12,9 +13,10 @@ use rayon::prelude::*;
 
 /// Voxelizes `mesh` into a [`Solid`].
 ///
-/// Phases: leave out connected pieces lying apart from the figure (pieces whose bounding box
-/// does not meet the largest piece's, enlarged by a tenth of its longest side, when that piece
-/// holds at least 60 % of the surface area; [`VoxelReport::left_out_pieces`]); size the grid
+/// Phases: leave out connected pieces lying apart from the figure (the figure grows from the
+/// largest piece by the pieces whose bounding box meets its own, enlarged by a tenth of the
+/// largest piece's longest side; the rest is left out when the figure holds at least 60 % of
+/// the surface area; [`VoxelReport::left_out_pieces`]); size the grid
 /// around the bounding box (padded by `options.padding` outside voxels);
 /// classify every voxel centre by the six-direction winding-number vote (see the module docs of
 /// `voxel::winding`: exact for closed meshes, robust to holes, non-manifold edges and
@@ -26,8 +28,9 @@ use rayon::prelude::*;
 /// [`VoxelError::NoTriangles`] for a mesh without triangles, [`VoxelError::Flat`] for a
 /// bounding box without volume, [`VoxelError::TooLarge`] when the grid would exceed
 /// `options.max_voxels` (the error names a voxel size that fits), [`VoxelError::OutOfMemory`]
-/// when the grid's working memory exceeds the memory available, and
-/// [`VoxelError::EmptyInterior`] when no voxel centre is inside.
+/// when the grid's working memory exceeds the memory available, [`VoxelError::Outlier`] when no
+/// voxel centre is inside because a vertex far outside the rest stretched the grid, and
+/// [`VoxelError::EmptyInterior`] when no voxel centre is inside otherwise.
 pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError> {
     let figure = figure_mesh(mesh);
     let (mesh, left_out) = match &figure {
@@ -78,6 +81,14 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
     let (components, dropped_voxels) = keep_largest_component(&grid, &mut inside);
     let interior_voxels = inside.iter().filter(|&&b| b).count();
     if interior_voxels == 0 {
+        if let Some((vertex, position, core)) = far_outlier(mesh) {
+            return Err(VoxelError::Outlier {
+                vertex,
+                position: position.to_array(),
+                core_size: core,
+                voxel_size: h,
+            });
+        }
         return Err(VoxelError::EmptyInterior { voxel_size: h });
     }
     let report = VoxelReport {

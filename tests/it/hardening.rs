@@ -653,3 +653,52 @@ fn negative_voxel_size_reaches_validation_instead_of_an_unknown_flag() {
         stderr(&out)
     );
 }
+
+// ---------------------------------------------------------------- 9: geometry
+
+#[test]
+fn far_outlier_vertex_is_named_instead_of_blaming_an_open_or_thin_mesh() {
+    let mut mesh = skelfit::mesh::load(Path::new(&humanoid())).unwrap();
+    let vertex = mesh.triangles[10][0] as usize;
+    mesh.positions[vertex] = glam::DVec3::new(0.0, 1e6, 0.0);
+    let err = skelfit::voxel::voxelize(&mesh, &VoxelOptions::default()).unwrap_err();
+    let VoxelError::Outlier {
+        vertex: named,
+        position,
+        ..
+    } = err
+    else {
+        panic!("expected Outlier, got {err}");
+    };
+    assert_eq!(named, vertex);
+    assert_eq!(position, [0.0, 1e6, 0.0]);
+    let message = err.to_string();
+    assert!(!message.contains("thinner than a voxel"), "{message}");
+}
+
+#[test]
+fn loose_piece_rule_leaves_out_a_far_fragment_of_a_many_piece_model() {
+    // Fifteen touching boxes (none holds 60 % of the area) and a small box far away.
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    let mut add = |piece: skelfit::mesh::Mesh| {
+        let base = positions.len() as u32;
+        positions.extend(piece.positions);
+        triangles.extend(piece.triangles.iter().map(|t| t.map(|i| i + base)));
+    };
+    for k in 0..15 {
+        let x = 0.1 * k as f64;
+        add(skelfit::mesh::Mesh::cuboid(
+            glam::DVec3::new(x, 0.0, 0.0),
+            glam::DVec3::new(x + 0.1, 1.0, 0.3),
+        ));
+    }
+    add(skelfit::mesh::Mesh::cuboid(
+        glam::DVec3::new(100.0, 0.0, 0.0),
+        glam::DVec3::new(100.01, 0.01, 0.01),
+    ));
+    let mesh = skelfit::mesh::Mesh::new(positions, triangles).unwrap();
+    let solid = skelfit::voxel::voxelize(&mesh, &VoxelOptions::default()).unwrap();
+    assert_eq!(solid.report.left_out_pieces, 1);
+    assert!(solid.grid.voxel_size < 0.02, "{}", solid.grid.voxel_size);
+}
