@@ -702,3 +702,33 @@ fn loose_piece_rule_leaves_out_a_far_fragment_of_a_many_piece_model() {
     assert_eq!(solid.report.left_out_pieces, 1);
     assert!(solid.grid.voxel_size < 0.02, "{}", solid.grid.voxel_size);
 }
+
+#[test]
+fn skeleton_copes_with_a_sphere_two_spheres_and_a_hollow_shell_like_rig() {
+    use skelfit::mesh::Mesh;
+    let merge = |parts: &[Mesh]| {
+        let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+        for part in parts {
+            let base = positions.len() as u32;
+            positions.extend(&part.positions);
+            triangles.extend(part.triangles.iter().map(|t| t.map(|i| i + base)));
+        }
+        Mesh::new(positions, triangles).unwrap()
+    };
+    let sphere = Mesh::uv_sphere(glam::DVec3::ZERO, 1.0, 16, 32);
+    let other = Mesh::uv_sphere(glam::DVec3::new(3.0, 0.0, 0.0), 1.0, 16, 32);
+    let mut inner = Mesh::uv_sphere(glam::DVec3::ZERO, 0.8, 16, 32);
+    for t in &mut inner.triangles {
+        t.swap(1, 2);
+    }
+    for (name, mesh) in [
+        ("sphere", sphere.clone()),
+        ("two spheres", merge(&[sphere.clone(), other])),
+        ("hollow shell", merge(&[sphere, inner])),
+    ] {
+        let rig = skelfit::pipeline::general_rig(&mesh, &Default::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(rig.skin.weights.len(), mesh.positions.len(), "{name}");
+        assert!(rig.skin.weights.iter().all(|w| !w.is_empty()), "{name}");
+    }
+}
