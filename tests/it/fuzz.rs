@@ -1,9 +1,9 @@
-//! Mutation fuzzing of every file loader: valid OBJ, STL, PLY, glTF/GLB, skeleton JSON and BVH
-//! files are mutated byte by byte (deterministic seeds) and fed to their loaders, which must
+//! Mutation fuzzing of every file loader: valid OBJ, STL, PLY, glTF/GLB, skeleton JSON, BVH
+//! and outline SVG/CSV files are mutated byte by byte (deterministic seeds) and fed to their loaders, which must
 //! return (an error or a result) without panicking, in bounded time, with an output bounded by
 //! the input's size.
 //!
-//! `SKELFIT_FUZZ_CASES` sets the number of cases per seed file (default 400, 4,000 cases in
+//! `SKELFIT_FUZZ_CASES` sets the number of cases per seed file (default 400, 4,400 cases in
 //! all); the test prints the count it ran (`cargo test --release --test it fuzz -- --nocapture`).
 
 use crate::mesh::{cube, glb, gltf_parts, obj_text, ply_ascii, ply_binary, stl_ascii, stl_binary};
@@ -156,6 +156,14 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("embedded.gltf", embedded.into_bytes()),
         ("skeleton.json", skeleton_json.into_bytes()),
         ("skeleton.bvh", bvh.into_bytes()),
+        (
+            "starfish.svg",
+            std::fs::read(crate::common::data_dir().join("outlines/starfish.svg")).unwrap(),
+        ),
+        (
+            "outline.csv",
+            b"x,y\n0,0\n4,0\n4,1\n2.5,1\n2.5,3\n1.5,3\n1.5,1\n0,1\n".to_vec(),
+        ),
     ]
 }
 
@@ -164,6 +172,9 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
 fn load(path: &Path) -> Result<usize, String> {
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     match extension {
+        "svg" | "csv" => skelfit::outline::read_outline(path, &Default::default())
+            .map(|outline| outline.points.len())
+            .map_err(|e| e.to_string()),
         "json" | "bvh" => skelfit::eval::load_skeleton(path)
             .map(|rig| rig.skeleton.joints.len())
             .map_err(|e| e.to_string()),
