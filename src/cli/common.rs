@@ -94,6 +94,15 @@ impl Outputs {
     }
 }
 
+/// Creates an output folder (and its parents) and checks that files can be written in it,
+/// before any work.
+pub fn output_folder(dir: &Path) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    skelfit::output::check_outputs(&[&dir.join("skelfit-probe")], &[])
+        .with_context(|| format!("checking that {} is writable", dir.display()))?;
+    Ok(())
+}
+
 /// Refuses a binary glTF output named `.gltf` (skelfit writes GLB; a `.gltf` file must be
 /// JSON, and importers would reject GLB bytes under that name).
 pub fn require_glb(path: &Path, option: &str) -> anyhow::Result<()> {

@@ -732,3 +732,21 @@ fn skeleton_copes_with_a_sphere_two_spheres_and_a_hollow_shell_like_rig() {
         assert!(rig.skin.weights.iter().all(|w| !w.is_empty()), "{name}");
     }
 }
+
+#[test]
+fn unusable_output_folder_is_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write(dir.path(), "file.txt", b"not a folder");
+    let inside = file.join("slices");
+    // The mesh does not exist: the folder is checked first.
+    let out = skelfit(&[
+        "voxelize",
+        "no-such-mesh.obj",
+        "--slices",
+        inside.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let message = stderr(&out);
+    assert!(message.contains("file.txt"), "{message}");
+    assert!(!message.contains("no-such-mesh"), "{message}");
+}
