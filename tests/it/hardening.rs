@@ -444,7 +444,9 @@ fn interrupted_rig_leaves_every_output_or_none_and_no_temporaries() {
         let names = listing(dir.path());
         match status.code() {
             Some(0) => assert_eq!(names, ["o.bvh", "o.glb", "o.json"], "{delay_ms} ms"),
-            Some(130) => assert!(names.is_empty(), "{delay_ms} ms: {names:?}"),
+            // 130: the handler ran; None: the signal came before it was installed (a slow
+            // start on a loaded machine). Either way nothing may be left behind.
+            Some(130) | None => assert!(names.is_empty(), "{delay_ms} ms: {names:?}"),
             other => panic!("{delay_ms} ms: exit {other:?}, files {names:?}"),
         }
     }
