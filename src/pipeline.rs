@@ -12,7 +12,7 @@ use crate::general::{control_skeleton, GeneralOptions, GeneralSkeleton};
 use crate::medial::{dms, MedialOptions};
 use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
-use crate::skin::{skin, SegmentVoxels, Skin, SkinOptions};
+use crate::skin::{skin, skin_from_bones, SegmentVoxels, Skin, SkinError, SkinOptions};
 use crate::voxel::{voxelize, Grid, Solid, VoxelOptions, VoxelReport};
 use serde::Serialize;
 use std::time::Instant;
@@ -126,7 +126,9 @@ pub struct GeneralRig {
 
 /// Fits a general control skeleton into `mesh` and anchors the mesh to it: the stages of
 /// [`general_skeleton`], then regions of influence from each segment's chain voxels and the
-/// per-vertex weights of ch.5.2.5 ([`crate::skin::skin`]).
+/// per-vertex weights of ch.5.2.5 ([`crate::skin::skin`]). A figure whose segments reach no
+/// interior voxel (a sphere, a hollow shell: no limbs) is skinned to its bones instead
+/// ([`crate::skin::skin_from_bones`]), with a warning.
 ///
 /// # Errors
 /// As [`general_skeleton`], plus [`crate::skin::SkinError`] for invalid skin options.
@@ -153,18 +155,30 @@ pub fn general_rig(mesh: &Mesh, options: &GeneralRigOptions) -> crate::Result<Ge
             },
         })
         .collect();
-    let skin = skin(
+    let mut warnings = general.warnings.clone();
+    let skin = match skin(
         mesh,
         &general.skeleton,
         &solid,
         &distance,
         &segments,
         &options.skin,
-    )?;
+    ) {
+        // A figure without limbs (a sphere, a hollow shell): its skeleton has no segment
+        // whose chain voxels reach inside, so the mesh is skinned to the bones instead.
+        Err(SkinError::NoInfluence) => {
+            warnings.push(
+                "no segment of the skeleton reaches inside the figure (a figure without limbs): \
+                 the mesh is skinned to the nearest bones instead"
+                    .to_string(),
+            );
+            skin_from_bones(mesh, &general.skeleton, &solid, &distance, &options.skin)?
+        }
+        result => result?,
+    };
     general
         .timings
         .push(("skin".to_string(), clock.elapsed().as_secs_f64() * 1e3));
-    let mut warnings = general.warnings.clone();
     warnings.extend(skin.warnings.iter().map(ToString::to_string));
     Ok(GeneralRig {
         grid: solid.grid,

@@ -84,8 +84,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     options.rigger.method = args.method.into();
     options.rigger.general.voxel = args.voxel.options()?;
     let models = find_bench_models(&args.dir, &args.rig)?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    super::common::output_folder(&args.out)?;
     let bar = indicatif::ProgressBar::new(models.len() as u64);
     if let Ok(style) = indicatif::ProgressStyle::with_template(
         "{bar:40} {pos}/{len} models  {elapsed_precise}  {msg}",

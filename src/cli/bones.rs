@@ -7,8 +7,8 @@ use super::rig::RigArgs;
 use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::Args;
-use skelfit::bones::{bones, bones_svg, write_bones_glb, write_bones_obj, BoneOptions, Bones};
-use skelfit::export::GltfOptions;
+use skelfit::bones::{bones, bones_glb_bytes, bones_svg, BoneOptions, Bones};
+use skelfit::export::{obj_text, GltfOptions};
 use skelfit::pipeline::{rig, Rig};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -39,6 +39,9 @@ pub fn rig_bones(rigged: &Rig) -> anyhow::Result<Bones> {
 /// Runs the command.
 pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
     let options = args.rig.options()?;
+    let mut outputs = args
+        .rig
+        .outputs(&[args.obj.as_deref(), args.svg.as_deref()])?;
     let start = Instant::now();
     let mesh = super::common::load_mesh(&args.rig.mesh)?;
     let load_ms = millis(start);
@@ -50,20 +53,22 @@ pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
     let made = rig_bones(&rigged)?;
     let bones_ms = millis(clock);
     let skinned = args.with_skin.then_some((&mesh, &rigged.skin));
-    write_bones_glb(
+    outputs.add(
         &args.rig.output,
-        &rigged.fit.skeleton,
-        &made,
-        skinned,
-        &GltfOptions::default(),
-    )?;
+        bones_glb_bytes(
+            &rigged.fit.skeleton,
+            &made,
+            skinned,
+            &GltfOptions::default(),
+        )?,
+    );
     if let Some(path) = &args.obj {
-        write_bones_obj(path, &made)?;
+        outputs.add(path, obj_text(&made.world_mesh()));
     }
     if let Some(path) = &args.svg {
-        skelfit::output::write_atomic(path, bones_svg(&made, Some(&mesh), 360.0).as_bytes())
-            .with_context(|| format!("writing {}", path.display()))?;
+        outputs.add(path, bones_svg(&made, Some(&mesh), 360.0));
     }
+    outputs.write()?;
     let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
     for b in &made.bones {
         *kinds.entry(b.kind.as_str()).or_default() += 1;

@@ -4,7 +4,7 @@ use anyhow::Context;
 use clap::Args;
 use skelfit::mesh::Mesh;
 use skelfit::voxel::{VoxelOptions, VoxelSize};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Voxel grid options shared by every command that voxelizes.
@@ -25,7 +25,7 @@ pub struct VoxelArgs {
 }
 
 impl VoxelArgs {
-    /// Validated voxel options.
+    /// Validated voxel options ([`VoxelOptions::validate`]), checked before any work.
     pub fn options(&self) -> anyhow::Result<VoxelOptions> {
         let size = match (self.voxel_length, self.resolution) {
             (Some(length), _) => VoxelSize::Absolute(length),
@@ -33,11 +33,15 @@ impl VoxelArgs {
             (None, Some(n)) => VoxelSize::Fraction(1.0 / n as f64),
             (None, None) => VoxelSize::Fraction(self.voxel_size),
         };
-        Ok(VoxelOptions {
+        let options = VoxelOptions {
             size,
             max_voxels: self.max_voxels,
             ..Default::default()
-        })
+        };
+        options
+            .validate()
+            .context("invalid --voxel-size, --voxel-length, --resolution or --max-voxels")?;
+        Ok(options)
     }
 }
 
@@ -49,6 +53,69 @@ pub fn load_mesh(path: &Path) -> anyhow::Result<Mesh> {
 /// Milliseconds since `start`.
 pub fn millis(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
+}
+
+/// The output files of a command: every path checked before any work
+/// ([`skelfit::output::check_outputs`]), the contents collected while working, and all written
+/// together at the end ([`skelfit::output::write_all_atomic`]): either every output is written
+/// or none is.
+#[derive(Debug, Default)]
+pub struct Outputs {
+    files: Vec<(PathBuf, Vec<u8>)>,
+}
+
+impl Outputs {
+    /// Checks `outputs` (folder exists and is writable, not a folder, not one of `inputs`, no
+    /// two the same) before any work.
+    pub fn check<'a>(
+        outputs: impl IntoIterator<Item = &'a Path>,
+        inputs: impl IntoIterator<Item = &'a Path>,
+    ) -> anyhow::Result<Self> {
+        let outputs: Vec<&Path> = outputs.into_iter().collect();
+        let inputs: Vec<&Path> = inputs.into_iter().collect();
+        skelfit::output::check_outputs(&outputs, &inputs)?;
+        Ok(Self::default())
+    }
+
+    /// Adds a file to write at the end.
+    pub fn add(&mut self, path: &Path, bytes: impl Into<Vec<u8>>) {
+        self.files.push((path.to_path_buf(), bytes.into()));
+    }
+
+    /// Writes every file added, all-or-nothing.
+    pub fn write(self) -> anyhow::Result<()> {
+        let files: Vec<(&Path, &[u8])> = self
+            .files
+            .iter()
+            .map(|(p, b)| (p.as_path(), b.as_slice()))
+            .collect();
+        skelfit::output::write_all_atomic(&files)?;
+        Ok(())
+    }
+}
+
+/// Creates an output folder (and its parents) and checks that files can be written in it,
+/// before any work.
+pub fn output_folder(dir: &Path) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    skelfit::output::check_outputs(&[&dir.join("skelfit-probe")], &[])
+        .with_context(|| format!("checking that {} is writable", dir.display()))?;
+    Ok(())
+}
+
+/// Refuses a binary glTF output named `.gltf` (skelfit writes GLB; a `.gltf` file must be
+/// JSON, and importers would reject GLB bytes under that name).
+pub fn require_glb(path: &Path, option: &str) -> anyhow::Result<()> {
+    let gltf = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
+    if gltf {
+        anyhow::bail!(
+            "{option} {}: skelfit writes binary glTF; name the file .glb",
+            path.display()
+        );
+    }
+    Ok(())
 }
 
 /// Writes a file atomically with its name in the error context.

@@ -64,6 +64,7 @@ pub fn find_models(data: &Path) -> anyhow::Result<Vec<PathBuf>> {
 /// Runs the demo.
 pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
     let options = args.voxel.options()?;
+    super::common::output_folder(&args.out)?;
     let models = find_models(&args.data)?;
     let mut rows = Vec::new();
     for mesh_path in &models {

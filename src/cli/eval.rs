@@ -1,7 +1,7 @@
 //! `skelfit eval PRED REF [--mesh MESH] [--csv OUT] [--json OUT] [--html OUT] [--chamfer-only]`:
 //! compare a predicted skeleton with a reference rig joint by joint.
 
-use super::common::{load_mesh, write_file};
+use super::common::{load_mesh, Outputs};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use skelfit::eval::{
@@ -69,6 +69,22 @@ pub struct EvalArgs {
 /// Loads both skeletons (and the mesh), evaluates, prints the per-joint table and summary to
 /// stdout and warnings to stderr, and writes the requested files.
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
+    let mut outputs = Outputs::check(
+        [
+            args.csv.as_deref(),
+            args.json.as_deref(),
+            args.html.as_deref(),
+        ]
+        .into_iter()
+        .flatten(),
+        [
+            Some(args.predicted.as_path()),
+            Some(args.reference.as_path()),
+            args.mesh.as_deref(),
+        ]
+        .into_iter()
+        .flatten(),
+    )?;
     let predicted = load_rig(&args.predicted, "predicted")?;
     let reference = load_rig(&args.reference, "reference")?;
     let mesh = match &args.mesh {
@@ -100,10 +116,10 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.csv {
         let mut bytes = Vec::new();
         write_csv(&joint_rows(&evaluation), &mut bytes)?;
-        write_file(path, &bytes)?;
+        outputs.add(path, bytes);
     }
     if let Some(path) = &args.json {
-        write_file(path, (to_json(&evaluation)? + "\n").as_bytes())?;
+        outputs.add(path, to_json(&evaluation)? + "\n");
     }
     if let Some(path) = &args.html {
         let (predicted, reference) = if options.deforming_only {
@@ -117,12 +133,9 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             reference: &reference,
             mesh: mesh.as_ref(),
         };
-        write_file(
-            path,
-            html_report(&input, &ReportOptions::default()).as_bytes(),
-        )?;
+        outputs.add(path, html_report(&input, &ReportOptions::default()));
     }
-    Ok(())
+    outputs.write()
 }
 
 fn load_rig(path: &Path, role: &str) -> anyhow::Result<ReferenceRig> {

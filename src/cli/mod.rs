@@ -1,7 +1,8 @@
 //! Command-line front end. Each subcommand has a module with its clap `Args` and a `run`.
 //!
 //! Exit codes: 0 success, 1 an error while working (printed as `skelfit: error: ...` with its
-//! chain of causes), 2 invalid command-line usage (printed by clap).
+//! chain of causes), 2 invalid command-line usage (printed by clap), 130 interrupted (SIGINT,
+//! SIGTERM or SIGHUP; temporary output files are removed and no output is written).
 
 mod bench;
 mod bones;
@@ -19,7 +20,7 @@ mod skeleton;
 mod study;
 mod voxelize;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// Fits anatomical control skeletons into polygon meshes and validates them against reference
@@ -78,9 +79,31 @@ enum Command {
     Voxelize(voxelize::VoxelizeArgs),
 }
 
+/// Parses the command line. Every option that takes a value accepts a negative number
+/// (`--voxel-size -0.01` reaches validation, which names the option, instead of being read as
+/// an unknown flag `-0`).
+fn parse() -> Cli {
+    let command = Cli::command().mut_subcommands(|sub| {
+        sub.mut_args(|arg| {
+            if arg.get_action().takes_values() && !arg.is_positional() {
+                arg.allow_negative_numbers(true)
+            } else {
+                arg
+            }
+        })
+    });
+    Cli::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit())
+}
+
 /// Runs the tool and maps the outcome to an exit code.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = parse();
+    // On SIGINT, SIGTERM or SIGHUP: remove the temporary output files, write nothing more.
+    let _ = ctrlc::set_handler(|| {
+        skelfit::output::remove_temporaries();
+        eprintln!("skelfit: interrupted; no output written");
+        std::process::exit(130);
+    });
     let result = match &cli.command {
         Command::Bench(args) => bench::run(args),
         Command::Bones(args) => bones::run(args),

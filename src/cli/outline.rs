@@ -2,14 +2,14 @@
 //! [--json OUT.json] [level-of-detail options]`: animatable skeletons from closed 2D outlines
 //! (seed 003), inflated into a skinned 3D model.
 
-use super::common::millis;
+use super::common::{millis, require_glb, Outputs};
 use super::simplify::LodArgs;
 use anyhow::Context;
 use clap::Args;
 use glam::{DAffine3, DQuat, DVec3};
 use serde_json::json;
 use skelfit::distance::edt;
-use skelfit::export::{write_glb, write_skeleton_json, GltfOptions, JsonOptions};
+use skelfit::export::{glb_bytes, skeleton_json, GltfOptions, JsonOptions};
 use skelfit::lod::level_of_detail;
 use skelfit::outline::{
     assemble, outline_part, outline_svg, read_outline, OutlineOptions, PartPlacement,
@@ -122,6 +122,17 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
     options.validate().context("checking the options")?;
     lod.validate()
         .context("checking the level-of-detail options")?;
+    require_glb(&args.output, "-o")?;
+    let svgs: Vec<PathBuf> = match &args.svg {
+        Some(svg) => (0..args.outlines.len()).map(|k| svg_path(svg, k)).collect(),
+        None => Vec::new(),
+    };
+    let mut outputs = Outputs::check(
+        std::iter::once(args.output.as_path())
+            .chain(args.json.as_deref())
+            .chain(svgs.iter().map(PathBuf::as_path)),
+        args.outlines.iter().map(PathBuf::as_path),
+    )?;
     let start = Instant::now();
     let mut parts = Vec::new();
     let mut skeleton_ms = 0.0;
@@ -132,10 +143,8 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
         let part = outline_part(&outline, &options)
             .with_context(|| format!("building the skeleton of {}", path.display()))?;
         skeleton_ms += millis(clock);
-        if let Some(svg) = &args.svg {
-            let file = svg_path(svg, k);
-            skelfit::output::write_atomic(&file, outline_svg(&part.skeleton).as_bytes())
-                .with_context(|| format!("writing {}", file.display()))?;
+        if let Some(file) = svgs.get(k) {
+            outputs.add(file, outline_svg(&part.skeleton));
         }
         parts.push(part);
     }
@@ -162,26 +171,26 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
     )
     .context("skinning the inflated mesh")?;
     let skin_ms = millis(clock);
-    write_glb(
+    outputs.add(
         &args.output,
-        &assembly.mesh,
-        &skeleton,
-        &skin,
-        &GltfOptions::default(),
-    )?;
+        glb_bytes(&assembly.mesh, &skeleton, &skin, &GltfOptions::default())?,
+    );
     if let Some(path) = &args.json {
         let model = args.outlines[0]
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned());
-        write_skeleton_json(
+        outputs.add(
             path,
-            &skeleton,
-            &JsonOptions {
-                model,
-                ..Default::default()
-            },
-        )?;
+            skeleton_json(
+                &skeleton,
+                &JsonOptions {
+                    model,
+                    ..Default::default()
+                },
+            )?,
+        );
     }
+    outputs.write()?;
     let summary = json!({
         "outlines": args.outlines.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
         "polygon_corners": parts.iter().map(|p| p.skeleton.polygon.len()).collect::<Vec<_>>(),

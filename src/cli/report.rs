@@ -2,7 +2,7 @@
 //! `bench` run (`bench.json`) or a study (`tessellation.json`, `rotation.json`) from its JSON.
 //! The JSON holds no skeletons, so study pages are written without the projections.
 
-use super::common::write_file;
+use super::common::Outputs;
 use anyhow::Context;
 use clap::Args;
 use skelfit::eval::{BenchResult, Study};
@@ -24,6 +24,11 @@ pub struct ReportArgs {
 
 /// Runs the command.
 pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.results.with_extension("html"));
+    let mut outputs = Outputs::check([output.as_path()], [args.results.as_path()])?;
     let text = std::fs::read_to_string(&args.results)
         .with_context(|| format!("reading {}", args.results.display()))?;
     let value: serde_json::Value = serde_json::from_str(&text)
@@ -64,11 +69,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         });
         study_html(&study, &title, &preamble, None)
     };
-    let output = args
-        .output
-        .clone()
-        .unwrap_or_else(|| args.results.with_extension("html"));
-    write_file(&output, html.as_bytes())?;
+    outputs.add(&output, html);
+    outputs.write()?;
     println!("wrote {}", output.display());
     Ok(())
 }

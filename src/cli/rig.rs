@@ -2,15 +2,13 @@
 //! [--up ..] [--forward ..] [--labels OVERRIDE.json]`: the anatomical control skeleton from a
 //! template (dissertation ch.7-8), skinned and exported.
 
-use super::common::{load_mesh, millis, VoxelArgs};
+use super::common::{load_mesh, millis, require_glb, Outputs, VoxelArgs};
 use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use serde_json::json;
 use skelfit::anatomy::{parse_direction, Forward, Overrides};
-use skelfit::export::{
-    write_bvh, write_glb, write_skeleton_json, BvhOptions, GltfOptions, JsonOptions,
-};
+use skelfit::export::{bvh_text, glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions};
 use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice};
 use skelfit::template::{Preset, Template};
 use std::path::{Path, PathBuf};
@@ -133,9 +131,33 @@ impl RigArgs {
     }
 }
 
+impl RigArgs {
+    /// The files the command reads (the mesh, a template file, a labels override).
+    pub fn inputs(&self) -> Vec<&Path> {
+        let mut inputs = vec![self.mesh.as_path(), Path::new(&self.template)];
+        inputs.extend(self.labels.as_deref());
+        inputs
+    }
+
+    /// Checks `-o` (a .glb) and the other outputs, together with `extra` ones, before any work.
+    pub fn outputs<'a>(&'a self, extra: &[Option<&'a Path>]) -> anyhow::Result<Outputs> {
+        require_glb(&self.output, "-o")?;
+        let outputs = [
+            Some(self.output.as_path()),
+            self.json.as_deref(),
+            self.bvh.as_deref(),
+        ]
+        .into_iter()
+        .chain(extra.iter().copied())
+        .flatten();
+        Outputs::check(outputs, self.inputs())
+    }
+}
+
 /// Runs the command.
 pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     let options = args.options()?;
+    let mut outputs = args.outputs(&[])?;
     let start = Instant::now();
     let mesh = load_mesh(&args.mesh)?;
     let load_ms = millis(start);
@@ -145,32 +167,36 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     .context("fitting the anatomical control skeleton")?;
     let clock = Instant::now();
     let mut bone_warnings = Vec::new();
-    if args.bones {
+    let glb = if args.bones {
         let made = super::bones::rig_bones(&rigged)?;
-        skelfit::bones::write_bones_glb(
-            &args.output,
+        let bytes = skelfit::bones::bones_glb_bytes(
             &rigged.fit.skeleton,
             &made,
             Some((&mesh, &rigged.skin)),
             &GltfOptions::default(),
         )?;
         bone_warnings = made.warnings;
+        bytes
     } else {
-        write_glb(
-            &args.output,
+        glb_bytes(
             &mesh,
             &rigged.fit.skeleton,
             &rigged.skin,
             &GltfOptions::default(),
-        )?;
-    }
+        )?
+    };
+    outputs.add(&args.output, glb);
     let info = run_info(&args.mesh, &rigged, load_ms);
     if let Some(path) = &args.json {
-        write_rig_json(path, &args.mesh, &rigged, Some(info.clone()))?;
+        outputs.add(path, rig_json(&args.mesh, &rigged, Some(info.clone()))?);
     }
     if let Some(path) = &args.bvh {
-        write_bvh(path, &rigged.fit.skeleton, &BvhOptions::default())?;
+        outputs.add(
+            path,
+            bvh_text(&rigged.fit.skeleton, &BvhOptions::default())?,
+        );
     }
+    outputs.write()?;
     let export_ms = millis(clock);
     if args.print_json {
         let mut info = info;
@@ -191,21 +217,29 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes the fitted skeleton as skelfit JSON with its `canonical` map and `run` information.
-pub fn write_rig_json(
-    path: &Path,
+/// The fitted skeleton as skelfit JSON with its `canonical` map and `run` information.
+pub fn rig_json(
     mesh: &Path,
     rigged: &Rig,
     run: Option<serde_json::Value>,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<String> {
     let options = JsonOptions {
         model: super::skeleton::model_name(mesh),
         canonical: rigged.fit.canonical_names(),
         run,
         ..Default::default()
     };
-    write_skeleton_json(path, &rigged.fit.skeleton, &options)?;
-    Ok(())
+    Ok(skeleton_json(&rigged.fit.skeleton, &options)?)
+}
+
+/// Writes [`rig_json`] to `path`.
+pub fn write_rig_json(
+    path: &Path,
+    mesh: &Path,
+    rigged: &Rig,
+    run: Option<serde_json::Value>,
+) -> anyhow::Result<()> {
+    super::common::write_file(path, rig_json(mesh, rigged, run)?.as_bytes())
 }
 
 /// Run information: template, figure, sizes, stage timings and warnings.

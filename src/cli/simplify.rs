@@ -2,10 +2,11 @@
 //! [--collapse F] [--part JOINT | --branch JOINT]`: the level-of-detail operations of seed 003
 //! on any skelfit skeleton. [`LodArgs`] also serves `skelfit skeleton` and `skelfit outline`.
 
+use super::common::Outputs;
 use anyhow::Context;
 use clap::Args;
 use skelfit::eval::load_skeleton;
-use skelfit::export::{write_skeleton_json, JsonOptions};
+use skelfit::export::{skeleton_json, JsonOptions};
 use skelfit::lod::{level_of_detail, LodOptions, LodScope};
 use std::path::PathBuf;
 
@@ -89,6 +90,7 @@ pub struct SimplifyArgs {
 
 /// Runs the command.
 pub fn run(args: &SimplifyArgs) -> anyhow::Result<()> {
+    let mut outputs = Outputs::check([args.output.as_path()], [args.skeleton.as_path()])?;
     let rig = load_skeleton(&args.skeleton)
         .with_context(|| format!("loading skeleton {}", args.skeleton.display()))?;
     let simplified =
@@ -107,7 +109,8 @@ pub fn run(args: &SimplifyArgs) -> anyhow::Result<()> {
         canonical,
         run: None,
     };
-    write_skeleton_json(&args.output, &simplified, &options)?;
+    outputs.add(&args.output, skeleton_json(&simplified, &options)?);
+    outputs.write()?;
     println!(
         "joints          {} -> {}",
         rig.skeleton.len(),

@@ -1,14 +1,12 @@
 //! `skelfit skeleton MESH -o OUT.glb [--json OUT.json] [--bvh OUT.bvh] [parameters]`: the
 //! general control skeleton of any figure (dissertation ch.5), skinned and exported.
 
-use super::common::{load_mesh, VoxelArgs};
+use super::common::{load_mesh, require_glb, Outputs, VoxelArgs};
 use super::simplify::LodArgs;
 use anyhow::Context;
 use clap::Args;
 use serde_json::json;
-use skelfit::export::{
-    write_bvh, write_glb, write_skeleton_json, BvhOptions, GltfOptions, JsonOptions,
-};
+use skelfit::export::{bvh_text, glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions};
 use skelfit::pipeline::{general_rig, GeneralRig, GeneralRigOptions};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -98,6 +96,17 @@ pub fn with_spinner<T>(message: String, work: impl FnOnce() -> T) -> T {
 /// Runs the command.
 pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     let options = args.options()?;
+    require_glb(&args.output, "-o")?;
+    let mut outputs = Outputs::check(
+        [
+            Some(args.output.as_path()),
+            args.json.as_deref(),
+            args.bvh.as_deref(),
+        ]
+        .into_iter()
+        .flatten(),
+        [args.mesh.as_path()],
+    )?;
     let start = Instant::now();
     let mesh = load_mesh(&args.mesh)?;
     let load_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -107,13 +116,15 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     .context("fitting the general control skeleton")?;
     apply_lod(&mesh, &mut rig, &args.lod, &options)?;
     let clock = Instant::now();
-    write_glb(
+    outputs.add(
         &args.output,
-        &mesh,
-        &rig.general.skeleton,
-        &rig.skin,
-        &GltfOptions::default(),
-    )?;
+        glb_bytes(
+            &mesh,
+            &rig.general.skeleton,
+            &rig.skin,
+            &GltfOptions::default(),
+        )?,
+    );
     let run = run_info(&args.mesh, &rig, load_ms);
     if let Some(path) = &args.json {
         let json_options = JsonOptions {
@@ -121,11 +132,15 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
             run: Some(run.clone()),
             ..Default::default()
         };
-        write_skeleton_json(path, &rig.general.skeleton, &json_options)?;
+        outputs.add(path, skeleton_json(&rig.general.skeleton, &json_options)?);
     }
     if let Some(path) = &args.bvh {
-        write_bvh(path, &rig.general.skeleton, &BvhOptions::default())?;
+        outputs.add(
+            path,
+            bvh_text(&rig.general.skeleton, &BvhOptions::default())?,
+        );
     }
+    outputs.write()?;
     let export_ms = clock.elapsed().as_secs_f64() * 1e3;
     if args.print_json {
         let mut run = run;

@@ -117,6 +117,7 @@ fn run_study(
     let mut options = StudyOptions::default();
     options.rigger.method = common.method.into();
     options.rigger.general.voxel = common.voxel.options()?;
+    super::common::output_folder(&common.out)?;
     let mesh = load_mesh(&common.mesh)?;
     let reference = match &common.reference {
         Some(path) => Some(

@@ -55,7 +55,11 @@ pub struct Timings {
 
 /// Voxelizes one mesh, computes its distance map and reports.
 pub fn run(args: &VoxelizeArgs) -> anyhow::Result<()> {
-    let summary = summarize(&args.mesh, &args.voxel.options()?, args.slices.as_deref())?;
+    let options = args.voxel.options()?;
+    if let Some(dir) = &args.slices {
+        super::common::output_folder(dir)?;
+    }
+    let summary = summarize(&args.mesh, &options, args.slices.as_deref())?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {

@@ -6,7 +6,7 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum EvalError {
     /// The file could not be opened or read.
-    #[error("cannot read {path}: {cause}; check the path and permissions")]
+    #[error("cannot read {path}: {cause}; {}", io_hint(cause))]
     Io {
         /// The file.
         path: PathBuf,
@@ -54,8 +54,18 @@ pub enum EvalError {
         /// Which skeleton (predicted/reference and its model name).
         what: String,
     },
+    /// A joint lies so far out that its distances overflow (e.g. a coordinate of 1e300).
+    #[error("the {role} joint {joint:?} at {position:?} is so far out that its distances overflow: check the file's coordinates and units")]
+    NonFinite {
+        /// `predicted` or `reference`.
+        role: String,
+        /// The joint's name.
+        joint: String,
+        /// Its position.
+        position: [f64; 3],
+    },
     /// The two skeletons share neither canonical anatomical keys nor joint names.
-    #[error("the predicted and reference skeletons share no joints: predicted has [{}], reference has [{}]; add a `canonical` map or use a naming preset (mixamo, unity_humanoid, makehuman_game_engine)", predicted.join(", "), reference.join(", "))]
+    #[error("the predicted and reference skeletons share no joints: predicted has [{}], reference has [{}]; add a `canonical` map or use a naming preset (mixamo, unity_humanoid, makehuman_game_engine)", capped(predicted), capped(reference))]
     NoSharedJoints {
         /// The predicted skeleton's canonical keys (or joint names when it has none).
         predicted: Vec<String>,
@@ -91,3 +101,34 @@ pub enum EvalError {
         message: String,
     },
 }
+
+/// What to check after an I/O error: the encoding for text that is not UTF-8, else the path.
+fn io_hint(cause: &std::io::Error) -> &'static str {
+    match cause.kind() {
+        std::io::ErrorKind::InvalidData => "the file is not UTF-8 text",
+        _ => "check the path and permissions",
+    }
+}
+
+/// Names listed in a message: at most [`LISTED_NAMES`], then how many more.
+fn capped(names: &[String]) -> String {
+    let shown: Vec<&str> = names
+        .iter()
+        .take(LISTED_NAMES)
+        .map(|n| cap_chars(n))
+        .collect();
+    match names.len().checked_sub(LISTED_NAMES) {
+        Some(more) if more > 0 => format!("{}, ... and {more} more", shown.join(", ")),
+        _ => shown.join(", "),
+    }
+}
+
+/// At most 40 characters of a name.
+fn cap_chars(name: &str) -> &str {
+    name.char_indices()
+        .nth(40)
+        .map_or(name, |(cut, _)| &name[..cut])
+}
+
+/// How many joint names an error message lists.
+const LISTED_NAMES: usize = 12;

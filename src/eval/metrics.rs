@@ -381,6 +381,14 @@ pub fn evaluate(
             }
         })
         .collect();
+    if let Some(j) = joints.iter().find(|j| !j.error.is_finite()) {
+        let far = if j.predicted.abs().max_element() >= j.reference.abs().max_element() {
+            ("predicted", &j.predicted_joint, j.predicted)
+        } else {
+            ("reference", &j.reference_joint, j.reference)
+        };
+        return Err(non_finite(far));
+    }
     let errors: Vec<f64> = joints.iter().map(|j| j.error).collect();
     let errors_percent: Vec<f64> = joints.iter().map(|j| j.error_percent).collect();
     let worst_joint = joints
@@ -410,6 +418,23 @@ pub fn evaluate(
             bone_sample_spacing: spacing,
         },
     );
+    if ![chamfer.j2j, chamfer.j2b, chamfer.b2b]
+        .iter()
+        .all(|d| d.is_finite())
+    {
+        let far = [(&predicted, "predicted"), (&reference, "reference")]
+            .into_iter()
+            .flat_map(|(rig, role)| {
+                rig.skeleton
+                    .joints
+                    .iter()
+                    .map(move |j| (role, &j.name, j.position))
+            })
+            .max_by(|a, b| a.2.abs().max_element().total_cmp(&b.2.abs().max_element()));
+        if let Some(far) = far {
+            return Err(non_finite(far));
+        }
+    }
     Ok(Evaluation {
         model: reference.model.clone(),
         rig: reference.rig.clone(),
@@ -428,6 +453,15 @@ pub fn evaluate(
         joints,
         warnings,
     })
+}
+
+/// [`EvalError::NonFinite`] for the joint `(role, name, position)` furthest out.
+fn non_finite((role, joint, position): (&str, &String, glam::DVec3)) -> EvalError {
+    EvalError::NonFinite {
+        role: role.to_owned(),
+        joint: joint.clone(),
+        position: position.to_array(),
+    }
 }
 
 impl Evaluation {

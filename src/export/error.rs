@@ -10,8 +10,8 @@ pub enum ExportError {
     Io {
         /// The file.
         path: PathBuf,
-        /// The I/O error.
-        #[source]
+        /// The I/O error (part of the message, hence not a `source()`, which would print it
+        /// twice in an error chain).
         cause: std::io::Error,
     },
     /// The skeleton has no joints.

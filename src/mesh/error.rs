@@ -5,12 +5,13 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum MeshError {
     /// The file could not be opened or read.
-    #[error("cannot read {path}: {source}")]
+    #[error("cannot read {path}: {cause}")]
     Io {
         /// The file.
         path: PathBuf,
-        /// The underlying I/O error.
-        source: std::io::Error,
+        /// The underlying I/O error (part of the message, hence not a `source()`, which would
+        /// print it twice in an error chain).
+        cause: std::io::Error,
     },
     /// The file extension is not one skelfit reads.
     #[error("unknown mesh format for {path}: expected .obj, .gltf, .glb, .stl or .ply")]
@@ -43,7 +44,7 @@ pub enum MeshError {
         value: [f64; 3],
     },
     /// A triangle refers to a vertex that does not exist.
-    #[error("triangle {triangle} refers to vertex {index} but the mesh has only {vertex_count} vertices: the file is corrupt")]
+    #[error("triangle {triangle} refers to vertex {index} counting from 0 (vertex {} counting from 1, as OBJ files do) but the mesh has only {vertex_count} vertices: the file is corrupt", index.saturating_add(1))]
     IndexOutOfRange {
         /// Index of the offending triangle.
         triangle: usize,

@@ -1,6 +1,7 @@
 //! glTF 2.0 (`.gltf` + buffers, `.glb`) reading, with skinned meshes in their bind pose.
 
 use super::gltf_accessor;
+use super::gltf_buffers;
 use super::gltf_nodes::NodeTree;
 use super::gltf_skin::{vertex_weights, SkinBind};
 use super::load::{finish, guarded, parse_error, read_bytes};
@@ -55,10 +56,16 @@ pub struct GltfScene {
 /// mirroring transform (negative determinant) are reversed so they stay outward-wound.
 /// The result is welded and validated like every loader (see [`load`](super::load)).
 ///
+/// External buffers are read only from `data:` URIs and from relative paths to regular files
+/// inside the folder of `path` (symbolic links and `..` resolved first), at most `byteLength`
+/// bytes each: absolute paths, `file:` and other schemes, paths leading outside the folder,
+/// devices and FIFOs are refused, so a hostile file cannot make skelfit read other files.
+///
 /// # Errors
-/// [`MeshError::Io`] (also for a missing external buffer), [`MeshError::Empty`] (empty file, no
-/// triangle primitives), [`MeshError::Parse`] (invalid or truncated glTF/GLB, accessors out of
-/// bounds or of the wrong type, quantized positions), [`MeshError::NonFinite`],
+/// [`MeshError::Io`] (the file itself cannot be read), [`MeshError::Empty`] (empty file, no
+/// triangle primitives), [`MeshError::Parse`] (invalid or truncated glTF/GLB; a buffer that is
+/// refused, missing or shorter than its `byteLength`, the message naming its URI; accessors out
+/// of bounds or of the wrong type, e.g. quantized positions), [`MeshError::NonFinite`],
 /// [`MeshError::IndexOutOfRange`] (an index beyond its primitive's vertices),
 /// [`MeshError::Degenerate`].
 pub fn load_gltf(path: &Path) -> Result<Mesh, MeshError> {
@@ -135,14 +142,8 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
     let json = document.into_json();
     check_attribute_indices(&json).map_err(error)?;
     let document = gltf::Document::from_json(json).map_err(|e| error(e.to_string()))?;
-    let buffers = gltf::import_buffers(&document, path.parent(), blob).map_err(|e| match e {
-        gltf::Error::Io(source) => MeshError::Io {
-            path: path.to_path_buf(),
-            source,
-        },
-        other => error(format!("cannot load buffers: {other}")),
-    })?;
-    let buffers: Vec<&[u8]> = buffers.iter().map(|b| &b.0[..]).collect();
+    let buffers = gltf_buffers::buffers(&document, path, blob).map_err(error)?;
+    let buffers: Vec<&[u8]> = buffers.iter().map(Vec::as_slice).collect();
     let tree = NodeTree::new(&document).map_err(error)?;
     let roots: Vec<usize> = match document
         .default_scene()
@@ -284,8 +285,12 @@ fn append_mesh(
             buffers,
             &[DataType::F32],
             Dimensions::Vec3,
-            &format!("POSITION of {what} (quantized positions are not supported)"),
-        )?;
+            &format!("POSITION of {what}"),
+        )
+        .map_err(|m| match positions_accessor.data_type() {
+            DataType::F32 => m,
+            _ => format!("{m} (quantized positions are not supported)"),
+        })?;
         let reader = primitive.reader(|b| buffers.get(b.index()).copied());
         let positions: Vec<DVec3> = reader
             .read_positions()

@@ -72,9 +72,9 @@ pub fn load_with_source_map(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), Mes
 
 /// Reads the whole file; an empty file is [`MeshError::Empty`].
 pub(super) fn read_bytes(path: &Path) -> Result<Vec<u8>, MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+    let bytes = std::fs::read(path).map_err(|cause| MeshError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     })?;
     if bytes.is_empty() {
         return Err(MeshError::Empty {

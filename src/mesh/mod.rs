@@ -16,6 +16,7 @@
 mod error;
 mod gltf;
 mod gltf_accessor;
+mod gltf_buffers;
 mod gltf_nodes;
 mod gltf_skin;
 mod load;

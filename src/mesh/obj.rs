@@ -1,6 +1,6 @@
-//! Wavefront OBJ reading (through `tobj`).
+//! Wavefront OBJ reading: a small strict parser, coordinates in f64.
 
-use super::load::{finish, guarded, parse_error, read_bytes};
+use super::load::{finish, parse_error, read_bytes};
 use super::{Mesh, MeshError};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -9,14 +9,16 @@ use std::path::Path;
 const FORMAT: &str = "obj";
 
 /// Reads a Wavefront OBJ file: all objects and groups merged into one mesh, polygons
-/// triangulated as fans, points and lines ignored, materials not read. Welded and validated
+/// triangulated as fans, points and lines ignored, materials not read. Coordinates are read
+/// as f64 (a figure far from the origin keeps its detail); `v x y z w` is divided by `w`. Welded and validated
 /// like every loader (see [`load`](super::load)). The mesh keeps the file's vertex order
 /// (less the vertices no face uses and those welded into an earlier one), so vertex `i` of a
 /// file whose vertices all belong to faces and are distinct is vertex `i` of the mesh.
 ///
 /// # Errors
 /// [`MeshError::Io`] if the file cannot be read; [`MeshError::Empty`] for an empty file or one
-/// without faces; [`MeshError::Parse`] for bytes that are not OBJ text;
+/// without faces; [`MeshError::Parse`] for bytes that are not OBJ text or a malformed `v`/`f`
+/// statement (the message gives the line number), `w = 0`;
 /// [`MeshError::IndexOutOfRange`] for a face vertex index that does not exist (the triangle
 /// number counts the triangles the faces before it produce); [`MeshError::NonFinite`] for a
 /// `nan`/`inf` coordinate of a vertex some face uses (the vertex number is its 0-based
@@ -29,70 +31,48 @@ pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
 /// [`load_obj`] with the source map of [`load_with_source_map`](super::load_with_source_map).
 pub(super) fn read_obj(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
     let bytes = read_bytes(path)?;
-    let text = std::str::from_utf8(&bytes)
-        .map_err(|e| parse_error(path, FORMAT, format!("not OBJ text ({e})")))?;
-    let scan = scan(path, text)?;
-    if scan.vertex_lines == 0 && scan.faces == 0 {
+    let text = std::str::from_utf8(&bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        parse_error(
+            path,
+            FORMAT,
+            format!("line {line}: not OBJ text (invalid UTF-8)"),
+        )
+    })?;
+    let parsed = parse(text)
+        .map_err(|(line, message)| parse_error(path, FORMAT, format!("line {line}: {message}")))?;
+    let ParsedObj {
+        coordinates,
+        corners,
+        out_of_range,
+    } = parsed;
+    if let Some(error) = out_of_range {
+        return Err(error);
+    }
+    if coordinates.is_empty() && corners.is_empty() {
         return Err(parse_error(
             path,
             FORMAT,
             "no vertex (v) or face (f) statements found",
         ));
     }
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: false,
-        ignore_points: true,
-        ignore_lines: true,
-    };
-    let models = guarded(path, FORMAT, || {
-        let mut reader = std::io::Cursor::new(text.as_bytes());
-        tobj::load_obj_buf(&mut reader, &options, |_| {
-            Err(tobj::LoadError::OpenFileFailed)
-        })
-        .map(|(models, _materials)| models)
-        .map_err(|e| parse_error(path, FORMAT, e))
-    })?;
-    // `tobj` keeps each object's vertices in the order its faces first use them; put them
-    // back in the file's order. A vertex is found among the file's `v` statements by its
-    // exact coordinates as `tobj` parsed them (the same text parsed to the same float type).
-    let like = models.first().map_or(&[][..], |m| &m.mesh.positions[..]);
-    let coordinates: Vec<[u64; 3]> = scan
-        .coordinates
-        .iter()
-        .map(|c| c.map(|word| parsed_like(like, word)))
-        .collect();
-    let mut file_index: HashMap<[u64; 3], u32> = HashMap::new();
-    for (i, p) in coordinates.iter().enumerate() {
-        file_index.entry(*p).or_insert(i as u32);
+    // Raw vertices: the file vertices some face uses, in file order.
+    let mut used = vec![false; coordinates.len()];
+    for &c in &corners {
+        used[c as usize] = true;
     }
-    let mut corners: Vec<u32> = Vec::new(); // file vertex per triangle corner
-    let mut used: Vec<Option<DVec3>> = vec![None; coordinates.len()];
-    for model in &models {
-        let mut to_file = Vec::with_capacity(model.mesh.positions.len() / 3);
-        for p in model.mesh.positions.chunks_exact(3) {
-            let key = [p[0], p[1], p[2]].map(|c| f64::from(c).to_bits());
-            let Some(&i) = file_index.get(&key) else {
-                return Err(parse_error(
-                    path,
-                    FORMAT,
-                    "a vertex read by the OBJ parser matches no `v` statement; re-export the file",
-                ));
-            };
-            used[i as usize] = Some(DVec3::new(p[0].into(), p[1].into(), p[2].into()));
-            to_file.push(i);
-        }
-        corners.extend(model.mesh.indices.iter().map(|&k| to_file[k as usize]));
-    }
-    // Raw vertices: the used file vertices, in file order.
     let mut raw_of_file = vec![u32::MAX; used.len()];
     let mut file_of_raw = Vec::new();
     let mut positions = Vec::new();
-    for (i, p) in used.iter().enumerate() {
-        if let Some(p) = p {
+    for (i, &u) in used.iter().enumerate() {
+        if u {
             raw_of_file[i] = positions.len() as u32;
             file_of_raw.push(i);
-            positions.push(*p);
+            positions.push(coordinates[i]);
         }
     }
     let triangles = corners
@@ -118,10 +98,7 @@ pub(super) fn read_obj(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshErro
         .collect();
     let source = (0..used.len())
         .map(|i| match raw_of_file[i] {
-            u32::MAX => {
-                let c = coordinates[i].map(f64::from_bits);
-                at_position.get(&exact_key(DVec3::from_array(c))).copied()
-            }
+            u32::MAX => at_position.get(&exact_key(coordinates[i])).copied(),
             raw => raw_map[raw as usize],
         })
         .collect();
@@ -133,81 +110,155 @@ fn exact_key(p: DVec3) -> [u64; 3] {
     (p + DVec3::ZERO).to_array().map(f64::to_bits)
 }
 
-/// What a quick pass over the OBJ text found.
-struct Scan<'a> {
-    vertex_lines: usize,
-    faces: usize,
-    /// The coordinate words of every `v` statement (empty when missing).
-    coordinates: Vec<[&'a str; 3]>,
+/// What [`parse`] read.
+struct ParsedObj {
+    /// Every `v` statement's position (divided by its `w`), f64.
+    coordinates: Vec<DVec3>,
+    /// File vertex (0-based) of every triangle corner, three per triangle.
+    corners: Vec<u32>,
+    /// The first face index beyond the vertices defined before it, as a mesh error (the
+    /// triangle number counts the triangles of the faces before it).
+    out_of_range: Option<MeshError>,
 }
 
-/// The bits of `word` parsed as the float type `tobj` returns (the element type of `like`),
-/// widened to `f64`; NaN bits when it does not parse (`tobj` rejects such a file first).
-fn parsed_like<T: std::str::FromStr + Into<f64>>(_like: &[T], word: &str) -> u64 {
-    word.parse::<T>().map_or(f64::NAN, Into::into).to_bits()
-}
-
-/// Counts vertices and faces and checks every face index before `tobj` sees it (so that no
-/// index can overflow its arithmetic), resolving relative (negative) indices as `tobj` does:
-/// against the elements defined so far.
-fn scan<'a>(path: &Path, text: &'a str) -> Result<Scan<'a>, MeshError> {
+/// Parses OBJ text: `v x y z [w]` (or `v x y z r g b`), and `f` faces of `v`, `v/vt`,
+/// `v//vn` or `v/vt/vn` corners with 1-based or negative (relative) indices, triangulated as
+/// fans. Every other statement (`vt`, `vn`, `l`, `p`, `g`, `o`, `s`, `usemtl`, ...) is
+/// skipped; `#` starts a comment and a `\` at the end of a line continues it.
+///
+/// # Errors
+/// `(line, message)` (line 1-based) for a malformed `v` or `f` statement.
+fn parse(text: &str) -> Result<ParsedObj, (usize, String)> {
+    let mut parsed = ParsedObj {
+        coordinates: Vec::new(),
+        corners: Vec::new(),
+        out_of_range: None,
+    };
     let mut counts = [0usize; 3]; // v, vt, vn
-    let mut faces = 0usize;
-    let mut triangles_before = 0usize;
-    let mut coordinates = Vec::new();
-    for (line_number, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                counts[0] += 1;
-                let mut c = [""; 3];
-                for (slot, word) in c.iter_mut().zip(words.by_ref()) {
-                    *slot = word;
-                }
-                coordinates.push(c);
+    let mut pending = String::new();
+    let mut pending_line = 0;
+    for (k, raw_line) in text.lines().enumerate() {
+        let line_number = k + 1;
+        let content = raw_line.split('#').next().unwrap_or("");
+        if let Some(continued) = content.trim_end().strip_suffix('\\') {
+            if pending.is_empty() {
+                pending_line = line_number;
             }
-            Some("vt") => counts[1] += 1,
-            Some("vn") => counts[2] += 1,
-            Some(keyword @ ("f" | "l")) => {
-                let corners: Vec<&str> = words.collect();
-                for corner in &corners {
-                    for (slot, field) in corner.split('/').enumerate().take(3) {
-                        let Ok(index) = field.parse::<i64>() else {
-                            continue; // empty (v//vn) or a syntax error tobj reports
-                        };
-                        let count = counts[slot] as i64;
-                        let resolved = if index < 0 { count + index } else { index - 1 };
-                        if slot == 0 && keyword == "f" && resolved >= count {
-                            return Err(MeshError::IndexOutOfRange {
-                                triangle: triangles_before,
-                                index: resolved as usize,
-                                vertex_count: counts[0],
-                            });
-                        }
-                        if resolved < 0 || resolved >= count {
-                            return Err(parse_error(
-                                path,
-                                FORMAT,
-                                format!(
-                                    "line {}: index {index} in {corner:?} does not exist \
-                                     (there are {count} so far; OBJ indices start at 1)",
-                                    line_number + 1
-                                ),
-                            ));
-                        }
+            pending.push_str(continued);
+            pending.push(' ');
+            continue;
+        }
+        let (line, line_number) = if pending.is_empty() {
+            (content, line_number)
+        } else {
+            pending.push_str(content);
+            (pending.as_str(), pending_line)
+        };
+        statement(line, &mut counts, &mut parsed).map_err(|m| (line_number, m))?;
+        pending.clear();
+    }
+    if !pending.is_empty() {
+        let line = std::mem::take(&mut pending);
+        statement(&line, &mut counts, &mut parsed).map_err(|m| (pending_line, m))?;
+    }
+    Ok(parsed)
+}
+
+/// Reads one (comment-free, joined) statement into `parsed`.
+fn statement(line: &str, counts: &mut [usize; 3], parsed: &mut ParsedObj) -> Result<(), String> {
+    let mut words = line.split_whitespace();
+    match words.next() {
+        Some("v") => {
+            let values: Vec<&str> = words.collect();
+            let number = |word: &str| {
+                word.parse::<f64>()
+                    .map_err(|_| format!("vertex coordinate {word:?} is not a number"))
+            };
+            if values.len() < 3 {
+                return Err(format!(
+                    "a vertex needs x, y and z, found {} values",
+                    values.len()
+                ));
+            }
+            let mut p = DVec3::new(number(values[0])?, number(values[1])?, number(values[2])?);
+            match values.len() {
+                3 | 6 => {} // plain, or with an RGB colour (ignored)
+                4 => {
+                    let w = number(values[3])?;
+                    if w == 0.0 || !w.is_finite() {
+                        return Err(format!(
+                            "vertex weight w = {w}: a position needs a finite, nonzero w"
+                        ));
+                    }
+                    if w != 1.0 {
+                        p /= w;
                     }
                 }
-                if keyword == "f" {
-                    faces += 1;
-                    triangles_before += corners.len().saturating_sub(2);
+                n => {
+                    return Err(format!(
+                        "a vertex has x, y, z and then w or r g b, found {n} values"
+                    ))
                 }
             }
-            _ => {}
+            counts[0] += 1;
+            parsed.coordinates.push(p);
+        }
+        Some("vt") => counts[1] += 1,
+        Some("vn") => counts[2] += 1,
+        Some("f") => {
+            let mut face = Vec::new();
+            for corner in words {
+                face.push(corner_vertex(corner, counts, parsed)?);
+            }
+            if face.len() >= 3 {
+                for i in 1..face.len() - 1 {
+                    parsed.corners.extend([face[0], face[i], face[i + 1]]);
+                }
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// The file vertex (0-based) of one face corner `v[/vt[/vn]]`; a vertex index beyond those
+/// defined so far is recorded in `parsed.out_of_range` (and vertex 0 used meanwhile).
+fn corner_vertex(corner: &str, counts: &[usize; 3], parsed: &mut ParsedObj) -> Result<u32, String> {
+    const WHAT: [&str; 3] = ["vertex", "texture coordinate", "normal"];
+    let mut vertex = 0u32;
+    let fields: Vec<&str> = corner.split('/').collect();
+    if fields.len() > 3 {
+        return Err(format!("face corner {corner:?} has more than v/vt/vn"));
+    }
+    for (slot, field) in fields.iter().enumerate() {
+        if field.is_empty() && slot > 0 {
+            continue; // v//vn or v/vt/
+        }
+        let index: i64 = field
+            .parse()
+            .map_err(|_| format!("face corner {corner:?}: {field:?} is not an index"))?;
+        let count = counts[slot] as i64;
+        let resolved = if index < 0 { count + index } else { index - 1 };
+        if index == 0 || resolved < 0 || (slot > 0 && resolved >= count) {
+            return Err(format!(
+                "{} index {index} in {corner:?} does not exist (there are {count} so far; OBJ \
+                 indices start at 1, negative ones count back from the last)",
+                WHAT[slot]
+            ));
+        }
+        if slot == 0 {
+            if resolved >= count || resolved > i64::from(u32::MAX) {
+                if parsed.out_of_range.is_none() {
+                    parsed.out_of_range = Some(MeshError::IndexOutOfRange {
+                        triangle: parsed.corners.len() / 3,
+                        index: usize::try_from(resolved).unwrap_or(usize::MAX),
+                        vertex_count: counts[0],
+                    });
+                }
+            } else {
+                vertex = resolved as u32;
+            }
         }
     }
-    Ok(Scan {
-        vertex_lines: counts[0],
-        faces,
-        coordinates,
-    })
+    Ok(vertex)
 }

@@ -29,7 +29,7 @@ pub(super) fn read_ply(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshErro
     let ply = guarded(path, FORMAT, || {
         Parser::<DefaultElement>::new()
             .read_ply(&mut std::io::Cursor::new(&bytes))
-            .map_err(|e| parse_error(path, FORMAT, e))
+            .map_err(|e| parse_error(path, FORMAT, ply_message(&e)))
     })?;
     let vertices = ply
         .payload
@@ -126,4 +126,36 @@ fn index_list(property: &Property) -> Option<Vec<i64>> {
         Property::ListUInt(v) => widen(v),
         _ => return None,
     })
+}
+
+/// A one-line message for a `ply-rs` error: its line number, its summary and the offending
+/// text, without the nested grammar dumps (`ParseError { location: ... }`) it carries.
+fn ply_message(error: &ply_rs_bw::parser::ParseError) -> String {
+    let text = error.to_string();
+    let summary = text.lines().next().unwrap_or_default();
+    let summary = match summary.split_once(": ") {
+        Some((prefix, rest)) if prefix.starts_with("Line ") => rest,
+        _ => summary,
+    };
+    let summary = summary.trim_end_matches('.');
+    let mut summary = summary.to_string();
+    if let Some(first) = summary.get(..1) {
+        let lower = first.to_lowercase();
+        summary.replace_range(..1, &lower);
+    }
+    let offending = text
+        .split("String: '")
+        .nth(1)
+        .and_then(|s| s.split('\'').next())
+        .map(str::trim)
+        .filter(|s| !s.is_empty());
+    let mut message = match error.line() {
+        Some(line) => format!("line {line}: {summary}"),
+        None => summary,
+    };
+    if let Some(offending) = offending {
+        let shown: String = offending.chars().take(80).collect();
+        message += &format!(" ({shown:?})");
+    }
+    message
 }

@@ -6,13 +6,13 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum OutlineError {
     /// The outline file could not be read or written.
-    #[error("cannot access {path}: {source}")]
+    #[error("cannot access {path}: {cause}")]
     Io {
         /// The file.
         path: PathBuf,
-        /// The I/O error.
-        #[source]
-        source: std::io::Error,
+        /// The I/O error (part of the message, hence not a `source()`, which would print it
+        /// twice in an error chain).
+        cause: std::io::Error,
     },
     /// The file extension is neither `.csv` nor `.svg`.
     #[error(

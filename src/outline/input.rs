@@ -163,9 +163,9 @@ pub fn read_outline(path: &Path, options: &OutlineOptions) -> Result<Outline, Ou
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .unwrap_or_default();
-    let text = std::fs::read_to_string(path).map_err(|source| OutlineError::Io {
+    let text = std::fs::read_to_string(path).map_err(|cause| OutlineError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     })?;
     let points = match extension.as_str() {
         "csv" | "txt" => parse_csv(&text)?,

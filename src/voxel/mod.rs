@@ -6,6 +6,8 @@ mod error;
 mod figure;
 mod grid;
 mod options;
+mod outlier;
+mod sizing;
 mod solid;
 mod surface;
 mod voxelize;

@@ -1,5 +1,6 @@
 //! Voxelization parameters.
 
+use super::VoxelError;
 use serde::Serialize;
 
 /// How large a voxel is.
@@ -37,5 +38,52 @@ impl Default for VoxelOptions {
             padding: 2,
             inside_threshold: 0.5,
         }
+    }
+}
+
+impl VoxelOptions {
+    /// The smallest grid any mesh gets: one voxel per axis plus the padding on both sides,
+    /// `(1 + 2 · max(padding, 1))³` voxels (saturating).
+    pub fn minimum_voxels(&self) -> usize {
+        let side = self.padding.max(1).saturating_mul(2).saturating_add(1);
+        side.saturating_mul(side).saturating_mul(side)
+    }
+
+    /// Checks the options before any work.
+    ///
+    /// # Errors
+    /// [`VoxelError::InvalidSize`] for a size that is not a positive finite number (a fraction
+    /// not in (0, 1]), [`VoxelError::BudgetTooSmall`] when `max_voxels` is below
+    /// [`VoxelOptions::minimum_voxels`] (no mesh could ever be voxelized), and
+    /// [`VoxelError::InvalidThreshold`] for an `inside_threshold` outside [0, 1).
+    ///
+    /// # Example
+    /// ```
+    /// use skelfit::voxel::{VoxelError, VoxelOptions};
+    /// assert!(VoxelOptions::default().validate().is_ok());
+    /// let tiny = VoxelOptions { max_voxels: 100, ..Default::default() };
+    /// assert!(matches!(tiny.validate(), Err(VoxelError::BudgetTooSmall { minimum: 125, .. })));
+    /// ```
+    pub fn validate(&self) -> Result<(), VoxelError> {
+        match self.size {
+            VoxelSize::Absolute(h) if h > 0.0 && h.is_finite() => {}
+            VoxelSize::Fraction(f) if f > 0.0 && f <= 1.0 => {}
+            VoxelSize::Absolute(value) | VoxelSize::Fraction(value) => {
+                return Err(VoxelError::InvalidSize { value })
+            }
+        }
+        let minimum = self.minimum_voxels();
+        if self.max_voxels < minimum {
+            return Err(VoxelError::BudgetTooSmall {
+                budget: self.max_voxels,
+                minimum,
+            });
+        }
+        if !(0.0..1.0).contains(&self.inside_threshold) {
+            return Err(VoxelError::InvalidThreshold {
+                value: self.inside_threshold,
+            });
+        }
+        Ok(())
     }
 }

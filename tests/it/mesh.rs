@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 // ---------------------------------------------------------------- writers for test files
 
 /// OBJ text; `split` writes every triangle with its own vertices (as UV seams do).
-fn obj_text(mesh: &Mesh, split: bool) -> String {
+pub(crate) fn obj_text(mesh: &Mesh, split: bool) -> String {
     let mut s = String::from("# test\no first\n");
     if split {
         for (t, _) in mesh.triangles.iter().enumerate() {
@@ -36,7 +36,7 @@ fn obj_text(mesh: &Mesh, split: bool) -> String {
     s
 }
 
-fn stl_ascii(mesh: &Mesh) -> String {
+pub(crate) fn stl_ascii(mesh: &Mesh) -> String {
     let mut s = String::from("solid test\n");
     for t in 0..mesh.triangles.len() {
         s.push_str("facet normal 0 0 0\nouter loop\n");
@@ -49,7 +49,7 @@ fn stl_ascii(mesh: &Mesh) -> String {
     s
 }
 
-fn stl_binary(mesh: &Mesh, header: &[u8]) -> Vec<u8> {
+pub(crate) fn stl_binary(mesh: &Mesh, header: &[u8]) -> Vec<u8> {
     let mut bytes = vec![0u8; 80];
     bytes[..header.len()].copy_from_slice(header);
     bytes.extend((mesh.triangles.len() as u32).to_le_bytes());
@@ -66,7 +66,7 @@ fn stl_binary(mesh: &Mesh, header: &[u8]) -> Vec<u8> {
 }
 
 /// ASCII PLY with float coordinates and faces listed under `list_name`.
-fn ply_ascii(positions: &[DVec3], faces: &[Vec<u32>], list_name: &str) -> String {
+pub(crate) fn ply_ascii(positions: &[DVec3], faces: &[Vec<u32>], list_name: &str) -> String {
     let mut s = format!(
         "ply\nformat ascii 1.0\ncomment test\nelement vertex {}\nproperty float x\n\
          property float y\nproperty float z\nelement face {}\n\
@@ -87,7 +87,7 @@ fn ply_ascii(positions: &[DVec3], faces: &[Vec<u32>], list_name: &str) -> String
     s
 }
 
-fn ply_binary(positions: &[DVec3], faces: &[Vec<u32>]) -> Vec<u8> {
+pub(crate) fn ply_binary(positions: &[DVec3], faces: &[Vec<u32>]) -> Vec<u8> {
     let header = format!(
         "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty double x\n\
          property double y\nproperty double z\nelement face {}\n\
@@ -112,7 +112,11 @@ fn ply_binary(positions: &[DVec3], faces: &[Vec<u32>]) -> Vec<u8> {
 
 /// A glTF document for `mesh` (f32 positions, u32 indices) under a node with `translation`;
 /// returns the JSON and the binary buffer.
-fn gltf_parts(mesh: &Mesh, translation: [f64; 3], uri: Option<&str>) -> (String, Vec<u8>) {
+pub(crate) fn gltf_parts(
+    mesh: &Mesh,
+    translation: [f64; 3],
+    uri: Option<&str>,
+) -> (String, Vec<u8>) {
     let mut bin = Vec::new();
     let (min, max) = mesh.bounding_box().unwrap();
     for p in &mesh.positions {
@@ -152,7 +156,7 @@ fn gltf_parts(mesh: &Mesh, translation: [f64; 3], uri: Option<&str>) -> (String,
     (json, bin)
 }
 
-fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+pub(crate) fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     let mut json = json.as_bytes().to_vec();
     while json.len() % 4 != 0 {
         json.push(b' ');
@@ -174,13 +178,13 @@ fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     out
 }
 
-fn write(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
+pub(crate) fn write(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, bytes).unwrap();
     path
 }
 
-fn cube() -> Mesh {
+pub(crate) fn cube() -> Mesh {
     Mesh::cuboid(DVec3::new(-1.0, 0.0, 0.5), DVec3::new(1.0, 3.0, 2.0))
 }
 
