@@ -66,5 +66,6 @@ pub mod skeleton;
 pub mod skin;
 pub mod template;
 pub mod voxel;
+pub mod warning;
 
 pub use error::{Error, Result};

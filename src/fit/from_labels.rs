@@ -11,7 +11,7 @@
 //! ```
 
 use super::{AxialPath, DigitInput, DorsalProbe, FitInput, LimbInput, Side};
-use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part, Side as PartSide};
+use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part};
 use crate::distance::DistanceMap;
 use crate::medial::MedialSurface;
 use crate::paths::{DmsGraph, Search};
@@ -316,10 +316,7 @@ pub fn fit_input(
                 continue;
             }
             path.reverse(); // axis first
-            let side = match parts[part].side {
-                Some(PartSide::R) => Side::Right,
-                _ => Side::Left,
-            };
+            let side = parts[part].side.unwrap_or(Side::Left);
             let attach = surface.centre(path[0]);
             limbs.push(paths.limb(part, kind, number, side, attach, &path));
         }
@@ -362,12 +359,8 @@ pub fn fit_input(
     (input, warnings)
 }
 
-fn side_name(side: Option<PartSide>) -> &'static str {
-    match side {
-        Some(PartSide::L) => "left",
-        Some(PartSide::R) => "right",
-        None => "unpaired",
-    }
+fn side_name(side: Option<Side>) -> &'static str {
+    side.map_or("unpaired", Side::as_str)
 }
 
 /// A limb pair: parts of one label and girdle matched left to right along the body.
@@ -396,7 +389,7 @@ fn limb_pairs(labelling: &Labelling) -> Vec<PairParts> {
                 (_, Some(LimbPair::Hind)) => LimbKind::HindLeg,
                 _ => LimbKind::Leg,
             };
-            let sorted = |side: PartSide| {
+            let sorted = |side: Side| {
                 let mut v: Vec<usize> = (0..labelling.parts.len())
                     .filter(|&i| {
                         let p = &labelling.parts[i];
@@ -409,7 +402,7 @@ fn limb_pairs(labelling: &Labelling) -> Vec<PairParts> {
                 });
                 v
             };
-            let (lefts, rights) = (sorted(PartSide::L), sorted(PartSide::R));
+            let (lefts, rights) = (sorted(Side::Left), sorted(Side::Right));
             let count = lefts.len().max(rights.len());
             let first = out.iter().filter(|p: &&PairParts| p.kind == kind).count();
             for k in 0..count {

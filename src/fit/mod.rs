@@ -39,7 +39,7 @@ pub use input::{
 };
 pub use options::{BendSnap, FitOptions};
 
-use crate::skeleton::{Joint, JointId, Skeleton};
+use crate::skeleton::{Canonical, Joint, JointId, Skeleton};
 use crate::template::{apply_preset, Girdle, LimbKind, Template};
 use axial::{AxialFit, Bounds};
 use frames::FrameKind;
@@ -764,8 +764,8 @@ fn assemble(
         }
     }
     if template.placed("trunk").is_some() {
-        wanted.push("spine".into());
-        wanted.push("chest".into());
+        wanted.push(Canonical::Spine.to_string());
+        wanted.push(Canonical::Chest.to_string());
         assign_trunk_keys(&skeleton, &mut canonical, &template.axial);
     }
     for key in wanted {
@@ -788,9 +788,12 @@ pub fn assign_trunk_keys(
     canonical: &mut BTreeMap<String, JointId>,
     axial: &crate::template::AxialRules,
 ) {
-    canonical.remove("spine");
-    canonical.remove("chest");
-    let (Some(&pelvis), Some(&neck)) = (canonical.get("pelvis"), canonical.get("neck")) else {
+    canonical.remove(Canonical::Spine.as_str());
+    canonical.remove(Canonical::Chest.as_str());
+    let (Some(&pelvis), Some(&neck)) = (
+        canonical.get(Canonical::Pelvis.as_str()),
+        canonical.get(Canonical::Neck.as_str()),
+    ) else {
         return;
     };
     // The chain pelvis -> ... -> neck, pelvis first.
@@ -834,10 +837,10 @@ pub fn assign_trunk_keys(
         other => other,
     };
     if let Some(s) = spine {
-        canonical.insert("spine".into(), chain[s]);
+        canonical.insert(Canonical::Spine.to_string(), chain[s]);
     }
     if let Some(c) = chest {
-        canonical.insert("chest".into(), chain[c]);
+        canonical.insert(Canonical::Chest.to_string(), chain[c]);
     }
 }
 

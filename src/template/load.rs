@@ -2,7 +2,7 @@
 
 use super::model::*;
 use super::{TemplateError, TemplateProblem};
-use crate::eval::is_canonical_key;
+use crate::skeleton::canonical::is_canonical_key;
 use crate::skeleton::{Dof, LocalAxis};
 use serde::Deserialize;
 use std::collections::{BTreeMap, BTreeSet};

@@ -1,5 +1,5 @@
 use super::*;
-use crate::eval::{is_canonical_key, CANONICAL_KEYS};
+use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
 use crate::skeleton::{Joint, JointId, LocalAxis, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
