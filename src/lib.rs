@@ -56,6 +56,7 @@ pub mod general;
 pub mod lod;
 pub mod medial;
 pub mod mesh;
+pub mod options;
 pub mod outline;
 pub mod output;
 pub mod paths;

@@ -18,6 +18,7 @@
 use super::{AxialPath, EarInput, Side};
 use crate::anatomy::{Label, Labelling};
 use crate::distance::DistanceMap;
+use crate::options::{Checks, OptionProblems};
 use crate::voxel::NEIGHBOURS_26;
 use glam::DVec3;
 use std::cmp::Reverse;
@@ -46,6 +47,22 @@ pub struct EarOptions {
     pub reach: f64,
     /// Half-width (points) of the moving average smoothing each ear path. Default 2.
     pub smoothing: usize,
+}
+
+impl EarOptions {
+    /// Checks every option.
+    ///
+    /// # Errors
+    /// Every option out of range.
+    pub fn validate(&self) -> Result<(), OptionProblems> {
+        let mut c = Checks::default();
+        c.range("min_length", self.min_length, 0.0, 100.0);
+        c.range("min_prominence", self.min_prominence, 0.0, 100.0);
+        c.range("min_rise", self.min_rise, -1.0, 1.0);
+        c.range("max_asymmetry", self.max_asymmetry, 0.0, 100.0);
+        c.range("reach", self.reach, 0.0, 100.0);
+        c.finish()
+    }
 }
 
 impl Default for EarOptions {

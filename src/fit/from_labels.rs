@@ -14,6 +14,7 @@ use super::{AxialPath, DigitInput, DorsalProbe, FitInput, LimbInput, Side};
 use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part};
 use crate::distance::DistanceMap;
 use crate::medial::MedialSurface;
+use crate::options::{Checks, OptionProblems};
 use crate::paths::{DmsGraph, Search};
 use crate::template::LimbKind;
 use glam::DVec3;
@@ -43,6 +44,26 @@ pub struct FitInputOptions {
     pub min_limb_slenderness: f64,
     /// Ear detection ([`super::ears`], run by `pipeline::rig` when the template has ears).
     pub ears: super::EarOptions,
+}
+
+impl FitInputOptions {
+    /// Checks every option, the ear options included.
+    ///
+    /// # Errors
+    /// Every option out of range.
+    pub fn validate(&self) -> Result<(), OptionProblems> {
+        let mut c = Checks::default();
+        c.range("weight_exponent", self.weight_exponent, 0.0, 20.0);
+        c.range("end_extension", self.end_extension, 0.0, 10.0);
+        c.range(
+            "min_limb_slenderness",
+            self.min_limb_slenderness,
+            0.0,
+            1000.0,
+        );
+        c.nested("ears", self.ears.validate());
+        c.finish()
+    }
 }
 
 impl Default for FitInputOptions {

@@ -118,7 +118,7 @@ pub(super) struct Scene<'a> {
 /// nothing panics on odd input.
 ///
 /// # Errors
-/// [`RefineError::EmptyMesh`], [`RefineError::BadDirections`] for zero, non-finite or parallel
+/// [`RefineError::InvalidOptions`] (checked first), [`RefineError::EmptyMesh`], [`RefineError::BadDirections`] for zero, non-finite or parallel
 /// `up`/`forward`, [`RefineError::BadJointId`] for a canonical id outside the skeleton.
 pub fn refine(
     mesh: &Mesh,
@@ -128,6 +128,7 @@ pub fn refine(
     forward: DVec3,
     options: &RefineOptions,
 ) -> Result<Refinement, RefineError> {
+    options.validate()?;
     if mesh.triangles.is_empty() {
         return Err(RefineError::EmptyMesh);
     }

@@ -31,6 +31,8 @@ struct RawHeader {
     #[serde(default)]
     description: String,
     posture: Spanned<String>,
+    #[serde(default)]
+    refine: Option<Spanned<String>>,
 }
 
 #[derive(Deserialize)]
@@ -270,6 +272,18 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
             Posture::Upright
         }
     };
+
+    let refinement = header.refine.and_then(|r| match r.get_ref().as_str() {
+        "human_slicing" => Some(RefineKind::HumanSlicing),
+        other => {
+            p.push(
+                "template.refine",
+                &r.span(),
+                format!("unknown refinement {other:?}: use human_slicing or leave it out"),
+            );
+            None
+        }
+    });
 
     // Sections.
     let sections_span = raw.sections.span();
@@ -781,6 +795,7 @@ fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
         description: header.description,
         file: p.file.to_string(),
         posture,
+        refinement,
         sections,
         axial: AxialRules {
             dorsal_offset,
