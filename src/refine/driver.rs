@@ -83,9 +83,10 @@ impl Rough<'_> {
         self.canonical.get(key.as_str()).copied()
     }
 
-    /// The mean height in `frame` of those of `keys` the skeleton has.
-    fn mean_height(&self, frame: &BodyFrame, keys: [Canonical; 2]) -> Option<f64> {
-        let hs: Vec<f64> = keys
+    /// The mean height in `frame` of the left and right `joint` the skeleton has.
+    fn pair_height(&self, frame: &BodyFrame, joint: fn(Side) -> Canonical) -> Option<f64> {
+        let hs: Vec<f64> = Side::BOTH
+            .map(joint)
             .iter()
             .filter_map(|k| self.at(*k))
             .map(|p| frame.h(p))
@@ -128,23 +129,8 @@ pub fn refine(
     forward: DVec3,
     options: &RefineOptions,
 ) -> Result<Refinement, RefineError> {
-    options.validate()?;
-    if mesh.triangles.is_empty() {
-        return Err(RefineError::EmptyMesh);
-    }
+    check_input(mesh, skeleton, canonical, up, forward, options)?;
     let bad = || RefineError::BadDirections { up, forward };
-    if !up.is_finite() || !forward.is_finite() {
-        return Err(bad());
-    }
-    for (key, id) in canonical {
-        if id.0 >= skeleton.len() {
-            return Err(RefineError::BadJointId {
-                key: key.clone(),
-                id: id.0,
-                len: skeleton.len(),
-            });
-        }
-    }
     let rough = Rough {
         skeleton,
         canonical,
@@ -161,23 +147,7 @@ pub fn refine(
     let mut found = Found::new();
 
     // 3.1 Head and body frame.
-    let near_head = rough
-        .at(Canonical::Head)
-        .unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
-    match head_slices(mesh, &frame, near_head, options) {
-        Some(slices) => {
-            if let Some(f) = frame_from_head(&frame, &slices, frame.forward) {
-                frame = f;
-            }
-            match head_joint(&frame, &slices, options) {
-                Some(h) => {
-                    found.insert(Canonical::Head, h.joint);
-                }
-                None => warnings.push(RefineWarning::NoOccipitalCircle),
-            }
-        }
-        None => warnings.push(RefineWarning::NoHead),
-    }
+    head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
 
     // 3.2 Torso points.
     let head_point = found
@@ -192,17 +162,8 @@ pub fn refine(
         options,
     };
     scene.centre = median_centre(&scene, &rough, head_point);
-    let hips_h = rough.mean_height(
-        &frame,
-        [Canonical::Hip(Side::Left), Canonical::Hip(Side::Right)],
-    );
-    let shoulders_h = rough.mean_height(
-        &frame,
-        [
-            Canonical::Shoulder(Side::Left),
-            Canonical::Shoulder(Side::Right),
-        ],
-    );
+    let hips_h = rough.pair_height(&frame, Canonical::Hip);
+    let shoulders_h = rough.pair_height(&frame, Canonical::Shoulder);
     // 3.3 Arms.
     let waist = match (hips_h, shoulders_h) {
         (Some(h), Some(s)) => Some((h + s) * 0.5),
@@ -212,22 +173,7 @@ pub fn refine(
         arm(&scene, &rough, side, waist, &mut found, &mut warnings);
     }
 
-    let refined_shoulders = match (
-        found.get(&Canonical::Shoulder(Side::Left)),
-        found.get(&Canonical::Shoulder(Side::Right)),
-    ) {
-        (Some(l), Some(r)) => Some((frame.h(*l) + frame.h(*r)) * 0.5),
-        _ => shoulders_h,
-    };
-    let bounds = match (head_point, refined_shoulders, hips_h) {
-        (Some(h), Some(s), Some(p)) => Some(TorsoBounds {
-            head: frame.h(h),
-            shoulders: s,
-            hips: p,
-        }),
-        _ => None,
-    };
-    let torso = bounds.and_then(|b| torso_points(mesh, &frame, scene.centre, &b, options));
+    let torso = torso(&scene, head_point, shoulders_h, hips_h, &found);
     if torso.is_none() {
         warnings.push(RefineWarning::NoTorsoSilhouette);
     }
@@ -248,22 +194,7 @@ pub fn refine(
     }
 
     // 3.2 Spine and neck.
-    let spine_result: Option<Spine> = match (&torso, found.get(&Canonical::Head)) {
-        (Some(t), Some(&h)) => spine(&frame, scene.centre, h, t, options),
-        _ => None,
-    };
-    match (&spine_result, &torso) {
-        (Some(s), _) => {
-            if let Some(c7) = s.joint("C7") {
-                found.insert(Canonical::Neck, c7);
-            }
-        }
-        (None, Some(t)) => {
-            found.insert(Canonical::Neck, t.neck.lerp(t.throat, options.neck_depth));
-            warnings.push(RefineWarning::SpineOutOfOrder);
-        }
-        (None, None) => warnings.push(RefineWarning::NoSpine),
-    }
+    let spine_result = spine_and_neck(&scene, torso.as_ref(), &mut found, &mut warnings);
 
     let (mut targets, moved) = accepted(&rough, &found, height, options, &mut warnings);
     let spine_ends_moved = moved.contains_key(Canonical::Pelvis.as_str())
@@ -281,6 +212,121 @@ pub fn refine(
         torso,
         warnings,
     })
+}
+
+/// Places the head joint, and turns `frame` to the head's axes when the head slices give them
+/// (seed 004, 3.1).
+fn head(
+    mesh: &Mesh,
+    frame: &mut BodyFrame,
+    rough: &Rough,
+    options: &RefineOptions,
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+) {
+    let near_head = rough
+        .at(Canonical::Head)
+        .unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
+    match head_slices(mesh, frame, near_head, options) {
+        Some(slices) => {
+            if let Some(f) = frame_from_head(frame, &slices, frame.forward) {
+                *frame = f;
+            }
+            match head_joint(frame, &slices, options) {
+                Some(h) => {
+                    found.insert(Canonical::Head, h.joint);
+                }
+                None => warnings.push(RefineWarning::NoOccipitalCircle),
+            }
+        }
+        None => warnings.push(RefineWarning::NoHead),
+    }
+}
+
+/// The spine from the head joint and the torso silhouette, and the neck at its C7 (at the
+/// silhouette's neck point when there is no spine).
+fn spine_and_neck(
+    scene: &Scene,
+    torso: Option<&TorsoPoints>,
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+) -> Option<Spine> {
+    let options = scene.options;
+    let spine_result: Option<Spine> = match (torso, found.get(&Canonical::Head)) {
+        (Some(t), Some(&h)) => spine(&scene.frame, scene.centre, h, t, options),
+        _ => None,
+    };
+    match (&spine_result, torso) {
+        (Some(s), _) => {
+            if let Some(c7) = s.joint("C7") {
+                found.insert(Canonical::Neck, c7);
+            }
+        }
+        (None, Some(t)) => {
+            found.insert(Canonical::Neck, t.neck.lerp(t.throat, options.neck_depth));
+            warnings.push(RefineWarning::SpineOutOfOrder);
+        }
+        (None, None) => warnings.push(RefineWarning::NoSpine),
+    }
+    spine_result
+}
+
+/// The errors of [`refine`] that need no work: bad options, an empty mesh, non-finite
+/// directions, canonical ids outside the skeleton.
+fn check_input(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    up: DVec3,
+    forward: DVec3,
+    options: &RefineOptions,
+) -> Result<(), RefineError> {
+    options.validate()?;
+    if mesh.triangles.is_empty() {
+        return Err(RefineError::EmptyMesh);
+    }
+    if !up.is_finite() || !forward.is_finite() {
+        return Err(RefineError::BadDirections { up, forward });
+    }
+    for (key, id) in canonical {
+        if id.0 >= skeleton.len() {
+            return Err(RefineError::BadJointId {
+                key: key.clone(),
+                id: id.0,
+                len: skeleton.len(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The torso's characteristic points from the median silhouette between the hips and the
+/// head, with the shoulders' height from the refined shoulders when both were found (else
+/// the rough `shoulders_h`).
+fn torso(
+    scene: &Scene,
+    head_point: Option<DVec3>,
+    shoulders_h: Option<f64>,
+    hips_h: Option<f64>,
+    found: &Found,
+) -> Option<TorsoPoints> {
+    let frame = &scene.frame;
+    let refined_shoulders = match (
+        found.get(&Canonical::Shoulder(Side::Left)),
+        found.get(&Canonical::Shoulder(Side::Right)),
+    ) {
+        (Some(l), Some(r)) => Some((frame.h(*l) + frame.h(*r)) * 0.5),
+        _ => shoulders_h,
+    };
+    let bounds = match (head_point, refined_shoulders, hips_h) {
+        (Some(h), Some(s), Some(p)) => Some(TorsoBounds {
+            head: frame.h(h),
+            shoulders: s,
+            hips: p,
+        }),
+        _ => None,
+    };
+    bounds.and_then(|b| torso_points(scene.mesh, frame, scene.centre, &b, scene.options))
 }
 
 /// The body frame with `up` along the rough legs' ankle→hip direction, when the legs are
@@ -318,17 +364,8 @@ fn median_centre(scene: &Scene, rough: &Rough, head_point: Option<DVec3>) -> DVe
     // centimetre or two off the body's middle, and the spine and neck (found in that plane)
     // moved sideways with it.
     match (
-        rough.mean_height(
-            frame,
-            [Canonical::Hip(Side::Left), Canonical::Hip(Side::Right)],
-        ),
-        rough.mean_height(
-            frame,
-            [
-                Canonical::Shoulder(Side::Left),
-                Canonical::Shoulder(Side::Right),
-            ],
-        ),
+        rough.pair_height(frame, Canonical::Hip),
+        rough.pair_height(frame, Canonical::Shoulder),
     ) {
         (Some(hips_h), Some(shoulders_h)) => {
             let origin = frame.at_height(centre, 0.5 * (hips_h + shoulders_h));
