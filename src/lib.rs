@@ -54,6 +54,7 @@ pub mod export;
 pub mod fit;
 pub mod general;
 pub mod lod;
+mod math;
 pub mod medial;
 pub mod mesh;
 pub mod options;

@@ -363,16 +363,12 @@ fn nearest_point(points: &[DVec3], p: DVec3) -> usize {
         .map_or(0, |(k, _)| k)
 }
 
-/// Moving average over `half` points each side, the ends kept.
+/// Moving average over `half` points each side, the ends kept as they are.
 fn smooth(path: &mut [DVec3], half: usize) {
     let n = path.len();
     if half == 0 || n < 3 {
         return;
     }
-    let original = path.to_vec();
-    for (k, p) in path.iter_mut().enumerate().take(n - 1).skip(1) {
-        let w = half.min(k).min(n - 1 - k);
-        let sum: DVec3 = original[k - w..=k + w].iter().copied().sum();
-        *p = sum / (2 * w + 1) as f64;
-    }
+    let smoothed = crate::math::moving_average(path, half);
+    path[1..n - 1].copy_from_slice(&smoothed[1..n - 1]);
 }
