@@ -19,9 +19,9 @@ fn colour(r: Option<Region>) -> [u8; 3] {
         Some(Region::Trunk) => [90, 90, 220],
         Some(Region::Head) => [230, 60, 60],
         Some(Region::Tail) => [160, 60, 200],
-        Some(Region::Fore(Some(Side::L))) => [40, 190, 40],
+        Some(Region::Fore(Some(Side::Left))) => [40, 190, 40],
         Some(Region::Fore(_)) => [20, 110, 20],
-        Some(Region::Hind(Some(Side::L))) => [240, 170, 30],
+        Some(Region::Hind(Some(Side::Left))) => [240, 170, 30],
         Some(Region::Hind(_)) => [150, 100, 10],
         Some(Region::Wing(_)) => [30, 200, 200],
     }

@@ -187,7 +187,11 @@ fn run() -> Result<(), String> {
             max(&before),
             mean(&after),
             max(&after),
-            r.warnings.join("; ")
+            r.warnings
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("; ")
         );
         eprintln!(
             "{model}: fit {:.1}/{:.1} refined {:.1}/{:.1} mm {:?}",

@@ -93,7 +93,7 @@ fn evaluate(mesh_path: &Path, rig_path: &Path) -> Result<Outcome, String> {
         before: Vec::new(),
         after: Vec::new(),
         refined: BTreeMap::new(),
-        warnings: refined.warnings.clone(),
+        warnings: refined.warnings.iter().map(ToString::to_string).collect(),
     };
     for key in REFINED_KEYS {
         let Some(&id) = canonical.get(key) else {

@@ -54,6 +54,9 @@ pub enum Error {
     /// Writing a report or picture failed.
     #[error(transparent)]
     Report(#[from] crate::report::ReportError),
+    /// Options of several stages are invalid: each stage's error.
+    #[error("{}", .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("; "))]
+    Options(Vec<Error>),
 }
 
 /// `Result` with the crate [`Error`](enum@Error).

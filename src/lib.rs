@@ -54,8 +54,10 @@ pub mod export;
 pub mod fit;
 pub mod general;
 pub mod lod;
+mod math;
 pub mod medial;
 pub mod mesh;
+pub mod options;
 pub mod outline;
 pub mod output;
 pub mod paths;
@@ -66,5 +68,6 @@ pub mod skeleton;
 pub mod skin;
 pub mod template;
 pub mod voxel;
+pub mod warning;
 
 pub use error::{Error, Result};

@@ -4,6 +4,9 @@
 use glam::{DAffine3, DMat3, DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
+pub mod canonical;
+pub use canonical::{Canonical, Side};
+
 /// Index of a joint in [`Skeleton::joints`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub struct JointId(pub usize);

@@ -8,7 +8,7 @@ use std::fmt::Write;
 
 /// Colour of a part as `[r, g, b]`: one hue per label, lighter for the right side.
 pub fn part_colour(part: &Part) -> [u8; 3] {
-    let right = part.side == Some(Side::R);
+    let right = part.side == Some(Side::Right);
     let pick = |l: [u8; 3], r: [u8; 3]| if right { r } else { l };
     match part.label {
         Label::Trunk => [127, 127, 127],
@@ -249,8 +249,8 @@ pub fn labels_svg(mesh: &Mesh, l: &Labelling, width: f64) -> String {
     let mut y = height + 4.0;
     for (i, p) in l.parts.iter().enumerate() {
         let side = match p.side {
-            Some(Side::L) => " L",
-            Some(Side::R) => " R",
+            Some(Side::Left) => " L",
+            Some(Side::Right) => " R",
             None => "",
         };
         let pair = match p.limb_pair {

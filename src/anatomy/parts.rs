@@ -51,14 +51,7 @@ impl Label {
     }
 }
 
-/// The figure's side of a paired part (left is `up × forward`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub enum Side {
-    /// The figure's left.
-    L,
-    /// The figure's right.
-    R,
-}
+pub use crate::skeleton::Side;
 
 /// Which girdle a limb pair belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]

@@ -26,6 +26,7 @@
 use super::{Label, Labelling, LimbPair, Side};
 use crate::eval::ReferenceRig;
 use crate::mesh::Mesh;
+use crate::skeleton::Canonical;
 use crate::skeleton::{JointId, Skeleton};
 use glam::DVec3;
 use serde::Serialize;
@@ -60,11 +61,7 @@ impl Region {
 
     /// Short name such as `fore_L`, `hind_R`, `trunk`.
     pub fn name(self) -> String {
-        let s = |side: Option<Side>| match side {
-            Some(Side::L) => "_L",
-            Some(Side::R) => "_R",
-            None => "",
-        };
+        let s = |side: Option<Side>| side.map_or("", Side::suffix);
         match self {
             Region::Trunk => "trunk".into(),
             Region::Head => "head".into(),
@@ -77,23 +74,21 @@ impl Region {
 }
 
 fn key_region(key: &str) -> Option<Region> {
-    let side = if key.ends_with("_L") {
-        Some(Side::L)
-    } else if key.ends_with("_R") {
-        Some(Side::R)
-    } else {
-        None
+    let Ok(key) = key.parse::<Canonical>() else {
+        return key.starts_with("tail").then_some(Region::Tail);
     };
-    let base = key.trim_end_matches("_L").trim_end_matches("_R");
-    let region = match base {
-        "pelvis" | "spine" | "chest" | "clavicle" => Region::Trunk,
-        "neck" | "head" => Region::Head,
-        "shoulder" | "elbow" | "wrist" => Region::Fore(None),
-        "hip" | "knee" | "ankle" | "toe" => Region::Hind(None),
-        _ if base.starts_with("tail") => Region::Tail,
-        _ => return None,
+    let region = match key {
+        Canonical::Pelvis | Canonical::Spine | Canonical::Chest | Canonical::Clavicle(_) => {
+            Region::Trunk
+        }
+        Canonical::Neck | Canonical::Head => Region::Head,
+        Canonical::Shoulder(_) | Canonical::Elbow(_) | Canonical::Wrist(_) => Region::Fore(None),
+        Canonical::Hip(_) | Canonical::Knee(_) | Canonical::Ankle(_) | Canonical::Toe(_) => {
+            Region::Hind(None)
+        }
+        Canonical::Tail(_) => Region::Tail,
     };
-    Some(region.with_side(side))
+    Some(region.with_side(key.side()))
 }
 
 /// Words of a joint name: split at non-alphanumerics, digits and lower→upper case changes,
@@ -129,9 +124,9 @@ fn name_region(name: &str) -> Option<Region> {
     let w = words(name);
     let has = |list: &[&str]| w.iter().any(|x| list.contains(&x.as_str()));
     let side = if has(&["l", "left"]) {
-        Some(Side::L)
+        Some(Side::Left)
     } else if has(&["r", "right"]) {
-        Some(Side::R)
+        Some(Side::Right)
     } else {
         None
     };
@@ -368,18 +363,21 @@ mod tests {
         assert_eq!(words("IKBackLeg.L"), ["ik", "back", "leg", "l"]);
         assert_eq!(
             name_region("FrontUpperLeg.L"),
-            Some(Region::Fore(Some(Side::L)))
+            Some(Region::Fore(Some(Side::Left)))
         );
         assert_eq!(
             name_region("BackLowerLeg.R"),
-            Some(Region::Hind(Some(Side::R)))
+            Some(Region::Hind(Some(Side::Right)))
         );
         assert_eq!(name_region("Ear2.L"), Some(Region::Head));
         assert_eq!(name_region("FrontShoulder.L"), Some(Region::Trunk));
         assert_eq!(name_region("Tail3"), Some(Region::Tail));
         assert_eq!(name_region("Torso2"), Some(Region::Trunk));
         assert_eq!(name_region("FFB.L"), None);
-        assert_eq!(key_region("shoulder_L"), Some(Region::Fore(Some(Side::L))));
+        assert_eq!(
+            key_region("shoulder_L"),
+            Some(Region::Fore(Some(Side::Left)))
+        );
         assert_eq!(key_region("tail_mid"), Some(Region::Tail));
     }
 }

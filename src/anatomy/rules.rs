@@ -193,9 +193,9 @@ fn sides(a: usize, b: usize, sections: &[Section], frame: &Frame) -> [(usize, Si
     let la = sections[a].mean.dot(frame.left);
     let lb = sections[b].mean.dot(frame.left);
     if la >= lb {
-        [(a, Side::L), (b, Side::R)]
+        [(a, Side::Left), (b, Side::Right)]
     } else {
-        [(a, Side::R), (b, Side::L)]
+        [(a, Side::Right), (b, Side::Left)]
     }
 }
 
@@ -416,9 +416,9 @@ pub fn label_graph(
     };
     let side_of = |s: usize| {
         if (sections[s].mean - centre).dot(frame.left) >= 0.0 {
-            Side::L
+            Side::Left
         } else {
-            Side::R
+            Side::Right
         }
     };
     // A lone arm of a human-like figure: a long section left unpaired that joins the upper
@@ -437,7 +437,7 @@ pub fn label_graph(
                 };
                 warnings.push(format!(
                     "found a single arm (section {s}, on the {} side): its partner is missing",
-                    if side == Side::L { "left" } else { "right" }
+                    if side == Side::Left { "left" } else { "right" }
                 ));
             }
         }

@@ -3,6 +3,7 @@
 //! naming preset may have renamed every joint).
 
 use crate::fit::{Fit, Side};
+use crate::skeleton::canonical::{Canonical, Tail};
 use crate::skeleton::{JointId, Skeleton};
 use glam::{DMat3, DVec3};
 use std::collections::BTreeMap;
@@ -67,18 +68,18 @@ fn single_chain(s: &Skeleton, from: JointId) -> (Vec<JointId>, Vec<JointId>) {
 /// Reads the body of `fit`. `warnings` receives what is missing.
 pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
     let s = &fit.skeleton;
-    let key_of: BTreeMap<JointId, &str> = fit
+    let key_of: BTreeMap<JointId, Option<Canonical>> = fit
         .canonical
         .iter()
-        .map(|(k, id)| (*id, k.as_str()))
+        .map(|(k, id)| (*id, k.parse::<Canonical>().ok()))
         .collect();
     let root = fit
         .canonical
-        .get("pelvis")
+        .get(Canonical::Pelvis.as_str())
         .copied()
         .filter(|id| s.joint(*id).parent.is_none())
         .unwrap_or(JointId(0));
-    let head = fit.canonical.get("head").copied();
+    let head = fit.canonical.get(Canonical::Head.as_str()).copied();
     // Spine: the ancestors of the head down to the root.
     let mut spine = Vec::new();
     if let Some(h) = head {
@@ -116,7 +117,7 @@ pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
     // Tail: from the canonical tail base, else none.
     let tail = fit
         .canonical
-        .get("tail_base")
+        .get(Canonical::Tail(Tail::Base).as_str())
         .map(|&t| single_chain(s, t).0)
         .unwrap_or_default();
 
@@ -170,11 +171,11 @@ pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
         } else {
             Side::Right
         };
-        let key = key_of.get(&first).copied().unwrap_or("");
+        let key = key_of.get(&first).copied().flatten();
         let girdle_joint = if girdle == GirdleKind::Pectoral
             && chain.len() >= 2
-            && (key.starts_with("clavicle")
-                || (!key.starts_with("shoulder")
+            && (matches!(key, Some(Canonical::Clavicle(_)))
+                || (!matches!(key, Some(Canonical::Shoulder(_)))
                     && ((branch.is_empty() && chain.len() >= 9)
                         || (!branch.is_empty() && chain.len() >= 4))))
         {

@@ -209,8 +209,8 @@ pub fn summary(l: &Labelling) -> String {
         .map(|p| {
             let mut s = p.label.name().to_string();
             match p.side {
-                Some(Side::L) => s.push_str(" L"),
-                Some(Side::R) => s.push_str(" R"),
+                Some(Side::Left) => s.push_str(" L"),
+                Some(Side::Right) => s.push_str(" R"),
                 None => {}
             }
             if p.label == Label::Leg {

@@ -2,49 +2,11 @@
 //! derive them from engine names, and the pairing used by the metrics.
 
 use super::{EvalError, ReferenceRig};
+use crate::skeleton::canonical::{is_canonical_key, key_rank};
 use crate::skeleton::{JointId, Skeleton};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
-
-/// The canonical anatomical keys, in table order (head to toe, left before right). Tail joints
-/// use keys starting with `tail_` (e.g. `tail_base`, `tail_mid`, `tail_end`, `tail_01`).
-pub const CANONICAL_KEYS: &[&str] = &[
-    "pelvis",
-    "spine",
-    "chest",
-    "neck",
-    "head",
-    "clavicle_L",
-    "clavicle_R",
-    "shoulder_L",
-    "shoulder_R",
-    "elbow_L",
-    "elbow_R",
-    "wrist_L",
-    "wrist_R",
-    "hip_L",
-    "hip_R",
-    "knee_L",
-    "knee_R",
-    "ankle_L",
-    "ankle_R",
-    "toe_L",
-    "toe_R",
-];
-
-/// Whether `key` is a canonical anatomical key ([`CANONICAL_KEYS`] or `tail_*`).
-pub fn is_canonical_key(key: &str) -> bool {
-    CANONICAL_KEYS.contains(&key) || key.starts_with("tail_")
-}
-
-/// Sort position of a canonical key: [`CANONICAL_KEYS`] order, then `tail_*` keys.
-fn key_rank(key: &str) -> usize {
-    CANONICAL_KEYS
-        .iter()
-        .position(|k| *k == key)
-        .unwrap_or(CANONICAL_KEYS.len())
-}
 
 /// Fewest canonical keys a preset must resolve before it is taken as a skeleton's naming.
 const MIN_PRESET_MATCHES: usize = 3;

@@ -6,6 +6,7 @@ use super::{
     Correspondence, EvalError, MatchMethod, ReferenceRig,
 };
 use crate::mesh::Mesh;
+use crate::skeleton::Canonical;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -212,11 +213,11 @@ pub fn resolve_measure(reference: &ReferenceRig, measure: FigureMeasure) -> Figu
         return measure;
     }
     let (map, _) = canonical_map(reference);
-    let at = |key: &str| {
-        map.get(key)
+    let at = |key: Canonical| {
+        map.get(key.as_str())
             .map(|&id| reference.skeleton.joint(id).position)
     };
-    match (at("head"), at("pelvis")) {
+    match (at(Canonical::Head), at(Canonical::Pelvis)) {
         (Some(head), Some(pelvis)) => {
             let d = head - pelvis;
             if d.y > d.x.hypot(d.z) {

@@ -61,6 +61,7 @@ mod table;
 #[cfg(test)]
 mod tests;
 
+pub use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
 pub use bench::{
     bench_counts, bench_csv, bench_markdown, bench_model, bench_table, find_bench_models,
     joint_model_table, stage_names, timing_table, BenchCounts, BenchModel, BenchOptions,
@@ -72,8 +73,8 @@ pub use chamfer::{
     ChamferOptions,
 };
 pub use correspondence::{
-    canonical_map, correspond, detect_preset, is_canonical_key, parse_presets, preset, presets,
-    CanonicalSource, Correspondence, JointPair, MatchMethod, NamingPreset, CANONICAL_KEYS,
+    canonical_map, correspond, detect_preset, parse_presets, preset, presets, CanonicalSource,
+    Correspondence, JointPair, MatchMethod, NamingPreset,
 };
 pub use error::EvalError;
 pub use metrics::{

@@ -2,6 +2,7 @@
 //! over a dataset) and a small text table rendered as Markdown or aligned plain text.
 
 use super::{ErrorSummary, EvalError, Evaluation};
+use crate::skeleton::canonical::key_rank;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -162,10 +163,7 @@ pub fn aggregate(evaluations: &[Evaluation]) -> DatasetSummary {
     let mut by_key: BTreeMap<(usize, String), Vec<f64>> = BTreeMap::new();
     for evaluation in evaluations {
         for joint in &evaluation.joints {
-            let rank = super::CANONICAL_KEYS
-                .iter()
-                .position(|k| *k == joint.key)
-                .unwrap_or(super::CANONICAL_KEYS.len());
+            let rank = key_rank(&joint.key);
             by_key
                 .entry((rank, joint.key.clone()))
                 .or_default()

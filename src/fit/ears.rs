@@ -18,6 +18,7 @@
 use super::{AxialPath, EarInput, Side};
 use crate::anatomy::{Label, Labelling};
 use crate::distance::DistanceMap;
+use crate::options::{Checks, OptionProblems};
 use crate::voxel::NEIGHBOURS_26;
 use glam::DVec3;
 use std::cmp::Reverse;
@@ -46,6 +47,22 @@ pub struct EarOptions {
     pub reach: f64,
     /// Half-width (points) of the moving average smoothing each ear path. Default 2.
     pub smoothing: usize,
+}
+
+impl EarOptions {
+    /// Checks every option.
+    ///
+    /// # Errors
+    /// Every option out of range.
+    pub fn validate(&self) -> Result<(), OptionProblems> {
+        let mut c = Checks::default();
+        c.range("min_length", self.min_length, 0.0, 100.0);
+        c.range("min_prominence", self.min_prominence, 0.0, 100.0);
+        c.range("min_rise", self.min_rise, -1.0, 1.0);
+        c.range("max_asymmetry", self.max_asymmetry, 0.0, 100.0);
+        c.range("reach", self.reach, 0.0, 100.0);
+        c.finish()
+    }
 }
 
 impl Default for EarOptions {
@@ -346,16 +363,12 @@ fn nearest_point(points: &[DVec3], p: DVec3) -> usize {
         .map_or(0, |(k, _)| k)
 }
 
-/// Moving average over `half` points each side, the ends kept.
+/// Moving average over `half` points each side, the ends kept as they are.
 fn smooth(path: &mut [DVec3], half: usize) {
     let n = path.len();
     if half == 0 || n < 3 {
         return;
     }
-    let original = path.to_vec();
-    for (k, p) in path.iter_mut().enumerate().take(n - 1).skip(1) {
-        let w = half.min(k).min(n - 1 - k);
-        let sum: DVec3 = original[k - w..=k + w].iter().copied().sum();
-        *p = sum / (2 * w + 1) as f64;
-    }
+    let smoothed = crate::math::moving_average(path, half);
+    path[1..n - 1].copy_from_slice(&smoothed[1..n - 1]);
 }

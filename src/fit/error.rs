@@ -48,6 +48,9 @@ pub enum FitError {
         /// Points on the path.
         points: usize,
     },
+    /// Options of the fit's input are out of range (every one).
+    #[error("fit input options: {0}")]
+    InvalidInputOptions(#[from] crate::options::OptionProblems),
     /// An option is out of range.
     #[error("fit option {name} = {value} is out of range {range}")]
     InvalidOption {

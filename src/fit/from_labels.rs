@@ -11,9 +11,10 @@
 //! ```
 
 use super::{AxialPath, DigitInput, DorsalProbe, FitInput, LimbInput, Side};
-use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part, Side as PartSide};
+use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part};
 use crate::distance::DistanceMap;
 use crate::medial::MedialSurface;
+use crate::options::{Checks, OptionProblems};
 use crate::paths::{DmsGraph, Search};
 use crate::template::LimbKind;
 use glam::DVec3;
@@ -43,6 +44,26 @@ pub struct FitInputOptions {
     pub min_limb_slenderness: f64,
     /// Ear detection ([`super::ears`], run by `pipeline::rig` when the template has ears).
     pub ears: super::EarOptions,
+}
+
+impl FitInputOptions {
+    /// Checks every option, the ear options included.
+    ///
+    /// # Errors
+    /// Every option out of range.
+    pub fn validate(&self) -> Result<(), OptionProblems> {
+        let mut c = Checks::default();
+        c.range("weight_exponent", self.weight_exponent, 0.0, 20.0);
+        c.range("end_extension", self.end_extension, 0.0, 10.0);
+        c.range(
+            "min_limb_slenderness",
+            self.min_limb_slenderness,
+            0.0,
+            1000.0,
+        );
+        c.nested("ears", self.ears.validate());
+        c.finish()
+    }
 }
 
 impl Default for FitInputOptions {
@@ -202,9 +223,59 @@ pub fn fit_input(
         options,
     };
     let mut warnings = Vec::new();
-    let parts = &labelling.parts;
 
     // Limb pairs and their limb-to-limb paths.
+    let (mut limbs, midpoints, unpaired) = paired_limbs(&paths, &mut warnings);
+    // Head-to-tail path.
+    let (axial_positions, points, radii) = head_to_tail(&paths, &midpoints, &mut warnings);
+    // Unpaired limbs hang from the head-to-tail path.
+    if !unpaired.is_empty() {
+        unpaired_limbs(
+            &paths,
+            &axial_positions,
+            unpaired,
+            &mut limbs,
+            &mut warnings,
+        );
+    }
+    stub_warnings(&limbs, options, &mut warnings);
+
+    // A labelled jaw: from where it leaves the head to its tip.
+    let jaw = labelling.part(Label::Jaw, None).and_then(|p| {
+        let base = paths.nearest(p, p.attachment);
+        let path = paths.centralised(base, paths.distal(p))?;
+        Some(paths.points(&path).0)
+    });
+
+    let input = FitInput {
+        up: labelling.frame.up,
+        forward: labelling.frame.forward,
+        axial: AxialPath {
+            points,
+            radii,
+            sections: None,
+        },
+        limbs,
+        jaw,
+        ears: Vec::new(),
+    };
+    (input, warnings)
+}
+
+/// A limb pair: its pair index and the DMS position of its limb-to-limb path's midpoint.
+type Midpoint = (usize, usize);
+
+/// A limb without a partner: its part, kind and pair number.
+type Unpaired = (usize, LimbKind, usize);
+
+/// The limbs of each labelled pair from the pair's limb-to-limb path (roots mirrored when
+/// `symmetric_roots`), the pairs' midpoints, and the limbs without a partner.
+fn paired_limbs(
+    paths: &Paths,
+    warnings: &mut Vec<String>,
+) -> (Vec<LimbInput>, Vec<Midpoint>, Vec<Unpaired>) {
+    let (labelling, surface, options) = (paths.labelling, paths.surface, paths.options);
+    let parts = &labelling.parts;
     let pairs = limb_pairs(labelling);
     let mut limbs: Vec<LimbInput> = Vec::new();
     let mut midpoints: Vec<(usize, usize)> = Vec::new(); // (pair index, DMS position)
@@ -248,7 +319,19 @@ pub fn fit_input(
         limbs.push(right);
     }
 
-    // Head-to-tail path.
+    (limbs, midpoints, unpaired)
+}
+
+/// The head-to-tail path: from the head's tip (else the top or front trunk voxel) to the tail's
+/// tip, else the farthest pair midpoint, else the trunk voxel farthest from the head; its DMS
+/// positions, points and radii (ends extended to the skin where they are free ends).
+fn head_to_tail(
+    paths: &Paths,
+    midpoints: &[Midpoint],
+    warnings: &mut Vec<String>,
+) -> (Vec<usize>, Vec<DVec3>, Vec<f64>) {
+    let (labelling, surface) = (paths.labelling, paths.surface);
+    let parts = &labelling.parts;
     let head = labelling.part(Label::Head, None).map(|p| paths.head_tip(p));
     let start = head.unwrap_or_else(|| {
         let dir = match labelling.figure {
@@ -301,31 +384,41 @@ pub fn fit_input(
         radii.push(radii[0]);
     }
 
-    // Unpaired limbs hang from the head-to-tail path.
-    if !unpaired.is_empty() {
-        let to_axis = paths.search_many(&axial_positions);
-        for (part, kind, number) in unpaired {
-            let tip = paths.wrist(part);
-            let mut path = to_axis.path_to_source(tip);
-            if path.len() < 2 {
-                warnings.push(format!(
-                    "the {} {} does not reach the head-to-tail path: left out",
-                    side_name(parts[part].side),
-                    parts[part].label.name()
-                ));
-                continue;
-            }
-            path.reverse(); // axis first
-            let side = match parts[part].side {
-                Some(PartSide::R) => Side::Right,
-                _ => Side::Left,
-            };
-            let attach = surface.centre(path[0]);
-            limbs.push(paths.limb(part, kind, number, side, attach, &path));
-        }
-    }
+    (axial_positions, points, radii)
+}
 
-    for limb in &limbs {
+/// The limbs without a partner, each from the head-to-tail path (`axial_positions`) to its tip.
+fn unpaired_limbs(
+    paths: &Paths,
+    axial_positions: &[usize],
+    unpaired: Vec<Unpaired>,
+    limbs: &mut Vec<LimbInput>,
+    warnings: &mut Vec<String>,
+) {
+    let parts = &paths.labelling.parts;
+    let surface = paths.surface;
+    let to_axis = paths.search_many(axial_positions);
+    for (part, kind, number) in unpaired {
+        let tip = paths.wrist(part);
+        let mut path = to_axis.path_to_source(tip);
+        if path.len() < 2 {
+            warnings.push(format!(
+                "the {} {} does not reach the head-to-tail path: left out",
+                side_name(parts[part].side),
+                parts[part].label.name()
+            ));
+            continue;
+        }
+        path.reverse(); // axis first
+        let side = parts[part].side.unwrap_or(Side::Left);
+        let attach = surface.centre(path[0]);
+        limbs.push(paths.limb(part, kind, number, side, attach, &path));
+    }
+}
+
+/// A warning per limb shorter than `min_limb_slenderness` times its median radius.
+fn stub_warnings(limbs: &[LimbInput], options: &FitInputOptions, warnings: &mut Vec<String>) {
+    for limb in limbs {
         let length: f64 = limb.path.windows(2).map(|w| w[0].distance(w[1])).sum();
         let mut radii = limb.radii.clone();
         radii.sort_by(f64::total_cmp);
@@ -339,35 +432,10 @@ pub fn fit_input(
             ));
         }
     }
-
-    // A labelled jaw: from where it leaves the head to its tip.
-    let jaw = labelling.part(Label::Jaw, None).and_then(|p| {
-        let base = paths.nearest(p, p.attachment);
-        let path = paths.centralised(base, paths.distal(p))?;
-        Some(paths.points(&path).0)
-    });
-
-    let input = FitInput {
-        up: labelling.frame.up,
-        forward: labelling.frame.forward,
-        axial: AxialPath {
-            points,
-            radii,
-            sections: None,
-        },
-        limbs,
-        jaw,
-        ears: Vec::new(),
-    };
-    (input, warnings)
 }
 
-fn side_name(side: Option<PartSide>) -> &'static str {
-    match side {
-        Some(PartSide::L) => "left",
-        Some(PartSide::R) => "right",
-        None => "unpaired",
-    }
+fn side_name(side: Option<Side>) -> &'static str {
+    side.map_or("unpaired", Side::as_str)
 }
 
 /// A limb pair: parts of one label and girdle matched left to right along the body.
@@ -396,7 +464,7 @@ fn limb_pairs(labelling: &Labelling) -> Vec<PairParts> {
                 (_, Some(LimbPair::Hind)) => LimbKind::HindLeg,
                 _ => LimbKind::Leg,
             };
-            let sorted = |side: PartSide| {
+            let sorted = |side: Side| {
                 let mut v: Vec<usize> = (0..labelling.parts.len())
                     .filter(|&i| {
                         let p = &labelling.parts[i];
@@ -409,7 +477,7 @@ fn limb_pairs(labelling: &Labelling) -> Vec<PairParts> {
                 });
                 v
             };
-            let (lefts, rights) = (sorted(PartSide::L), sorted(PartSide::R));
+            let (lefts, rights) = (sorted(Side::Left), sorted(Side::Right));
             let count = lefts.len().max(rights.len());
             let first = out.iter().filter(|p: &&PairParts| p.kind == kind).count();
             for k in 0..count {

@@ -5,40 +5,7 @@ use crate::template::LimbKind;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-/// A side of the figure. The figure's left is `up × forward` (+X for +Y up, +Z forward).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub enum Side {
-    /// The figure's left (`_L`).
-    Left,
-    /// The figure's right (`_R`).
-    Right,
-}
-
-impl Side {
-    /// `_L` or `_R`.
-    pub fn suffix(self) -> &'static str {
-        match self {
-            Self::Left => "_L",
-            Self::Right => "_R",
-        }
-    }
-
-    /// `+1` for left, `-1` for right.
-    pub fn sign(self) -> f64 {
-        match self {
-            Self::Left => 1.0,
-            Self::Right => -1.0,
-        }
-    }
-
-    /// `left` or `right`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Self::Left => "left",
-            Self::Right => "right",
-        }
-    }
-}
+pub use crate::skeleton::Side;
 
 /// Optional section boundaries on [`AxialPath::points`], as point indices, head tip first:
 /// head `[0, head_end]`, neck `[head_end, neck_end]`, trunk `[neck_end, trunk_end]`, tail

@@ -131,18 +131,7 @@ impl Polyline {
     }
 }
 
-/// Moving average over `half` neighbours each side, the window shrinking symmetrically near the
-/// ends so the end points stay fixed.
-pub(crate) fn smooth(points: &[DVec3], half: usize) -> Vec<DVec3> {
-    let n = points.len();
-    (0..n)
-        .map(|k| {
-            let h = half.min(k).min(n - 1 - k);
-            let sum: DVec3 = points[k - h..=k + h].iter().copied().sum();
-            sum / (2 * h + 1) as f64
-        })
-        .collect()
-}
+pub(crate) use crate::math::moving_average as smooth;
 
 /// Cumulative boundaries of `weights` normalised to `[0, 1]`: `weights.len() + 1` values
 /// starting at 0 and ending at 1.

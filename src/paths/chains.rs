@@ -91,16 +91,7 @@ fn chain(surface: &MedialSurface, positions: &[usize], nodes: Vec<usize>, radius
 }
 
 /// Box filter of `radius` edges, limited at the ends (Figure 5.6).
-pub(crate) fn smooth(points: &[DVec3], radius: usize) -> Vec<DVec3> {
-    let n = points.len();
-    (0..n)
-        .map(|i| {
-            let k = radius.min(i).min(n - 1 - i);
-            let sum: DVec3 = points[i - k..=i + k].iter().sum();
-            sum / (2 * k + 1) as f64
-        })
-        .collect()
-}
+pub(crate) use crate::math::moving_average as smooth;
 
 #[cfg(test)]
 mod tests {

@@ -11,9 +11,9 @@ use crate::fit::{
 };
 use crate::medial::dms;
 use crate::mesh::Mesh;
-use crate::refine::{refine, RefineOptions};
+use crate::refine::{refine, RefineError, RefineOptions};
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
-use crate::template::{apply_preset, Preset, Template};
+use crate::template::{apply_preset, Preset, RefineKind, Template};
 use crate::voxel::{voxelize, Solid};
 use std::time::Instant;
 
@@ -50,6 +50,39 @@ pub struct RigOptions {
     pub refine: RefineOptions,
     /// Regions of influence and weights (8.3).
     pub skin: SkinOptions,
+}
+
+impl RigOptions {
+    /// Checks the options of every stage (labelling with its voxel, medial and path options,
+    /// the fit's input, the fit, the refinement, the skin).
+    ///
+    /// # Errors
+    /// The stage's error when one stage's options are invalid; [`crate::Error::Options`] with
+    /// each stage's error when several are.
+    pub fn validate(&self) -> crate::Result<()> {
+        let mut errors: Vec<crate::Error> = Vec::new();
+        let mut check = |result: crate::Result<()>| errors.extend(result.err());
+        check(self.label.validate().map_err(Into::into));
+        check(self.label.medial.validate().map_err(Into::into));
+        check(self.label.paths.validate().map_err(Into::into));
+        check(
+            self.input
+                .validate()
+                .map_err(|e| FitError::InvalidInputOptions(e).into()),
+        );
+        check(self.fit.validate().map_err(Into::into));
+        check(
+            self.refine
+                .validate()
+                .map_err(|e| RefineError::InvalidOptions(e).into()),
+        );
+        check(self.skin.validate().map_err(Into::into));
+        match errors.len() {
+            0 => Ok(()),
+            1 => Err(errors.remove(0)),
+            _ => Err(crate::Error::Options(errors)),
+        }
+    }
 }
 
 impl Default for RigOptions {
@@ -165,7 +198,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().map(ToString::to_string));
     lap("fit", &mut timings);
-    if options.refine.in_rig && fit.template == "humanoid" {
+    if options.refine.in_rig && template.refinement == Some(RefineKind::HumanSlicing) {
         let up = input.up;
         match refine(
             mesh,
@@ -207,11 +240,7 @@ pub const MEDIAL_FALLBACK: &str = "per-vertex labels follow the medial surface, 
 /// Validates every stage's options and resolves the chosen template (`None` for
 /// [`TemplateChoice::Auto`]), before any work.
 fn checked_template(options: &RigOptions) -> crate::Result<Option<Template>> {
-    options.label.validate()?;
-    options.label.medial.validate()?;
-    options.label.paths.validate()?;
-    options.fit.validate()?;
-    options.skin.validate()?;
+    options.validate()?;
     Ok(match &options.template {
         TemplateChoice::Builtin(name) => Some(Template::builtin(name)?),
         TemplateChoice::Custom(t) => Some((**t).clone()),
@@ -299,6 +328,67 @@ mod tests {
         assert_eq!(labels.mesh_parts, medial.mesh_parts);
         let warning = labels.warnings.last().unwrap();
         assert!(warning.starts_with(MEDIAL_FALLBACK), "{warning}");
+    }
+
+    #[test]
+    fn head_slice_step_zero_is_an_error_not_a_hang() {
+        let mesh = Mesh::capsule(glam::DVec3::ZERO, 0.2, 1.0, 8, 24);
+        let mut options = RigOptions::default();
+        options.refine.head_slice_step = 0.0;
+        match rig(&mesh, &options) {
+            Err(crate::Error::Refine(RefineError::InvalidOptions(p))) => {
+                assert_eq!(p.0.len(), 1);
+                assert_eq!(p.0[0].name, "head_slice_step");
+            }
+            other => panic!("expected the refine options' error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn max_shift_nan_is_an_error_not_a_disabled_guard() {
+        let mesh = Mesh::capsule(glam::DVec3::ZERO, 0.2, 1.0, 8, 24);
+        let options = RefineOptions {
+            max_shift: f64::NAN,
+            ..Default::default()
+        };
+        let skeleton = crate::skeleton::Skeleton {
+            joints: vec![crate::skeleton::Joint::new(
+                "pelvis",
+                None,
+                glam::DVec3::ZERO,
+            )],
+        };
+        let canonical = [("pelvis".to_string(), crate::skeleton::JointId(0))].into();
+        let refined = refine(
+            &mesh,
+            &skeleton,
+            &canonical,
+            glam::DVec3::Y,
+            glam::DVec3::Z,
+            &options,
+        );
+        match refined {
+            Err(RefineError::InvalidOptions(p)) => assert_eq!(p.0[0].name, "max_shift"),
+            other => panic!("expected the refine options' error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn rig_options_name_every_problem_of_every_stage() {
+        let mut options = RigOptions::default();
+        options.fit.axial_samples = 0;
+        options.refine.limb_step = -1.0;
+        options.refine.max_shift = f64::INFINITY;
+        options.input.ears.reach = f64::NAN;
+        let Err(crate::Error::Options(errors)) = options.validate() else {
+            panic!("expected every stage's error");
+        };
+        assert_eq!(errors.len(), 3, "{errors:?}");
+        let message = crate::Error::Options(errors).to_string();
+        for name in ["axial_samples", "limb_step", "max_shift", "ears.reach"] {
+            assert!(message.contains(name), "{name} missing from {message}");
+        }
+        assert!(RigOptions::default().validate().is_ok());
     }
 
     #[test]

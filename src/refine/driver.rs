@@ -1,50 +1,49 @@
 //! The refinement driver: body frame, head, torso, hips, legs, arms, spine, then the skeleton.
+//! The arm and leg phases are in [`super::arms`] and [`super::legs`].
 
+use super::arms::arm;
 use super::carry::carry;
 use super::frame::{frame_from_head, head_slices, BodyFrame};
 use super::head::head_joint;
-use super::limb::trace_limb;
-use super::limb_joints::{
-    ankle, arc_near, bend, centre_in_depth, on_axis, sole_under, surface_above, transverse_point,
-    wrist, BendRule,
-};
-use super::shoulder::{armpit, shoulder, upper_arm_line, upper_arm_radius};
+use super::legs::leg;
+use super::limb_joints::centre_in_depth;
 use super::spine::{spine, Spine};
 use super::torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
-use super::{RefineError, RefineOptions};
+use super::{RefineError, RefineOptions, RefineWarning};
 use crate::mesh::{slice_plane, Mesh};
-use crate::skeleton::{JointId, Skeleton};
+use crate::skeleton::{Canonical, JointId, Side, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
 
 /// The canonical joints the refinement places.
-pub const REFINED_KEYS: [&str; 15] = [
-    "pelvis",
-    "neck",
-    "head",
-    "shoulder_L",
-    "shoulder_R",
-    "elbow_L",
-    "elbow_R",
-    "wrist_L",
-    "wrist_R",
-    "hip_L",
-    "hip_R",
-    "knee_L",
-    "knee_R",
-    "ankle_L",
-    "ankle_R",
+pub const REFINED: [Canonical; 15] = [
+    Canonical::Pelvis,
+    Canonical::Neck,
+    Canonical::Head,
+    Canonical::Shoulder(Side::Left),
+    Canonical::Shoulder(Side::Right),
+    Canonical::Elbow(Side::Left),
+    Canonical::Elbow(Side::Right),
+    Canonical::Wrist(Side::Left),
+    Canonical::Wrist(Side::Right),
+    Canonical::Hip(Side::Left),
+    Canonical::Hip(Side::Right),
+    Canonical::Knee(Side::Left),
+    Canonical::Knee(Side::Right),
+    Canonical::Ankle(Side::Left),
+    Canonical::Ankle(Side::Right),
 ];
 
-/// The sole under an ankle is searched within this fraction of height across the body.
-const SOLE_REACH: f64 = 0.06;
-
-/// Heights tried in turn as the bottom of the gap under the armpit, as fractions of the way
-/// from the waist to the rough shoulder (the armpit is about 0.7 of the way up).
-const ARMPIT_LEVELS: [f64; 3] = [0.0, 0.2, 0.4];
-
-/// Lateral positions tried per side when searching the armpit.
-const ARMPIT_SAMPLES: usize = 120;
+/// [`REFINED`] as written in files.
+pub const REFINED_KEYS: [&str; 15] = {
+    let mut out = [""; 15];
+    let mut i = 0;
+    while i < REFINED.len() {
+        out[i] = REFINED[i].as_str();
+        i += 1;
+    }
+    out
+};
 
 /// A refined skeleton and what the refinement found on the way.
 #[derive(Debug, Clone, PartialEq)]
@@ -61,8 +60,50 @@ pub struct Refinement {
     pub frame: BodyFrame,
     /// Characteristic torso points, when the median silhouette was found.
     pub torso: Option<TorsoPoints>,
-    /// One line per joint that kept its rough position, naming the joint and the reason.
-    pub warnings: Vec<String>,
+    /// One warning per joint (or group of joints) that kept its rough position.
+    pub warnings: Vec<RefineWarning>,
+}
+
+/// The refined positions found so far.
+pub(super) type Found = BTreeMap<Canonical, DVec3>;
+
+/// The rough skeleton's canonical joints.
+pub(super) struct Rough<'a> {
+    skeleton: &'a Skeleton,
+    canonical: &'a BTreeMap<String, JointId>,
+}
+
+impl Rough<'_> {
+    /// The rough position of `key`, when the skeleton has it.
+    pub(super) fn at(&self, key: Canonical) -> Option<DVec3> {
+        self.id(key).map(|id| self.skeleton.joint(id).position)
+    }
+
+    fn id(&self, key: Canonical) -> Option<JointId> {
+        self.canonical.get(key.as_str()).copied()
+    }
+
+    /// The mean height in `frame` of the left and right `joint` the skeleton has.
+    fn pair_height(&self, frame: &BodyFrame, joint: fn(Side) -> Canonical) -> Option<f64> {
+        let hs: Vec<f64> = Side::BOTH
+            .map(joint)
+            .iter()
+            .filter_map(|k| self.at(*k))
+            .map(|p| frame.h(p))
+            .collect();
+        (!hs.is_empty()).then(|| hs.iter().sum::<f64>() / hs.len() as f64)
+    }
+}
+
+/// What every phase after the head reads: the (fine enough) mesh, the body frame, the figure's
+/// height, a point of the median plane, and the options.
+#[derive(Clone, Copy)]
+pub(super) struct Scene<'a> {
+    pub(super) mesh: &'a Mesh,
+    pub(super) frame: BodyFrame,
+    pub(super) height: f64,
+    pub(super) centre: DVec3,
+    pub(super) options: &'a RefineOptions,
 }
 
 /// Refines a roughly aligned humanoid skeleton by slicing its mesh (seed 004).
@@ -78,7 +119,7 @@ pub struct Refinement {
 /// nothing panics on odd input.
 ///
 /// # Errors
-/// [`RefineError::EmptyMesh`], [`RefineError::BadDirections`] for zero, non-finite or parallel
+/// [`RefineError::InvalidOptions`] (checked first), [`RefineError::EmptyMesh`], [`RefineError::BadDirections`] for zero, non-finite or parallel
 /// `up`/`forward`, [`RefineError::BadJointId`] for a canonical id outside the skeleton.
 pub fn refine(
     mesh: &Mesh,
@@ -88,12 +129,164 @@ pub fn refine(
     forward: DVec3,
     options: &RefineOptions,
 ) -> Result<Refinement, RefineError> {
+    check_input(mesh, skeleton, canonical, up, forward, options)?;
+    let bad = || RefineError::BadDirections { up, forward };
+    let rough = Rough {
+        skeleton,
+        canonical,
+    };
+    let mut warnings = Vec::new();
+    let given = BodyFrame::new(mesh, up, forward).ok_or_else(bad)?;
+    let mut frame = legs_frame(mesh, &rough, given).unwrap_or_else(|| {
+        warnings.push(RefineWarning::NoUprightLegs);
+        given
+    });
+    let height = frame.height();
+    let fine = fine_enough(mesh, options.max_mean_edge * height);
+    let mesh = fine.as_ref().unwrap_or(mesh);
+    let mut found = Found::new();
+
+    // 3.1 Head and body frame.
+    head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
+
+    // 3.2 Torso points.
+    let head_point = found
+        .get(&Canonical::Head)
+        .copied()
+        .or_else(|| rough.at(Canonical::Head));
+    let mut scene = Scene {
+        mesh,
+        frame,
+        height,
+        centre: DVec3::ZERO,
+        options,
+    };
+    scene.centre = median_centre(&scene, &rough, head_point);
+    let hips_h = rough.pair_height(&frame, Canonical::Hip);
+    let shoulders_h = rough.pair_height(&frame, Canonical::Shoulder);
+    // 3.3 Arms.
+    let waist = match (hips_h, shoulders_h) {
+        (Some(h), Some(s)) => Some((h + s) * 0.5),
+        _ => None,
+    };
+    for side in Side::BOTH {
+        arm(&scene, &rough, side, waist, &mut found, &mut warnings);
+    }
+
+    let torso = torso(&scene, head_point, shoulders_h, hips_h, &found);
+    if torso.is_none() {
+        warnings.push(RefineWarning::NoTorsoSilhouette);
+    }
+
+    // 3.3 Hips and pelvis.
+    hips_and_pelvis(
+        &scene,
+        &rough,
+        torso.as_ref(),
+        hips_h,
+        &mut found,
+        &mut warnings,
+    );
+
+    // 3.3 Legs.
+    for side in Side::BOTH {
+        leg(&scene, &rough, side, &mut found, &mut warnings);
+    }
+
+    // 3.2 Spine and neck.
+    let spine_result = spine_and_neck(&scene, torso.as_ref(), &mut found, &mut warnings);
+
+    let (mut targets, moved) = accepted(&rough, &found, height, options, &mut warnings);
+    let spine_ends_moved = moved.contains_key(Canonical::Pelvis.as_str())
+        && moved.contains_key(Canonical::Neck.as_str());
+    if let (Some(s), true) = (&spine_result, spine_ends_moved) {
+        for (id, p) in place_spine_joints(&rough, s) {
+            targets.insert(id, p);
+        }
+    }
+    Ok(Refinement {
+        skeleton: carry(skeleton, &targets),
+        spine: spine_result.map(|s| s.joints).unwrap_or_default(),
+        moved,
+        frame,
+        torso,
+        warnings,
+    })
+}
+
+/// Places the head joint, and turns `frame` to the head's axes when the head slices give them
+/// (seed 004, 3.1).
+fn head(
+    mesh: &Mesh,
+    frame: &mut BodyFrame,
+    rough: &Rough,
+    options: &RefineOptions,
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+) {
+    let near_head = rough
+        .at(Canonical::Head)
+        .unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
+    match head_slices(mesh, frame, near_head, options) {
+        Some(slices) => {
+            if let Some(f) = frame_from_head(frame, &slices, frame.forward) {
+                *frame = f;
+            }
+            match head_joint(frame, &slices, options) {
+                Some(h) => {
+                    found.insert(Canonical::Head, h.joint);
+                }
+                None => warnings.push(RefineWarning::NoOccipitalCircle),
+            }
+        }
+        None => warnings.push(RefineWarning::NoHead),
+    }
+}
+
+/// The spine from the head joint and the torso silhouette, and the neck at its C7 (at the
+/// silhouette's neck point when there is no spine).
+fn spine_and_neck(
+    scene: &Scene,
+    torso: Option<&TorsoPoints>,
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+) -> Option<Spine> {
+    let options = scene.options;
+    let spine_result: Option<Spine> = match (torso, found.get(&Canonical::Head)) {
+        (Some(t), Some(&h)) => spine(&scene.frame, scene.centre, h, t, options),
+        _ => None,
+    };
+    match (&spine_result, torso) {
+        (Some(s), _) => {
+            if let Some(c7) = s.joint("C7") {
+                found.insert(Canonical::Neck, c7);
+            }
+        }
+        (None, Some(t)) => {
+            found.insert(Canonical::Neck, t.neck.lerp(t.throat, options.neck_depth));
+            warnings.push(RefineWarning::SpineOutOfOrder);
+        }
+        (None, None) => warnings.push(RefineWarning::NoSpine),
+    }
+    spine_result
+}
+
+/// The errors of [`refine`] that need no work: bad options, an empty mesh, non-finite
+/// directions, canonical ids outside the skeleton.
+fn check_input(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    up: DVec3,
+    forward: DVec3,
+    options: &RefineOptions,
+) -> Result<(), RefineError> {
+    options.validate()?;
     if mesh.triangles.is_empty() {
         return Err(RefineError::EmptyMesh);
     }
-    let bad = || RefineError::BadDirections { up, forward };
     if !up.is_finite() || !forward.is_finite() {
-        return Err(bad());
+        return Err(RefineError::BadDirections { up, forward });
     }
     for (key, id) in canonical {
         if id.0 >= skeleton.len() {
@@ -104,58 +297,63 @@ pub fn refine(
             });
         }
     }
-    let rough = |key: &str| canonical.get(key).map(|id| skeleton.joint(*id).position);
-    let mut warnings = Vec::new();
-    let given = BodyFrame::new(mesh, up, forward).ok_or_else(bad)?;
-    let legs_up = ["L", "R"]
+    Ok(())
+}
+
+/// The torso's characteristic points from the median silhouette between the hips and the
+/// head, with the shoulders' height from the refined shoulders when both were found (else
+/// the rough `shoulders_h`).
+fn torso(
+    scene: &Scene,
+    head_point: Option<DVec3>,
+    shoulders_h: Option<f64>,
+    hips_h: Option<f64>,
+    found: &Found,
+) -> Option<TorsoPoints> {
+    let frame = &scene.frame;
+    let refined_shoulders = match (
+        found.get(&Canonical::Shoulder(Side::Left)),
+        found.get(&Canonical::Shoulder(Side::Right)),
+    ) {
+        (Some(l), Some(r)) => Some((frame.h(*l) + frame.h(*r)) * 0.5),
+        _ => shoulders_h,
+    };
+    let bounds = match (head_point, refined_shoulders, hips_h) {
+        (Some(h), Some(s), Some(p)) => Some(TorsoBounds {
+            head: frame.h(h),
+            shoulders: s,
+            hips: p,
+        }),
+        _ => None,
+    };
+    bounds.and_then(|b| torso_points(scene.mesh, frame, scene.centre, &b, scene.options))
+}
+
+/// The body frame with `up` along the rough legs' ankle→hip direction, when the legs are
+/// within 45° of `given.up`.
+fn legs_frame(mesh: &Mesh, rough: &Rough, given: BodyFrame) -> Option<BodyFrame> {
+    let legs_up = Side::BOTH
         .iter()
-        .filter_map(|s| Some(rough(&format!("hip_{s}"))? - rough(&format!("ankle_{s}"))?))
+        .filter_map(|&s| Some(rough.at(Canonical::Hip(s))? - rough.at(Canonical::Ankle(s))?))
         .sum::<DVec3>()
         .try_normalize()
         .filter(|n| n.dot(given.up) > std::f64::consts::FRAC_1_SQRT_2);
-    let mut frame = match legs_up.and_then(|n| BodyFrame::new(mesh, n, given.forward)) {
-        Some(f) => f,
-        None => {
-            warnings.push(
-                "body frame: no upright legs in the rough skeleton, using the given up direction"
-                    .into(),
-            );
-            given
-        }
-    };
-    let height = frame.height();
-    let fine = fine_enough(mesh, options.max_mean_edge * height);
-    let mesh = fine.as_ref().unwrap_or(mesh);
-    let mut found: BTreeMap<&str, DVec3> = BTreeMap::new();
+    legs_up.and_then(|n| BodyFrame::new(mesh, n, given.forward))
+}
 
-    // 3.1 Head and body frame.
-    let near_head = rough("head").unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
-    match head_slices(mesh, &frame, near_head, options) {
-        Some(slices) => {
-            if let Some(f) = frame_from_head(&frame, &slices, frame.forward) {
-                frame = f;
-            }
-            match head_joint(&frame, &slices, options) {
-                Some(h) => {
-                    found.insert("head", h.joint);
-                }
-                None => warnings.push("head: no occipital circle on the nose-level slice".into()),
-            }
-        }
-        None => warnings.push("head: no head found slicing down from the top".into()),
-    }
-
-    // 3.2 Torso points.
-    let mean_height = |keys: [&str; 2]| {
-        let hs: Vec<f64> = keys
-            .iter()
-            .filter_map(|k| rough(k))
-            .map(|p| frame.h(p))
-            .collect();
-        (!hs.is_empty()).then(|| hs.iter().sum::<f64>() / hs.len() as f64)
-    };
-    let pelvis_rough = rough("pelvis").or_else(|| Some((rough("hip_L")? + rough("hip_R")?) * 0.5));
-    let head_point = found.get("head").copied().or_else(|| rough("head"));
+/// A point of the median plane (`scene.centre` is not read): half-way across between the rough pelvis and the head, moved
+/// sideways to the middle of the waist's cross-section.
+fn median_centre(scene: &Scene, rough: &Rough, head_point: Option<DVec3>) -> DVec3 {
+    let Scene {
+        mesh,
+        frame,
+        height,
+        ..
+    } = *scene;
+    let frame = &frame;
+    let pelvis_rough = rough.at(Canonical::Pelvis).or_else(|| {
+        Some((rough.at(Canonical::Hip(Side::Left))? + rough.at(Canonical::Hip(Side::Right))?) * 0.5)
+    });
     let centre = match (pelvis_rough, head_point) {
         (Some(p), Some(h)) => p + frame.left * ((h - p).dot(frame.left) * 0.5),
         (Some(p), None) => p,
@@ -165,9 +363,9 @@ pub fn refine(
     // The median plane passes through the waist's cross-section: the rough pelvis can sit a
     // centimetre or two off the body's middle, and the spine and neck (found in that plane)
     // moved sideways with it.
-    let centre = match (
-        mean_height(["hip_L", "hip_R"]),
-        mean_height(["shoulder_L", "shoulder_R"]),
+    match (
+        rough.pair_height(frame, Canonical::Hip),
+        rough.pair_height(frame, Canonical::Shoulder),
     ) {
         (Some(hips_h), Some(shoulders_h)) => {
             let origin = frame.at_height(centre, 0.5 * (hips_h + shoulders_h));
@@ -181,131 +379,34 @@ pub fn refine(
                 })
         }
         _ => centre,
-    };
-    // 3.3 Arms.
-    let waist = match (
-        mean_height(["hip_L", "hip_R"]),
-        mean_height(["shoulder_L", "shoulder_R"]),
-    ) {
-        (Some(h), Some(s)) => Some((h + s) * 0.5),
-        _ => None,
-    };
-    for (side, sign) in [("L", 1.0), ("R", -1.0)] {
-        let key = |joint: &str| -> &'static str {
-            match (joint, side) {
-                ("shoulder", "L") => "shoulder_L",
-                ("shoulder", _) => "shoulder_R",
-                ("elbow", "L") => "elbow_L",
-                ("elbow", _) => "elbow_R",
-                ("wrist", "L") => "wrist_L",
-                _ => "wrist_R",
-            }
-        };
-        let (Some(sh), Some(el), Some(wr)) = (
-            rough(key("shoulder")),
-            rough(key("elbow")),
-            rough(key("wrist")),
-        ) else {
-            warnings.push(format!("shoulder_{side}, elbow_{side}, wrist_{side}: arm joints missing from the rough skeleton"));
-            continue;
-        };
-        let Some(profile) = trace_limb(mesh, &[sh, el, wr], height, options) else {
-            warnings.push(format!(
-                "shoulder_{side}, elbow_{side}, wrist_{side}: the arm could not be sliced"
-            ));
-            continue;
-        };
-        let step = 0.25 * options.limb_step * height;
-        let (se, sw) = (arc_near(&profile, el), arc_near(&profile, wr));
-        match wrist(&profile, se + options.wrist_search_from * (sw - se), step) {
-            Some(w) => {
-                found.insert(key("wrist"), w);
-            }
-            None => warnings.push(format!("wrist_{side}: no thickness minimum on the forearm")),
-        }
-        let shoulder_point = waist.and_then(|w| {
-            let outer = (el - centre).dot(frame.left) * sign;
-            let ss = arc_near(&profile, sh);
-            // The middle of the upper arm; the whole of it when the trace skipped that part
-            // (a sphere that met the torso near the shoulder jumps down the arm).
-            let line = [(0.2, 0.7), (0.0, 1.0)].iter().find_map(|&(a, b)| {
-                upper_arm_line(&profile, ss + a * (se - ss), ss + b * (se - ss))
-            })?;
-            // Arms that touch the body at the waist (heavy bodies) still leave a gap higher
-            // up: the gap's reference height climbs towards the shoulder until one is found.
-            let pit = ARMPIT_LEVELS.iter().find_map(|&k| {
-                armpit(
-                    mesh,
-                    &frame,
-                    frame_point(&frame, line.0, centre),
-                    sign,
-                    0.0,
-                    outer,
-                    w + k * (frame.h(sh) - w),
-                    ARMPIT_SAMPLES,
-                )
-            })?;
-            let radius = upper_arm_radius(&profile, ss, se)?;
-            let s =
-                shoulder(&frame, line, pit, sign)? - line.1 * (options.shoulder_proximal * radius);
-            let s = match options.shoulder_depth {
-                Some(depth) => centre_in_depth(mesh, &frame, s, depth).unwrap_or(s),
-                None => s,
-            };
-            let s = match options.shoulder_below_top {
-                Some(k) => surface_above(mesh, &frame, s)
-                    .map_or(s, |top| frame.at_height(s, top - k * radius)),
-                None => s,
-            };
-            Some(s)
-        });
-        match shoulder_point {
-            Some(s) => {
-                found.insert(key("shoulder"), s);
-            }
-            None => warnings.push(format!(
-                "shoulder_{side}: no armpit (arm touching the torso?)"
-            )),
-        }
-        let proximal = found.get(key("shoulder")).copied().unwrap_or(sh);
-        let distal = found.get(key("wrist")).copied().unwrap_or(wr);
-        match bend(&profile, proximal, distal, options.arm_ratio, step, options) {
-            Some((e, _)) => {
-                found.insert(key("elbow"), e);
-            }
-            None => warnings.push(format!(
-                "elbow_{side}: no elbow on the arm's centroid curve"
-            )),
-        }
     }
+}
 
-    let refined_shoulders = match (found.get("shoulder_L"), found.get("shoulder_R")) {
-        (Some(l), Some(r)) => Some((frame.h(*l) + frame.h(*r)) * 0.5),
-        _ => mean_height(["shoulder_L", "shoulder_R"]),
-    };
-    let bounds = match (
-        head_point,
-        refined_shoulders,
-        mean_height(["hip_L", "hip_R"]),
+/// Places both hips and the pelvis from a transverse slice at hip height (above the crotch's
+/// leg split when the torso silhouette was found, else the rough hips' mean height `hips_h`).
+fn hips_and_pelvis(
+    scene: &Scene,
+    rough: &Rough,
+    torso: Option<&TorsoPoints>,
+    hips_h: Option<f64>,
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+) {
+    let Scene {
+        mesh,
+        frame,
+        height,
+        centre,
+        options,
+    } = *scene;
+    let reach = match (
+        rough.at(Canonical::Hip(Side::Left)),
+        rough.at(Canonical::Hip(Side::Right)),
     ) {
-        (Some(h), Some(s), Some(p)) => Some(TorsoBounds {
-            head: frame.h(h),
-            shoulders: s,
-            hips: p,
-        }),
-        _ => None,
-    };
-    let torso = bounds.and_then(|b| torso_points(mesh, &frame, centre, &b, options));
-    if torso.is_none() {
-        warnings.push("neck: no torso silhouette in the median plane (torso not upright?)".into());
-    }
-
-    // 3.3 Hips and pelvis.
-    let reach = match (rough("hip_L"), rough("hip_R")) {
         (Some(l), Some(r)) => 1.5 * l.distance(r),
         _ => 0.15 * height,
     };
-    let hip_height = match &torso {
+    let hip_height = match torso {
         Some(t) => {
             let bottom = frame.h(t.crotch);
             let split = leg_split_height(
@@ -319,7 +420,7 @@ pub fn refine(
             );
             Some(split.unwrap_or(bottom) + options.hip_above_crotch * height)
         }
-        None => mean_height(["hip_L", "hip_R"]),
+        None => hips_h,
     };
     match hip_height.and_then(|h| hips(mesh, &frame, centre, h, reach)) {
         Some((l, r)) => {
@@ -328,148 +429,55 @@ pub fn refine(
                 None => p,
             };
             let (l, r) = (in_depth(l), in_depth(r));
-            found.insert("hip_L", l);
-            found.insert("hip_R", r);
+            found.insert(Canonical::Hip(Side::Left), l);
+            found.insert(Canonical::Hip(Side::Right), r);
             found.insert(
-                "pelvis",
+                Canonical::Pelvis,
                 (l + r) * 0.5 + frame.up * (options.pelvis_above_hips * height),
             );
         }
-        None => warnings.push("hip_L, hip_R, pelvis: no transverse slice at hip height".into()),
+        None => warnings.push(RefineWarning::NoHipSlice),
     }
+}
 
-    // 3.3 Legs.
-    for (side, _) in [("L", 1.0), ("R", -1.0)] {
-        let hip = found
-            .get(format!("hip_{side}").as_str())
-            .copied()
-            .or_else(|| rough(&format!("hip_{side}")));
-        let (Some(hip), Some(knee), Some(ank)) = (
-            hip,
-            rough(&format!("knee_{side}")),
-            rough(&format!("ankle_{side}")),
-        ) else {
-            warnings.push(format!(
-                "knee_{side}, ankle_{side}: leg joints missing from the rough skeleton"
-            ));
-            continue;
-        };
-        let Some(profile) = trace_limb(mesh, &[hip, knee, ank], height, options) else {
-            warnings.push(format!(
-                "knee_{side}, ankle_{side}: the leg could not be sliced"
-            ));
-            continue;
-        };
-        let step = 0.25 * options.limb_step * height;
-        let (sk, sa) = (arc_near(&profile, knee), arc_near(&profile, ank));
-        let from = sk + options.ankle_search_from * (sa - sk);
-        match ankle(&profile, from, options.curvature_window * height, step) {
-            Some(a) => {
-                let a = match options.ankle_height {
-                    Some(f) => sole_under(mesh, &frame, a, SOLE_REACH * height)
-                        .map_or(a, |sole| frame.at_height(a, sole + f * height)),
-                    None => a,
-                };
-                // The foot pulls the sphere slices' centroids forward around the ankle: take
-                // the depth from the shin's axis instead (the lower shin, above the
-                // curvature window).
-                let a = if options.ankle_on_shin_axis {
-                    let sa = arc_near(&profile, a);
-                    let lo = sk + 0.4 * (sa - sk);
-                    let hi = sa - 0.5 * options.curvature_window * height;
-                    on_axis(&profile, &frame, lo, hi, step, frame.h(a))
-                        .map_or(a, |p| a + frame.forward * (p - a).dot(frame.forward))
-                } else {
-                    a
-                };
-                found.insert(if side == "L" { "ankle_L" } else { "ankle_R" }, a);
-            }
-            None => warnings.push(format!(
-                "ankle_{side}: the leg's centroid curve ends above the ankle"
-            )),
-        }
-        let distal = found
-            .get(if side == "L" { "ankle_L" } else { "ankle_R" })
-            .copied()
-            .unwrap_or(ank);
-        let knee = match bend(&profile, hip, distal, options.leg_ratio, step, options) {
-            Some((k, BendRule::Ratio)) => options.knee_depth.map_or(Some(k), |depth| {
-                let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
-                transverse_point(mesh, &frame, k, h, depth).or(Some(k))
-            }),
-            other => other.map(|(k, _)| k),
-        };
-        match knee {
-            Some(k) => {
-                found.insert(if side == "L" { "knee_L" } else { "knee_R" }, k);
-            }
-            None => warnings.push(format!("knee_{side}: no knee on the leg's centroid curve")),
-        }
-    }
-
-    // 3.2 Spine and neck.
-    let spine_result: Option<Spine> = match (&torso, found.get("head")) {
-        (Some(t), Some(&h)) => spine(&frame, centre, h, t, options),
-        _ => None,
-    };
-    match (&spine_result, &torso) {
-        (Some(s), _) => {
-            if let Some(c7) = s.joint("C7") {
-                found.insert("neck", c7);
-            }
-        }
-        (None, Some(t)) => {
-            found.insert("neck", t.neck.lerp(t.throat, options.neck_depth));
-            warnings.push("spine: the spine curve's control points are out of order; spine joints carried along".into());
-        }
-        (None, None) => {
-            warnings.push("spine: no spine without the head joint and the torso silhouette".into())
-        }
-    }
-
-    // Accept refined positions that stay near the rough ones.
-    // Joints that are not refined stay where they were (not carried by their neighbours).
-    let mut targets: BTreeMap<JointId, DVec3> = REFINED_KEYS
+/// The refined positions that stay near the rough ones, as carry targets (every refined key's
+/// joint, at its rough position unless accepted), and the accepted moves. Joints that are not
+/// refined stay where they were (not carried by their neighbours).
+fn accepted(
+    rough: &Rough,
+    found: &Found,
+    height: f64,
+    options: &RefineOptions,
+    warnings: &mut Vec<RefineWarning>,
+) -> (BTreeMap<JointId, DVec3>, BTreeMap<String, (DVec3, DVec3)>) {
+    let mut targets: BTreeMap<JointId, DVec3> = REFINED
         .iter()
-        .filter_map(|key| canonical.get(*key))
-        .map(|id| (*id, skeleton.joint(*id).position))
+        .filter_map(|key| rough.id(*key))
+        .map(|id| (id, rough.skeleton.joint(id).position))
         .collect();
     let mut moved = BTreeMap::new();
-    for key in REFINED_KEYS {
-        if options.keep.iter().any(|k| k == key) {
+    for key in REFINED {
+        if options.keep.iter().any(|k| k == key.as_str()) {
             continue;
         }
-        let (Some(&id), Some(&to)) = (canonical.get(key), found.get(key)) else {
-            if canonical.contains_key(key) && !warnings.iter().any(|w| w.contains(key)) {
-                warnings.push(format!("{key}: kept at the unrefined position"));
+        let (Some(id), Some(&to)) = (rough.id(key), found.get(&key)) else {
+            if rough.id(key).is_some() && !warnings.iter().any(|w| w.keys().contains(&key)) {
+                warnings.push(RefineWarning::Kept(key));
             }
             continue;
         };
-        let from = skeleton.joint(id).position;
+        let from = rough.skeleton.joint(id).position;
         if !to.is_finite() || from.distance(to) > options.max_shift * height {
-            warnings.push(format!(
-                "{key}: refined position {:.3} m from the rough one, kept at the unrefined position",
-                from.distance(to)
-            ));
+            warnings.push(RefineWarning::TooFar {
+                key,
+                distance: from.distance(to),
+            });
             continue;
         }
         targets.insert(id, to);
         moved.insert(key.to_string(), (from, to));
     }
-    let spine_ends_moved = moved.contains_key("pelvis") && moved.contains_key("neck");
-    if let (Some(s), true) = (&spine_result, spine_ends_moved) {
-        for (id, p) in place_spine_joints(skeleton, canonical, s) {
-            targets.insert(id, p);
-        }
-    }
-    Ok(Refinement {
-        skeleton: carry(skeleton, &targets),
-        spine: spine_result.map(|s| s.joints).unwrap_or_default(),
-        moved,
-        frame,
-        torso,
-        warnings,
-    })
+    (targets, moved)
 }
 
 /// `mesh` split at edge midpoints until its mean edge is at most `max_edge` (at most three
@@ -498,18 +506,16 @@ fn fine_enough(mesh: &Mesh, max_edge: f64) -> Option<Mesh> {
 }
 
 /// `p` moved across the body into the plane through `centre` with normal `frame.forward`.
-fn frame_point(frame: &BodyFrame, centre: DVec3, p: DVec3) -> DVec3 {
+pub(super) fn frame_point(frame: &BodyFrame, centre: DVec3, p: DVec3) -> DVec3 {
     p - frame.forward * (p - centre).dot(frame.forward)
 }
 
 /// The joints strictly between pelvis and neck on the skeleton's chain, placed on the spine
 /// polyline from `L5` up to `C7` at their original fractions of the chain's length.
-fn place_spine_joints(
-    skeleton: &Skeleton,
-    canonical: &BTreeMap<String, JointId>,
-    spine: &Spine,
-) -> Vec<(JointId, DVec3)> {
-    let (Some(&pelvis), Some(&neck)) = (canonical.get("pelvis"), canonical.get("neck")) else {
+fn place_spine_joints(rough: &Rough, spine: &Spine) -> Vec<(JointId, DVec3)> {
+    let skeleton = rough.skeleton;
+    let (Some(pelvis), Some(neck)) = (rough.id(Canonical::Pelvis), rough.id(Canonical::Neck))
+    else {
         return Vec::new();
     };
     let mut chain = Vec::new();

@@ -6,6 +6,9 @@ use glam::DVec3;
 /// [`super::Refinement::warnings`] instead.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum RefineError {
+    /// Options out of range (every one).
+    #[error("refine options: {0}")]
+    InvalidOptions(#[from] crate::options::OptionProblems),
     /// The mesh has no triangles.
     #[error("the mesh has no triangles: refinement needs a surface to slice")]
     EmptyMesh,

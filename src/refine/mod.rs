@@ -20,21 +20,24 @@
 //!
 //! Anything that cannot be found keeps its rough position with a warning naming the joint.
 
+mod arms;
 mod carry;
 mod driver;
 mod error;
 mod frame;
 mod geometry;
 mod head;
+mod legs;
 mod limb;
 mod limb_joints;
 mod options;
 mod shoulder;
 mod spine;
 mod torso;
+mod warning;
 
 pub use carry::carry;
-pub use driver::{refine, Refinement, REFINED_KEYS};
+pub use driver::{refine, Refinement, REFINED, REFINED_KEYS};
 pub use error::RefineError;
 pub use frame::{frame_from_head, head_slices, BodyFrame, HeadSlices};
 pub use head::{head_joint, HeadJoint};
@@ -44,3 +47,4 @@ pub use options::RefineOptions;
 pub use shoulder::{armpit, shoulder, upper_arm_line};
 pub use spine::{spine, Spine, SPINE_JOINTS};
 pub use torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
+pub use warning::RefineWarning;

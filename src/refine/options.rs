@@ -1,5 +1,7 @@
 //! Tunable numbers of the refinement, with their sources.
 
+use crate::options::{Checks, OptionProblems};
+
 /// Options of [`super::refine`]. Lengths given as fractions of the figure's height (measured
 /// along the body's transverse normal) so that one set of defaults serves children and adults
 /// in any unit.
@@ -141,9 +143,10 @@ pub struct RefineOptions {
     /// measurement).
     pub pelvis_above_hips: f64,
     /// The back's neck point and the throat are searched no higher than this fraction of the
-    /// way from the shoulders to the head joint. Default 0.5: the back of the neck rises
-    /// forward up to the skull, so the seed's local maximum (3.2) is reached only at the
-    /// window's end; C7/T1 of the MakeHuman rigs lies at 0.51-0.52 of the way (measurement).
+    /// way from the shoulders to the head joint. Default 0.6 (0.5 until the refinement report
+    /// of 659069c): the back of the neck rises forward up to the skull, so the seed's local
+    /// maximum (3.2) is reached only at the window's end; C7/T1 of the MakeHuman rigs lies at
+    /// 0.51-0.52 of the way (measurement).
     pub neck_window: f64,
     /// C7/T1 (the `neck` joint) lies this fraction of the way from the back of the neck to the
     /// throat, on the segment between the two silhouette points. Default 0.3: the cervical
@@ -174,6 +177,62 @@ pub struct RefineOptions {
     /// rejected and the joint keeps its rough position with a warning. Default 0.09: the rough
     /// skeletons to refine are off by up to ~6 cm (issue 6), twice that is a failed analysis.
     pub max_shift: f64,
+}
+
+impl RefineOptions {
+    /// Checks every option. Steps and sizes must be above zero (a zero head slice step would
+    /// never leave the top); every number must be finite (a NaN `max_shift` would accept any
+    /// move).
+    ///
+    /// # Errors
+    /// Every option out of range.
+    pub fn validate(&self) -> Result<(), OptionProblems> {
+        let mut c = Checks::default();
+        c.positive("head_slice_step", self.head_slice_step, 0.1);
+        c.positive("head_shrink_ratio", self.head_shrink_ratio, 1.0);
+        c.range("head_turn_degrees", self.head_turn_degrees, 0.0, 180.0);
+        c.range("head_min_elongation", self.head_min_elongation, 1.0, 100.0);
+        c.range("head_min_depth", self.head_min_depth, 0.0, 1.0);
+        c.range("head_max_depth", self.head_max_depth, 0.0, 1.0);
+        c.range("head_back_fraction", self.head_back_fraction, 0.0, 1.0);
+        c.positive("limb_step", self.limb_step, 0.1);
+        c.positive("sphere_radius_factor", self.sphere_radius_factor, 10.0);
+        c.positive("merge_ratio", self.merge_ratio, 100.0);
+        c.range("split_ratio", self.split_ratio, 0.0, 100.0);
+        c.range("distal_overshoot", self.distal_overshoot, 0.0, 10.0);
+        c.range("straight_degrees", self.straight_degrees, 0.0, 180.0);
+        c.range("leg_ratio", self.leg_ratio, 0.0, 1.0);
+        c.range("arm_ratio", self.arm_ratio, 0.0, 1.0);
+        c.range("shoulder_proximal", self.shoulder_proximal, 0.0, 10.0);
+        c.range("ratio_window", self.ratio_window, 0.0, 1.0);
+        c.range("ankle_search_from", self.ankle_search_from, 0.0, 1.0);
+        c.range("wrist_search_from", self.wrist_search_from, 0.0, 1.0);
+        c.positive("curvature_window", self.curvature_window, 1.0);
+        c.range("hip_above_crotch", self.hip_above_crotch, -1.0, 1.0);
+        c.range("pelvis_above_hips", self.pelvis_above_hips, -1.0, 1.0);
+        c.range("neck_window", self.neck_window, 0.0, 1.0);
+        c.range("neck_depth", self.neck_depth, 0.0, 1.0);
+        c.positive("silhouette_step", self.silhouette_step, 0.1);
+        c.range("thoracic_depth", self.thoracic_depth, 0.0, 1.0);
+        c.range("lumbar_depth", self.lumbar_depth, 0.0, 1.0);
+        c.range("sacral_depth", self.sacral_depth, 0.0, 1.0);
+        c.positive("max_mean_edge", self.max_mean_edge, 1.0);
+        c.range("max_shift", self.max_shift, 0.0, 10.0);
+        for (name, value) in [
+            ("knee_depth", self.knee_depth),
+            ("shoulder_depth", self.shoulder_depth),
+            ("ankle_height", self.ankle_height),
+            ("hip_depth", self.hip_depth),
+        ] {
+            if let Some(v) = value {
+                c.range(name, v, 0.0, 1.0);
+            }
+        }
+        if let Some(v) = self.shoulder_below_top {
+            c.range("shoulder_below_top", v, 0.0, 10.0);
+        }
+        c.finish()
+    }
 }
 
 impl Default for RefineOptions {

@@ -34,6 +34,14 @@ pub enum Posture {
     Horizontal,
 }
 
+/// The refinement a template's fits get after the fit (`refine` in the template header).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RefineKind {
+    /// Slicing the mesh to place a human body's joints ([`crate::refine::refine`], seed 004):
+    /// `refine = "human_slicing"`.
+    HumanSlicing,
+}
+
 /// How the head-to-tail path in front of the foremost limb pair is split (8.1): fractions of
 /// it for the head (anterior) and the neck (posterior); they sum to 1.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -240,6 +248,8 @@ pub struct Template {
     pub file: String,
     /// Upright (human-like) or horizontal (animal-like).
     pub posture: Posture,
+    /// The refinement its fits get, if any.
+    pub refinement: Option<RefineKind>,
     /// Head/neck split.
     pub sections: Sections,
     /// Axial rules.

@@ -1,5 +1,5 @@
 use super::*;
-use crate::eval::{is_canonical_key, CANONICAL_KEYS};
+use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
 use crate::skeleton::{Joint, JointId, LocalAxis, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -24,6 +24,21 @@ fn every_bundled_template_loads() {
             assert_eq!(l.chain.len(), t.ratios[&l.ratios].len() + 1);
         }
     }
+    // Only the humanoid declares the slicing refinement (`skelfit rig` refines its fits).
+    for (name, _) in BUILTIN_TEMPLATES {
+        let declared = Template::builtin(name).unwrap().refinement;
+        let expected = (*name == "humanoid").then_some(RefineKind::HumanSlicing);
+        assert_eq!(declared, expected, "{name}");
+    }
+    let text =
+        BUILTIN_TEMPLATES[0]
+            .1
+            .replacen("refine = \"human_slicing\"", "refine = \"melting\"", 1);
+    let err = Template::parse(&text, "melting.toml").unwrap_err();
+    assert!(
+        err.to_string().contains("unknown refinement \"melting\""),
+        "{err}"
+    );
     assert!(matches!(
         Template::builtin("centaur"),
         Err(TemplateError::UnknownTemplate { .. })

@@ -83,8 +83,8 @@ fn humanoids_have_a_head_a_trunk_two_arms_and_two_legs() {
         assert_eq!(labels.count(Label::Tail), 0, "{name}");
         // Left is +X: the left limbs end on the +X side.
         for label_ in [Label::Arm, Label::Leg] {
-            let l = one(&labels, label_, Some(Side::L), None);
-            let r = one(&labels, label_, Some(Side::R), None);
+            let l = one(&labels, label_, Some(Side::Left), None);
+            let r = one(&labels, label_, Some(Side::Right), None);
             assert!(labels.parts[l].distal.x > 0.0, "{name} {label_:?} L");
             assert!(labels.parts[r].distal.x < 0.0, "{name} {label_:?} R");
         }
@@ -128,8 +128,8 @@ fn quadrupeds_have_a_head_a_trunk_four_legs_and_a_tail() {
         assert_eq!(labels.count(Label::Tail), 1, "{name}");
         let mut z = std::collections::BTreeMap::new();
         for pair in [LimbPair::Fore, LimbPair::Hind] {
-            let l = one(&labels, Label::Leg, Some(Side::L), Some(pair));
-            let r = one(&labels, Label::Leg, Some(Side::R), Some(pair));
+            let l = one(&labels, Label::Leg, Some(Side::Left), Some(pair));
+            let r = one(&labels, Label::Leg, Some(Side::Right), Some(pair));
             assert!(labels.parts[l].distal.x > 0.0, "{name} {pair:?} L");
             assert!(labels.parts[r].distal.x < 0.0, "{name} {pair:?} R");
             z.insert(pair, labels.parts[l].distal.z + labels.parts[r].distal.z);
@@ -521,7 +521,7 @@ fn flat_paired_protrusions_are_wings() {
         parts(&labels),
         labels.warnings
     );
-    let l = one(&labels, Label::Wing, Some(Side::L), None);
+    let l = one(&labels, Label::Wing, Some(Side::Left), None);
     assert!(labels.parts[l].distal.x > 0.5);
     assert_eq!(labels.count(Label::Leg), 2, "{:?}", parts(&labels));
     assert_eq!(labels.count(Label::Head), 1, "{:?}", parts(&labels));

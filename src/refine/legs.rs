@@ -1,0 +1,85 @@
+//! The refinement's leg phase: ankle and knee of one side (seed 004, 3.3).
+
+use super::driver::{Found, Rough, Scene};
+use super::limb::trace_limb;
+use super::limb_joints::{ankle, arc_near, bend, on_axis, sole_under, transverse_point, BendRule};
+use super::RefineWarning;
+use crate::skeleton::{Canonical, Side};
+
+/// The sole under an ankle is searched within this fraction of height across the body.
+const SOLE_REACH: f64 = 0.06;
+
+/// Places the ankle and knee of `side` into `found` (from the refined hip when there is one),
+/// or warns.
+pub(super) fn leg(
+    scene: &Scene,
+    rough: &Rough,
+    side: Side,
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+) {
+    let Scene {
+        mesh,
+        frame,
+        height,
+        options,
+        ..
+    } = *scene;
+    let frame = &frame;
+    let hip = found
+        .get(&Canonical::Hip(side))
+        .copied()
+        .or_else(|| rough.at(Canonical::Hip(side)));
+    let (Some(hip), Some(knee), Some(ank)) = (
+        hip,
+        rough.at(Canonical::Knee(side)),
+        rough.at(Canonical::Ankle(side)),
+    ) else {
+        warnings.push(RefineWarning::LegJointsMissing(side));
+        return;
+    };
+    let Some(profile) = trace_limb(mesh, &[hip, knee, ank], height, options) else {
+        warnings.push(RefineWarning::LegNotSliced(side));
+        return;
+    };
+    let step = 0.25 * options.limb_step * height;
+    let (sk, sa) = (arc_near(&profile, knee), arc_near(&profile, ank));
+    let from = sk + options.ankle_search_from * (sa - sk);
+    match ankle(&profile, from, options.curvature_window * height, step) {
+        Some(a) => {
+            let a = match options.ankle_height {
+                Some(f) => sole_under(mesh, frame, a, SOLE_REACH * height)
+                    .map_or(a, |sole| frame.at_height(a, sole + f * height)),
+                None => a,
+            };
+            // The foot pulls the sphere slices' centroids forward around the ankle: take
+            // the depth from the shin's axis instead (the lower shin, above the
+            // curvature window).
+            let a = if options.ankle_on_shin_axis {
+                let sa = arc_near(&profile, a);
+                let lo = sk + 0.4 * (sa - sk);
+                let hi = sa - 0.5 * options.curvature_window * height;
+                on_axis(&profile, frame, lo, hi, step, frame.h(a))
+                    .map_or(a, |p| a + frame.forward * (p - a).dot(frame.forward))
+            } else {
+                a
+            };
+            found.insert(Canonical::Ankle(side), a);
+        }
+        None => warnings.push(RefineWarning::NoAnkle(side)),
+    }
+    let distal = found.get(&Canonical::Ankle(side)).copied().unwrap_or(ank);
+    let knee = match bend(&profile, hip, distal, options.leg_ratio, step, options) {
+        Some((k, BendRule::Ratio)) => options.knee_depth.map_or(Some(k), |depth| {
+            let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+            transverse_point(mesh, frame, k, h, depth).or(Some(k))
+        }),
+        other => other.map(|(k, _)| k),
+    };
+    match knee {
+        Some(k) => {
+            found.insert(Canonical::Knee(side), k);
+        }
+        None => warnings.push(RefineWarning::NoKnee(side)),
+    }
+}

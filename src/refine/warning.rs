@@ -1,0 +1,164 @@
+//! What the refinement could not do: one warning per joint (or group of joints) that kept its
+//! rough position.
+
+use crate::skeleton::{Canonical, Side};
+use crate::warning::Severity;
+use std::fmt;
+
+/// A joint, or a group of joints, the refinement could not place; each names the canonical
+/// keys it concerns ([`RefineWarning::keys`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum RefineWarning {
+    /// The rough skeleton has no upright legs: the given up direction was used.
+    NoUprightLegs,
+    /// No head was found slicing down from the top.
+    NoHead,
+    /// No occipital circle on the nose-level head slice.
+    NoOccipitalCircle,
+    /// Shoulder, elbow or wrist of this side is not in the rough skeleton.
+    ArmJointsMissing(Side),
+    /// This side's arm could not be sliced.
+    ArmNotSliced(Side),
+    /// No thickness minimum on this side's forearm.
+    NoWrist(Side),
+    /// No armpit on this side.
+    NoArmpit(Side),
+    /// No elbow on this side's centroid curve.
+    NoElbow(Side),
+    /// No torso silhouette in the median plane.
+    NoTorsoSilhouette,
+    /// No transverse slice at hip height.
+    NoHipSlice,
+    /// Hip, knee or ankle of this side is not in the rough skeleton.
+    LegJointsMissing(Side),
+    /// This side's leg could not be sliced.
+    LegNotSliced(Side),
+    /// This side's leg's centroid curve ends above the ankle.
+    NoAnkle(Side),
+    /// No knee on this side's centroid curve.
+    NoKnee(Side),
+    /// The spine curve's control points are out of order: the spine joints were carried along.
+    SpineOutOfOrder,
+    /// No spine without the head joint and the torso silhouette.
+    NoSpine,
+    /// The joint was not found and kept its rough position.
+    Kept(Canonical),
+    /// The refined position was too far from the rough one ([`super::RefineOptions::max_shift`]).
+    TooFar {
+        /// The joint.
+        key: Canonical,
+        /// Distance from the rough position, mesh units.
+        distance: f64,
+    },
+}
+
+impl RefineWarning {
+    /// The canonical keys the warning names.
+    pub fn keys(&self) -> Vec<Canonical> {
+        use Canonical as C;
+        match *self {
+            Self::NoHead | Self::NoOccipitalCircle => vec![C::Head],
+            Self::ArmJointsMissing(s) | Self::ArmNotSliced(s) => {
+                vec![C::Shoulder(s), C::Elbow(s), C::Wrist(s)]
+            }
+            Self::NoWrist(s) => vec![C::Wrist(s)],
+            Self::NoArmpit(s) => vec![C::Shoulder(s)],
+            Self::NoElbow(s) => vec![C::Elbow(s)],
+            Self::NoTorsoSilhouette => vec![C::Neck],
+            Self::NoHipSlice => vec![C::Hip(Side::Left), C::Hip(Side::Right), C::Pelvis],
+            Self::LegJointsMissing(s) | Self::LegNotSliced(s) => vec![C::Knee(s), C::Ankle(s)],
+            Self::NoAnkle(s) => vec![C::Ankle(s)],
+            Self::NoKnee(s) => vec![C::Knee(s)],
+            Self::Kept(key) | Self::TooFar { key, .. } => vec![key],
+            Self::NoUprightLegs | Self::SpineOutOfOrder | Self::NoSpine => Vec::new(),
+        }
+    }
+
+    /// How much it matters: every warning but the body frame's leaves joints at their rough
+    /// positions.
+    pub fn severity(&self) -> Severity {
+        match self {
+            Self::NoUprightLegs => Severity::Info,
+            _ => Severity::Degraded,
+        }
+    }
+}
+
+impl fmt::Display for RefineWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use Canonical as C;
+        match self {
+            Self::NoUprightLegs => write!(
+                f,
+                "body frame: no upright legs in the rough skeleton, using the given up direction"
+            ),
+            Self::NoHead => write!(f, "head: no head found slicing down from the top"),
+            Self::NoOccipitalCircle => {
+                write!(f, "head: no occipital circle on the nose-level slice")
+            }
+            Self::ArmJointsMissing(s) => write!(
+                f,
+                "{}, {}, {}: arm joints missing from the rough skeleton",
+                C::Shoulder(*s),
+                C::Elbow(*s),
+                C::Wrist(*s)
+            ),
+            Self::ArmNotSliced(s) => write!(
+                f,
+                "{}, {}, {}: the arm could not be sliced",
+                C::Shoulder(*s),
+                C::Elbow(*s),
+                C::Wrist(*s)
+            ),
+            Self::NoWrist(s) => write!(f, "{}: no thickness minimum on the forearm", C::Wrist(*s)),
+            Self::NoArmpit(s) => write!(
+                f,
+                "{}: no armpit (arm touching the torso?)",
+                C::Shoulder(*s)
+            ),
+            Self::NoElbow(s) => write!(f, "{}: no elbow on the arm's centroid curve", C::Elbow(*s)),
+            Self::NoTorsoSilhouette => write!(
+                f,
+                "neck: no torso silhouette in the median plane (torso not upright?)"
+            ),
+            Self::NoHipSlice => write!(
+                f,
+                "{}, {}, {}: no transverse slice at hip height",
+                C::Hip(Side::Left),
+                C::Hip(Side::Right),
+                C::Pelvis
+            ),
+            Self::LegJointsMissing(s) => write!(
+                f,
+                "{}, {}: leg joints missing from the rough skeleton",
+                C::Knee(*s),
+                C::Ankle(*s)
+            ),
+            Self::LegNotSliced(s) => write!(
+                f,
+                "{}, {}: the leg could not be sliced",
+                C::Knee(*s),
+                C::Ankle(*s)
+            ),
+            Self::NoAnkle(s) => write!(
+                f,
+                "{}: the leg's centroid curve ends above the ankle",
+                C::Ankle(*s)
+            ),
+            Self::NoKnee(s) => write!(f, "{}: no knee on the leg's centroid curve", C::Knee(*s)),
+            Self::SpineOutOfOrder => write!(
+                f,
+                "spine: the spine curve's control points are out of order; spine joints carried along"
+            ),
+            Self::NoSpine => write!(
+                f,
+                "spine: no spine without the head joint and the torso silhouette"
+            ),
+            Self::Kept(key) => write!(f, "{key}: kept at the unrefined position"),
+            Self::TooFar { key, distance } => write!(
+                f,
+                "{key}: refined position {distance:.3} m from the rough one, kept at the unrefined position"
+            ),
+        }
+    }
+}

@@ -1,0 +1,298 @@
+//! Canonical anatomical keys: the typed names of the joints every template, metric, naming
+//! preset and the refinement agree on (`pelvis`, `elbow_L`, `tail_base`, ...).
+//!
+//! Strings appear only at the file-format edges (template TOML, naming presets, skeleton
+//! JSON): [`Canonical::as_str`] and [`str::parse`] convert, and round-trip.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// A side of the figure. The figure's left is `up × forward` (+X for +Y up, +Z forward).
+///
+/// Written `L`/`R` in files (labels.json, label overrides); `Left`/`Right` are read too.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub enum Side {
+    /// The figure's left (`_L`).
+    #[serde(rename = "L", alias = "Left")]
+    Left,
+    /// The figure's right (`_R`).
+    #[serde(rename = "R", alias = "Right")]
+    Right,
+}
+
+impl Side {
+    /// Left, then right.
+    pub const BOTH: [Side; 2] = [Side::Left, Side::Right];
+
+    /// `_L` or `_R`.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Self::Left => "_L",
+            Self::Right => "_R",
+        }
+    }
+
+    /// `L` or `R`.
+    pub fn letter(self) -> &'static str {
+        match self {
+            Self::Left => "L",
+            Self::Right => "R",
+        }
+    }
+
+    /// `+1` for left, `-1` for right.
+    pub fn sign(self) -> f64 {
+        match self {
+            Self::Left => 1.0,
+            Self::Right => -1.0,
+        }
+    }
+
+    /// `left` or `right`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Left => "left",
+            Self::Right => "right",
+        }
+    }
+}
+
+/// A tail key. Keys starting with `tail_` that are none of these are still accepted as tail
+/// keys by [`is_canonical_key`] (a reference rig may name more tail joints).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Tail {
+    /// `tail_base`: where the tail leaves the trunk.
+    Base,
+    /// `tail_mid`.
+    Mid,
+    /// `tail_end`: the tail's tip.
+    End,
+}
+
+/// A canonical anatomical key. Sided keys carry their [`Side`]; the hands (issue 25) will add
+/// digit keys as a further variant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Canonical {
+    /// `pelvis`: the trunk's root.
+    Pelvis,
+    /// `spine`: the trunk joint nearest the template's `spine_at` fraction pelvis → neck.
+    Spine,
+    /// `chest`: the trunk joint nearest `chest_at`.
+    Chest,
+    /// `neck`: the base of the neck (C7).
+    Neck,
+    /// `head`: the head's pivot.
+    Head,
+    /// `clavicle_L`, `clavicle_R`.
+    Clavicle(Side),
+    /// `shoulder_L`, `shoulder_R`.
+    Shoulder(Side),
+    /// `elbow_L`, `elbow_R`.
+    Elbow(Side),
+    /// `wrist_L`, `wrist_R`.
+    Wrist(Side),
+    /// `hip_L`, `hip_R`.
+    Hip(Side),
+    /// `knee_L`, `knee_R`.
+    Knee(Side),
+    /// `ankle_L`, `ankle_R`.
+    Ankle(Side),
+    /// `toe_L`, `toe_R`.
+    Toe(Side),
+    /// `tail_base`, `tail_mid`, `tail_end`.
+    Tail(Tail),
+}
+
+use Side::{Left, Right};
+
+/// The canonical keys of the comparison table, in table order (head to toe, left before
+/// right); tail keys come after them.
+pub const TABLE: [Canonical; 21] = [
+    Canonical::Pelvis,
+    Canonical::Spine,
+    Canonical::Chest,
+    Canonical::Neck,
+    Canonical::Head,
+    Canonical::Clavicle(Left),
+    Canonical::Clavicle(Right),
+    Canonical::Shoulder(Left),
+    Canonical::Shoulder(Right),
+    Canonical::Elbow(Left),
+    Canonical::Elbow(Right),
+    Canonical::Wrist(Left),
+    Canonical::Wrist(Right),
+    Canonical::Hip(Left),
+    Canonical::Hip(Right),
+    Canonical::Knee(Left),
+    Canonical::Knee(Right),
+    Canonical::Ankle(Left),
+    Canonical::Ankle(Right),
+    Canonical::Toe(Left),
+    Canonical::Toe(Right),
+];
+
+/// The tail keys.
+pub const TAILS: [Canonical; 3] = [
+    Canonical::Tail(Tail::Base),
+    Canonical::Tail(Tail::Mid),
+    Canonical::Tail(Tail::End),
+];
+
+const TABLE_KEYS: [&str; TABLE.len()] = {
+    let mut out = [""; TABLE.len()];
+    let mut i = 0;
+    while i < TABLE.len() {
+        out[i] = TABLE[i].as_str();
+        i += 1;
+    }
+    out
+};
+
+/// The canonical anatomical keys as written in files, in table order ([`TABLE`]). Tail joints
+/// use keys starting with `tail_` (e.g. `tail_base`, `tail_mid`, `tail_end`).
+pub const CANONICAL_KEYS: &[&str] = &TABLE_KEYS;
+
+/// How every tail key begins.
+pub const TAIL_PREFIX: &str = "tail_";
+
+/// Whether `key` is a canonical anatomical key ([`CANONICAL_KEYS`] or `tail_*`).
+pub fn is_canonical_key(key: &str) -> bool {
+    CANONICAL_KEYS.contains(&key) || key.starts_with(TAIL_PREFIX)
+}
+
+/// Sort position of a canonical key: [`CANONICAL_KEYS`] order, then `tail_*` keys.
+pub fn key_rank(key: &str) -> usize {
+    CANONICAL_KEYS
+        .iter()
+        .position(|k| *k == key)
+        .unwrap_or(CANONICAL_KEYS.len())
+}
+
+impl Canonical {
+    /// The key as written in files (`pelvis`, `elbow_L`, `tail_base`).
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            Self::Pelvis => "pelvis",
+            Self::Spine => "spine",
+            Self::Chest => "chest",
+            Self::Neck => "neck",
+            Self::Head => "head",
+            Self::Clavicle(Left) => "clavicle_L",
+            Self::Clavicle(Right) => "clavicle_R",
+            Self::Shoulder(Left) => "shoulder_L",
+            Self::Shoulder(Right) => "shoulder_R",
+            Self::Elbow(Left) => "elbow_L",
+            Self::Elbow(Right) => "elbow_R",
+            Self::Wrist(Left) => "wrist_L",
+            Self::Wrist(Right) => "wrist_R",
+            Self::Hip(Left) => "hip_L",
+            Self::Hip(Right) => "hip_R",
+            Self::Knee(Left) => "knee_L",
+            Self::Knee(Right) => "knee_R",
+            Self::Ankle(Left) => "ankle_L",
+            Self::Ankle(Right) => "ankle_R",
+            Self::Toe(Left) => "toe_L",
+            Self::Toe(Right) => "toe_R",
+            Self::Tail(Tail::Base) => "tail_base",
+            Self::Tail(Tail::Mid) => "tail_mid",
+            Self::Tail(Tail::End) => "tail_end",
+        }
+    }
+
+    /// The side of a sided key.
+    pub fn side(self) -> Option<Side> {
+        match self {
+            Self::Clavicle(s)
+            | Self::Shoulder(s)
+            | Self::Elbow(s)
+            | Self::Wrist(s)
+            | Self::Hip(s)
+            | Self::Knee(s)
+            | Self::Ankle(s)
+            | Self::Toe(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// The key without its side suffix, as a template names the joint it places (`elbow` for
+    /// `elbow_L`, `pelvis` for `pelvis`).
+    pub fn stem(self) -> &'static str {
+        let key = self.as_str();
+        match self.side() {
+            Some(_) => &key[..key.len() - 2],
+            None => key,
+        }
+    }
+}
+
+impl fmt::Display for Canonical {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// A string that is not a canonical key.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("`{0}` is not a canonical key (pelvis, spine, chest, neck, head, clavicle/shoulder/elbow/wrist/hip/knee/ankle/toe with _L or _R, tail_base, tail_mid, tail_end)")]
+pub struct NotCanonical(pub String);
+
+impl FromStr for Canonical {
+    type Err = NotCanonical;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        TABLE
+            .iter()
+            .chain(&TAILS)
+            .copied()
+            .find(|k| k.as_str() == s)
+            .ok_or_else(|| NotCanonical(s.to_string()))
+    }
+}
+
+impl Serialize for Canonical {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.as_str())
+    }
+}
+
+impl<'de> Deserialize<'de> for Canonical {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let s = String::deserialize(deserializer)?;
+        s.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_key_round_trips_through_its_string() {
+        for key in TABLE.iter().chain(&TAILS) {
+            assert_eq!(key.as_str().parse::<Canonical>(), Ok(*key));
+            assert!(is_canonical_key(key.as_str()));
+        }
+        assert!("elbow".parse::<Canonical>().is_err());
+        assert!("elbow_X".parse::<Canonical>().is_err());
+    }
+
+    #[test]
+    fn stems_and_sides() {
+        assert_eq!(Canonical::Elbow(Side::Right).stem(), "elbow");
+        assert_eq!(Canonical::Elbow(Side::Right).side(), Some(Side::Right));
+        assert_eq!(Canonical::Pelvis.stem(), "pelvis");
+        assert_eq!(Canonical::Tail(Tail::End).stem(), "tail_end");
+        assert_eq!(key_rank("pelvis"), 0);
+        assert_eq!(key_rank("tail_base"), CANONICAL_KEYS.len());
+    }
+
+    #[test]
+    fn sides_are_written_l_and_r_and_read_either_way() {
+        assert_eq!(serde_json::to_string(&Side::Left).unwrap(), "\"L\"");
+        let read: Side = serde_json::from_str("\"Right\"").unwrap();
+        assert_eq!(read, Side::Right);
+        let read: Side = serde_json::from_str("\"R\"").unwrap();
+        assert_eq!(read, Side::Right);
+    }
+}
