@@ -13,6 +13,7 @@ use skelfit::mesh::{load, load_gltf_scene, Mesh};
 use skelfit::pipeline::{rig, RigOptions};
 use skelfit::skeleton::{JointId, Skeleton};
 use skelfit::skin::check::{check_deformation, sweep, DeformationCheck, SweepKind};
+use skelfit::skin::SkinMethod;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -27,6 +28,7 @@ fn main() {
 struct Row {
     model: String,
     ours: Result<DeformationCheck, String>,
+    anchor: Result<DeformationCheck, String>,
     artist: Option<Result<DeformationCheck, String>>,
 }
 
@@ -41,9 +43,10 @@ fn check(
     check_deformation(mesh, skeleton, weights, kind, &poses, missing).map_err(|e| e.to_string())
 }
 
-fn ours(dir: &Path, kind: SweepKind) -> Result<DeformationCheck, String> {
+fn ours(dir: &Path, kind: SweepKind, method: SkinMethod) -> Result<DeformationCheck, String> {
     let mesh = load(&dir.join("mesh.obj")).map_err(|e| e.to_string())?;
-    let options = RigOptions::default();
+    let mut options = RigOptions::default();
+    options.skin.method = method;
     let rig = rig(&mesh, &options).map_err(|e| e.to_string())?;
     let engine = &rig.skin.engine;
     let weights: Vec<Vec<(JointId, f64)>> = engine
@@ -121,7 +124,8 @@ fn run() -> Result<(), String> {
             eprintln!("deformation: {model}");
             rows.push(Row {
                 model,
-                ours: ours(&dir, kind),
+                ours: ours(&dir, kind, SkinMethod::Geodesic),
+                anchor: ours(&dir, kind, SkinMethod::Anchor),
                 artist: artist(&dir, kind),
             });
         }
@@ -133,30 +137,35 @@ fn run() -> Result<(), String> {
         "# Deformation check\n\nEdges stretched past 2x (and 1.5x) their rest length, summed \
          over the standard pose sweep (humanoid: 14 poses; animal: 11; each joint turned about \
          its own position, linear blend skinning with at most four influences per vertex as \
-         exported). \"artist\" is the model's own skeleton and weights from `source.glb`, posed \
-         through the same sweep where its canonical map names the joints.\n\n\
+         exported). \"skelfit\" is `skelfit rig` with its default (geodesic) weights, \"anchor\" \
+         the same rig with the dissertation's anchor weights (`SkinMethod::Anchor`, the default \
+         before), \"artist\" the model's own skeleton and weights from `source.glb`, posed \
+         through the same sweep where its canonical map names the joints (— where it has none).\n\n\
          Regenerate: `cargo run --release --example deformation`\n\n\
-         | model | edges | skelfit >2x | skelfit >1.5x | skelfit worst | artist >2x | artist >1.5x | artist worst | poses (skelfit / artist) |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|---|"
+         | model | edges | skelfit >2x | skelfit >1.5x | skelfit worst | anchor >2x | artist >2x | artist >1.5x | artist worst | poses (skelfit / artist) |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---|"
     );
     let cell = |c: &Option<&DeformationCheck>| match c {
-        Some(c) => format!(
+        Some(c) if !c.poses.is_empty() => format!(
             "{} | {} | {:.2}",
             c.total_over_2(),
             c.total_over_1_5(),
             c.worst()
         ),
-        None => "— | — | —".into(),
+        _ => "— | — | —".into(),
     };
     for row in &rows {
         let ours = row.ours.as_ref().ok();
         let artist = row.artist.as_ref().and_then(|a| a.as_ref().ok());
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} / {} |",
+            "| {} | {} | {} | {} | {} | {} / {} |",
             row.model,
             ours.or(artist).map_or(0, |c| c.edges),
             cell(&ours),
+            row.anchor
+                .as_ref()
+                .map_or("—".into(), |a| a.total_over_2().to_string()),
             cell(&artist),
             ours.map_or(0, |c| c.poses.len()),
             artist.map_or(0, |c| c.poses.len()),
@@ -176,7 +185,9 @@ fn run() -> Result<(), String> {
                     "| pose | skelfit >2x | skelfit >1.5x | artist >2x | artist >1.5x |\n|---|---:|---:|---:|---:|"
                 );
                 for p in &ours.poses {
-                    let a = artist.and_then(|a| a.poses.iter().find(|q| q.pose == p.pose));
+                    let a = artist
+                        .filter(|a| !a.poses.is_empty())
+                        .and_then(|a| a.poses.iter().find(|q| q.pose == p.pose));
                     let _ = writeln!(
                         md,
                         "| {} | {} | {} | {} | {} |",
