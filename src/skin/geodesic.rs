@@ -82,7 +82,13 @@ pub(crate) fn geodesic_weights(
     segments: &[SegmentVoxels],
     options: &SkinOptions,
 ) -> (Vec<Vec<(JointId, f64)>>, Vec<usize>) {
-    let field = field(solid, distance, segments, options);
+    let mut needed = vec![false; solid.grid.len()];
+    for &p in &mesh.positions {
+        for (index, _) in corners(&solid.grid, p) {
+            needed[index] = true;
+        }
+    }
+    let field = field(solid, distance, segments, options, needed);
     let grid = solid.grid;
     let lines: Vec<_> = segments.iter().map(|s| s.line(skeleton)).collect();
     let mut weights: Vec<Vec<(JointId, f64)>> = mesh
@@ -164,8 +170,9 @@ impl Adjacency {
 /// `iterations` rounds of Laplacian smoothing over the mesh's edges: each vertex's weights
 /// move towards its neighbours' by half their mean difference, each edge's share scaled by
 /// (voxel size / edge length)² so that meshes coarser than the voxels are barely smoothed,
-/// then pruned to four joints as in [`prune`]. Removes what is left of the voxel scale in the
-/// weight field; separate pieces smooth within themselves.
+/// then pruned to four joints as in [`prune`]; at the end, weights under [`NEGLIGIBLE`] are
+/// cut. Removes what is left of the voxel scale in the weight field; separate pieces smooth
+/// within themselves.
 fn smooth(
     mesh: &Mesh,
     adjacency: &Adjacency,
@@ -173,43 +180,66 @@ fn smooth(
     iterations: usize,
     h: f64,
 ) {
+    const EMPTY: (u32, f64) = (NONE, 0.0);
+    type Row = [(u32, f64); LABELS - 1];
+    let to_row = |w: &[(u32, f64)]| -> Row {
+        let mut row = [EMPTY; LABELS - 1];
+        for (slot, &entry) in row.iter_mut().zip(w) {
+            *slot = entry;
+        }
+        row
+    };
+    // Each edge's share, fixed over the iterations.
+    let shares: Vec<f64> = (0..weights.len())
+        .into_par_iter()
+        .flat_map_iter(|v| {
+            let around = adjacency.around(v);
+            let p = mesh.positions[v];
+            let scale = 0.5 / around.len().max(1) as f64;
+            around.iter().map(move |&u| {
+                let len2 = p.distance_squared(mesh.positions[u as usize]);
+                scale * (h * h / len2.max(f64::MIN_POSITIVE)).min(1.0)
+            })
+        })
+        .collect();
+    let mut rows: Vec<Row> = weights
+        .iter()
+        .map(|w| {
+            let w: Vec<(u32, f64)> = w.iter().map(|&(j, x)| (j.0 as u32, x)).collect();
+            to_row(&w)
+        })
+        .collect();
     for _ in 0..iterations {
-        let smoothed: Vec<Vec<(JointId, f64)>> = (0..weights.len())
+        rows = (0..rows.len())
             .into_par_iter()
             .map_init(Vec::new, |mixed: &mut Vec<(u32, f64)>, v| {
-                let around = adjacency.around(v);
-                if around.is_empty() {
-                    return weights[v].clone();
+                let range = adjacency.start[v]..adjacency.start[v + 1];
+                if range.is_empty() {
+                    return rows[v];
                 }
-                let p = mesh.positions[v];
-                let scale = 0.5 / around.len() as f64;
-                let share = |u: u32| {
-                    let len2 = p.distance_squared(mesh.positions[u as usize]);
-                    scale * (h * h / len2.max(f64::MIN_POSITIVE)).min(1.0)
-                };
-                let keep = 1.0 - around.iter().map(|&u| share(u)).sum::<f64>();
+                let keep = 1.0 - shares[range.clone()].iter().sum::<f64>();
                 mixed.clear();
-                mixed.extend(weights[v].iter().map(|&(j, w)| (j.0 as u32, keep * w)));
-                for &u in around {
-                    let share = share(u);
-                    for &(j, w) in &weights[u as usize] {
-                        match mixed.iter_mut().find(|(k, _)| *k == j.0 as u32) {
+                mixed.extend(
+                    rows[v]
+                        .iter()
+                        .filter(|e| e.0 != NONE)
+                        .map(|&(j, w)| (j, keep * w)),
+                );
+                for (&u, &share) in adjacency.adjacent[range.clone()].iter().zip(&shares[range]) {
+                    for &(j, w) in rows[u as usize].iter().filter(|e| e.0 != NONE) {
+                        match mixed.iter_mut().find(|(k, _)| *k == j) {
                             Some(entry) => entry.1 += share * w,
-                            None => mixed.push((j.0 as u32, share * w)),
+                            None => mixed.push((j, share * w)),
                         }
                     }
                 }
                 prune(mixed, 0.0);
-                mixed
-                    .iter()
-                    .map(|&(j, w)| (JointId(j as usize), w))
-                    .collect()
+                to_row(mixed)
             })
             .collect();
-        weights.clone_from_slice(&smoothed);
     }
-    weights.par_iter_mut().for_each(|w| {
-        let mut pruned: Vec<(u32, f64)> = w.iter().map(|&(j, x)| (j.0 as u32, x)).collect();
+    weights.par_iter_mut().zip(&rows).for_each(|(w, row)| {
+        let mut pruned: Vec<(u32, f64)> = row.iter().filter(|e| e.0 != NONE).copied().collect();
         prune(&mut pruned, NEGLIGIBLE);
         *w = pruned
             .into_iter()
@@ -226,6 +256,7 @@ fn field(
     distance: &DistanceMap,
     segments: &[SegmentVoxels],
     options: &SkinOptions,
+    needed: Vec<bool>,
 ) -> Field {
     let connectivity = options.connectivity;
     let grid = solid.grid;
@@ -294,17 +325,25 @@ fn field(
             );
         }
     }
-    // Nearest interior voxel of every grid voxel, breadth-first: pieces apart from the solid
-    // (a head modelled as a separate shell whose interior was not kept, a hat, a sword) take
-    // the field of the solid nearest to them, continuously.
+    // Nearest interior voxel of the `needed` grid voxels (those around the vertices),
+    // breadth-first: pieces apart from the solid (a head modelled as a separate shell whose
+    // interior was not kept, a hat, a sword) take the field of the solid nearest to them,
+    // continuously. The search stops once every needed voxel has its answer.
     let mut nearest = compact.clone();
+    let mut missing = (0..grid.len())
+        .filter(|&i| needed[i] && nearest[i] == NONE)
+        .count();
     let mut queue: VecDeque<usize> = interior.iter().copied().collect();
     while let Some(index) = queue.pop_front() {
+        if missing == 0 {
+            break;
+        }
         let coords = grid.coords(index);
         for nb in Connectivity::TwentySix.neighbours() {
             if let Some(next) = grid.offset(coords, nb.offset) {
                 if nearest[next] == NONE {
                     nearest[next] = nearest[index];
+                    missing -= usize::from(needed[next]);
                     queue.push_back(next);
                 }
             }
@@ -434,15 +473,9 @@ fn voxel_weights(
     }
 }
 
-/// The weights of a vertex at `p`: the trilinear blend of the weight vectors of the eight
-/// voxel centres around it (clamped to the grid), pruned to four joints.
-fn vertex_weights(
-    field: &Field,
-    grid: &crate::voxel::Grid,
-    p: DVec3,
-    power: f64,
-    blend_ratio: f64,
-) -> Vec<(JointId, f64)> {
+/// The eight voxels whose centres surround `p` (clamped to the grid) and their trilinear
+/// factors.
+fn corners(grid: &crate::voxel::Grid, p: DVec3) -> [(usize, f64); 8] {
     let g = grid.to_voxel(p) - DVec3::splat(0.5);
     let mut base = [0usize; 3];
     let mut t = [0f64; 3];
@@ -457,9 +490,8 @@ fn vertex_weights(
         base[a] = b as usize;
         t[a] = (x - b).clamp(0.0, 1.0);
     }
-    let mut blended: Vec<(u32, f64)> = Vec::with_capacity(4 * LABELS);
-    let mut corner = Vec::with_capacity(LABELS);
-    for k in 0..8 {
+    let mut out = [(0usize, 0f64); 8];
+    for (k, slot) in out.iter_mut().enumerate() {
         let mut coords = base;
         let mut factor = 1.0;
         for a in 0..3 {
@@ -469,17 +501,27 @@ fn vertex_weights(
             }
             factor *= if up { t[a] } else { 1.0 - t[a] };
         }
+        *slot = (grid.index(coords), factor);
+    }
+    out
+}
+
+/// The weights of a vertex at `p`: the trilinear blend of the weight vectors of the eight
+/// voxel centres around it (clamped to the grid), pruned to four joints.
+fn vertex_weights(
+    field: &Field,
+    grid: &crate::voxel::Grid,
+    p: DVec3,
+    power: f64,
+    blend_ratio: f64,
+) -> Vec<(JointId, f64)> {
+    let mut blended: Vec<(u32, f64)> = Vec::with_capacity(4 * LABELS);
+    let mut corner = Vec::with_capacity(LABELS);
+    for (index, factor) in corners(grid, p) {
         if factor <= 0.0 {
             continue;
         }
-        voxel_weights(
-            field,
-            grid,
-            grid.index(coords),
-            power,
-            blend_ratio,
-            &mut corner,
-        );
+        voxel_weights(field, grid, index, power, blend_ratio, &mut corner);
         for &(joint, w) in &corner {
             match blended.iter_mut().find(|(j, _)| *j == joint) {
                 Some(entry) => entry.1 += factor * w,
