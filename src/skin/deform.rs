@@ -3,7 +3,7 @@
 use super::{Skin, SkinError};
 use crate::mesh::Mesh;
 use crate::skeleton::Skeleton;
-use glam::{DAffine3, DQuat, DVec3};
+use glam::DQuat;
 
 /// The mesh deformed by `pose` (one local rotation per joint, see
 /// [`Skeleton::world_transforms`]) with linear blend skinning over the anchor weights of
@@ -44,21 +44,7 @@ pub fn deform(
         return Err(SkinError::NonFinitePose { joint });
     }
     let matrices = skeleton.skinning_matrices(pose);
-    let positions = mesh
-        .positions
-        .iter()
-        .zip(&skin.weights)
-        .map(|(&p, weights)| {
-            let mut moved = DVec3::ZERO;
-            for &(joint, w) in weights {
-                let m = matrices.get(joint.0).copied().unwrap_or(DAffine3::IDENTITY);
-                if m != DAffine3::IDENTITY {
-                    moved += w * (m.transform_point3(p) - p);
-                }
-            }
-            p + moved
-        })
-        .collect();
+    let positions = super::check::blend(&mesh.positions, &skin.weights, &matrices);
     Ok(Mesh {
         positions,
         triangles: mesh.triangles.clone(),
