@@ -10,16 +10,15 @@
 //!   │ √3, each step costing its length × depth^-depth_exponent: shallow contacts cost more)
 //!   ▼
 //! per interior voxel: the K nearest joints and their geodesic distances
-//!   │ every grid voxel → its nearest interior voxel (breadth-first), distance + offset
-//!   ▼
+//!   │ each voxel around a vertex → its nearest interior voxel (breadth-first), distance +
+//!   │ offset; w_j = f(d_j) tapered linearly to 0 where the joint's path is `blend_ratio`
+//!   ▼ times as long as the nearest joint's, f(d) = d^(−falloff)
 //! per vertex: trilinear blend of the weight vectors of the 8 voxel centres around it
-//!   │ w_j = f(d_j) − max(f(d_(K+1)), f(blend_ratio · d_1)), f(d) = d^(−falloff): the
-//!   │ (K+1)-th nearest joint's weight, or that of a joint `blend_ratio` times farther
-//!   │ than the nearest, is subtracted, so a joint leaves the set with weight 0 (no jump)
-//!   ▼ and far bones get none
+//!   │ every prune to four joints subtracts the fifth's weight, so a joint leaves the set
+//!   ▼ with weight 0 (no jump)
 //! ≤ 4 influences per vertex, normalised
-//!   │ Laplacian smoothing over the mesh edges, each edge's share scaled by (voxel / length)²
-//!   ▼
+//!   │ Laplacian smoothing over the mesh edges, each edge's share scaled by (voxel / length)²;
+//!   ▼ weights under 1 % cut
 //! weights
 //! ```
 //!
