@@ -1,7 +1,7 @@
 //! The skinning stage driver and its result.
 
 use super::geodesic::geodesic_weights;
-use super::weights::segment_distance;
+use super::weights::{nearest_segment, segment_distance};
 use super::{
     anchor_weights, bone_segments, engine_weights, influence, EngineWeights, SegmentVoxels,
     SkinError, SkinMethod, SkinOptions, SkinWarning,
@@ -163,10 +163,7 @@ fn anchor_skin(
                 .map(|c| influence.at(grid.index(c)).to_vec())
                 .unwrap_or_default();
             let (set, reached) = if set.is_empty() {
-                let nearest = (0..lines.len())
-                    .map(|s| (segment_distance(p, lines[s].0, lines[s].1), s))
-                    .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
-                    .map_or(0, |(_, s)| s as u32);
+                let nearest = nearest_segment(p, &lines).map_or(0, |s| s as u32);
                 (vec![nearest], false)
             } else {
                 (set, true)

@@ -29,7 +29,7 @@
 //! under linear blend skinning, whatever the mesh's tessellation or its number of pieces;
 //! measured with [`check`](super::check): `reports/deformation/`.
 
-use super::weights::segment_distance;
+use super::weights::nearest_segment;
 use super::{SegmentVoxels, SkinOptions};
 use crate::distance::DistanceMap;
 use crate::mesh::Mesh;
@@ -114,10 +114,7 @@ pub(crate) fn geodesic_weights(
     for (v, w) in weights.iter_mut().enumerate() {
         if w.is_empty() {
             let p = mesh.positions[v];
-            let nearest = (0..lines.len())
-                .map(|s| (segment_distance(p, lines[s].0, lines[s].1), s))
-                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
-                .map_or(JointId(0), |(_, s)| segments[s].joint);
+            let nearest = nearest_segment(p, &lines).map_or(JointId(0), |s| segments[s].joint);
             *w = vec![(nearest, 1.0)];
             isolated.push(v);
         }

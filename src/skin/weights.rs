@@ -39,6 +39,15 @@ pub fn anchor_weights(distances: &[f64]) -> Vec<f64> {
     }
 }
 
+/// The index of the segment line (`(start, end)`) nearest to `p` (ties: the lowest index), or
+/// `None` without lines.
+pub(crate) fn nearest_segment(p: DVec3, lines: &[(DVec3, DVec3)]) -> Option<usize> {
+    (0..lines.len())
+        .map(|s| (segment_distance(p, lines[s].0, lines[s].1), s))
+        .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+        .map(|(_, s)| s)
+}
+
 /// Shortest distance from `p` to the line segment `a..b` (a point when `a == b`).
 pub(crate) fn segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
     let ab = b - a;
