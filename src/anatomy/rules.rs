@@ -199,6 +199,83 @@ fn sides(a: usize, b: usize, sections: &[Section], frame: &Frame) -> [(usize, Si
     }
 }
 
+/// What the tail rule looks at.
+struct TailContext<'a> {
+    graph: &'a LevelGraph,
+    sections: &'a [Section],
+    frame: &'a Frame,
+    figure: FigureClass,
+    trunk_points: &'a [DVec3],
+    /// Leg pairs, most anterior first.
+    pairs: &'a [(usize, usize)],
+    /// Farthest a tail may join the trunk from the posterior pair, mesh units.
+    limit: f64,
+    /// Shortest tail, mesh units.
+    min_length: f64,
+}
+
+impl TailContext<'_> {
+    fn attachment(&self, s: usize) -> DVec3 {
+        self.graph.vertices[self.sections[s].attachment_vertex].centroid
+    }
+
+    /// The tail: of `candidates` (unlabelled sections) and the unpaired legs, the one reaching
+    /// farthest back, when it extends rearward, is long enough, and roots at the pelvic end of
+    /// the trunk: within the distance limit of the posterior pair's attachments and nearer to
+    /// them than to the anterior end of the trunk (the fore pair's attachments, else the
+    /// trunk's highest point for a human-like figure, its most forward point otherwise). A
+    /// tail is the spine's continuation past the pelvis, so a protrusion from the upper back
+    /// (a backpack, a head leaning back) or a shoulder (a T-posed arm) is never one.
+    fn assign(
+        &self,
+        assign: &mut [Assignment],
+        single_legs: &mut Vec<usize>,
+        candidates: &[usize],
+    ) {
+        let (sections, frame) = (self.sections, self.frame);
+        let mut candidates: Vec<usize> = candidates.to_vec();
+        candidates.extend(single_legs.iter().copied());
+        candidates.sort_by(|&a, &b| {
+            sections[a].reach[3]
+                .total_cmp(&sections[b].reach[3])
+                .then(a.cmp(&b))
+        });
+        let Some(&t) = candidates.first() else {
+            return;
+        };
+        let s = &sections[t];
+        let attach = self.attachment(t);
+        let mid = |&(a, b): &(usize, usize)| (self.attachment(a) + self.attachment(b)) / 2.0;
+        let posterior = self.pairs.last().map(mid);
+        let anterior = if self.pairs.len() >= 2 {
+            self.pairs.first().map(mid)
+        } else {
+            let towards = match self.figure {
+                FigureClass::HumanLike => frame.up,
+                _ => frame.forward,
+            };
+            self.trunk_points
+                .iter()
+                .copied()
+                .max_by(|a, b| a.dot(towards).total_cmp(&b.dot(towards)))
+        };
+        let rearward = s.distal.dot(frame.forward) < attach.dot(frame.forward);
+        let near = posterior.is_none_or(|p| p.distance(attach) <= self.limit);
+        let pelvic_end = match (posterior, anterior) {
+            (Some(p), Some(a)) => p.distance(attach) < a.distance(attach),
+            _ => true,
+        };
+        let long = s.length >= self.min_length;
+        if s.extreme[3] && rearward && near && pelvic_end && long {
+            assign[t] = Assignment {
+                label: Some(Label::Tail),
+                ..UNLABELLED
+            };
+            single_legs.retain(|&l| l != t);
+        }
+    }
+}
+
 /// Labels the level graph (ch.7.3.3). `trunk_centre` is used for the side of unpaired limbs.
 pub fn label_graph(
     graph: &LevelGraph,
@@ -323,33 +400,22 @@ pub fn label_graph(
         }
     }
 
-    // Tail: the section reaching farthest back, if unlabelled or an unpaired leg, extending
-    // rearward from near the most posterior limb pair.
-    let posterior = ordered.last().map(|&(a, b)| {
-        (graph.vertices[sections[a].attachment_vertex].centroid
-            + graph.vertices[sections[b].attachment_vertex].centroid)
-            / 2.0
-    });
-    let mut tail_candidates: Vec<usize> = unlabelled(&assign);
-    tail_candidates.extend(single_legs.iter().copied());
-    tail_candidates.sort_by(|&a, &b| {
-        sections[a].reach[3]
-            .total_cmp(&sections[b].reach[3])
-            .then(a.cmp(&b))
-    });
-    if let Some(&t) = tail_candidates.first() {
-        let s = &sections[t];
-        let attach = graph.vertices[s.attachment_vertex].centroid;
-        let rearward = s.distal.dot(frame.forward) < attach.dot(frame.forward);
-        let near = posterior.is_none_or(|p| p.distance(attach) <= options.tail_distance * radius);
-        let long = s.length >= options.tail_length * radius;
-        if s.extreme[3] && rearward && near && long {
-            assign[t] = Assignment {
-                label: Some(Label::Tail),
-                ..UNLABELLED
-            };
-            single_legs.retain(|&l| l != t);
-        }
+    // Tail: an animal's before the head (its tail may reach as high as its head); a human-like
+    // figure's after the head and the arms, which it may never take (a T-posed arm reaching
+    // back, a head leaning back).
+    let tail_context = TailContext {
+        graph,
+        sections: &sections,
+        frame,
+        figure,
+        trunk_points: &trunk_points,
+        pairs: &ordered,
+        limit: options.tail_distance * radius,
+        min_length: options.tail_length * radius,
+    };
+    if figure != FigureClass::HumanLike {
+        let candidates = unlabelled(&assign);
+        tail_context.assign(&mut assign, &mut single_legs, &candidates);
     }
 
     // Head: upward extreme (human-like), forward extreme (animal-like), else both.
@@ -407,6 +473,11 @@ pub fn label_graph(
                 partner: Some(if s == a { b } else { a }),
             };
         }
+    }
+
+    if figure == FigureClass::HumanLike {
+        let candidates = unlabelled(&assign);
+        tail_context.assign(&mut assign, &mut single_legs, &candidates);
     }
 
     let centre = if trunk_points.is_empty() {

@@ -35,10 +35,10 @@ fn union(parent: &mut [u32], a: u32, b: u32) {
     }
 }
 
-/// Keeps only the largest 26-connected component of `inside` (ties: the one containing the
-/// lowest voxel index, so the result is deterministic). Returns the number of components found
-/// and the number of voxels dropped.
-pub(crate) fn keep_largest_component(grid: &Grid, inside: &mut [bool]) -> (usize, usize) {
+/// The 26-connected components of `inside`: a component index per voxel (`u32::MAX` outside)
+/// and each component's voxel count. Components are numbered in the order of their lowest
+/// voxel index, so the result is deterministic.
+pub(crate) fn label_components(grid: &Grid, inside: &[bool]) -> (Vec<u32>, Vec<usize>) {
     let [nx, ny, nz] = grid.dims;
     let rows = ny * nz;
     let mut runs: Vec<Run> = Vec::new();
@@ -59,8 +59,9 @@ pub(crate) fn keep_largest_component(grid: &Grid, inside: &mut [bool]) -> (usize
         }
         row_start[row + 1] = runs.len() as u32;
     }
+    let mut label = vec![u32::MAX; inside.len()];
     if runs.is_empty() {
-        return (0, 0);
+        return (label, Vec::new());
     }
     let mut parent: Vec<u32> = (0..runs.len() as u32).collect();
     for (k, run) in runs.iter().enumerate() {
@@ -85,25 +86,41 @@ pub(crate) fn keep_largest_component(grid: &Grid, inside: &mut [bool]) -> (usize
             }
         }
     }
-    let mut size = vec![0usize; runs.len()];
+    // Roots are the smallest run index of their component (see `union`), and runs are in voxel
+    // order: numbering roots in run order numbers components by their lowest voxel.
+    let mut number = vec![u32::MAX; runs.len()];
+    let mut sizes = Vec::new();
     for (k, run) in runs.iter().enumerate() {
         let root = find(&mut parent, k as u32) as usize;
-        size[root] += run.end - run.start;
+        if number[root] == u32::MAX {
+            number[root] = sizes.len() as u32;
+            sizes.push(0);
+        }
+        let c = number[root];
+        sizes[c as usize] += run.end - run.start;
+        label[run.row * nx + run.start..run.row * nx + run.end].fill(c);
     }
-    let components = (0..runs.len()).filter(|&k| parent[k] == k as u32).count();
-    // Largest size; ties go to the smallest root, whose first run has the lowest voxel index.
-    let best = (0..runs.len())
-        .filter(|&k| parent[k] == k as u32)
-        .max_by(|&a, &b| size[a].cmp(&size[b]).then(b.cmp(&a)))
-        .unwrap_or(0);
+    (label, sizes)
+}
+
+/// Keeps only the largest 26-connected component of `inside` (ties: the one containing the
+/// lowest voxel index, so the result is deterministic). Returns the number of components found
+/// and the number of voxels dropped.
+#[cfg(test)]
+pub(crate) fn keep_largest_component(grid: &Grid, inside: &mut [bool]) -> (usize, usize) {
+    let (label, sizes) = label_components(grid, inside);
+    let Some(best) = (0..sizes.len()).max_by(|&a, &b| sizes[a].cmp(&sizes[b]).then(b.cmp(&a)))
+    else {
+        return (0, 0);
+    };
     let mut dropped = 0;
-    for (k, run) in runs.iter().enumerate() {
-        if find(&mut parent, k as u32) as usize != best {
-            inside[run.row * nx + run.start..run.row * nx + run.end].fill(false);
-            dropped += run.end - run.start;
+    for (i, v) in inside.iter_mut().enumerate() {
+        if *v && label[i] != best as u32 {
+            *v = false;
+            dropped += 1;
         }
     }
-    (components, dropped)
+    (sizes.len(), dropped)
 }
 
 #[cfg(test)]

@@ -26,6 +26,12 @@ pub enum VoxelError {
         /// The threshold given.
         value: f64,
     },
+    /// The gap within which pieces are joined is not in [0, 1].
+    #[error("invalid join gap {value}: give a fraction of the longest side in [0, 1] (0 keeps only the largest piece of the interior)")]
+    InvalidJoinGap {
+        /// The fraction given.
+        value: f64,
+    },
     /// The grid's working memory exceeds the memory available.
     #[error("a grid of {dims:?} = {voxels} voxels needs about {} MiB of working memory but only {} MiB are available: use a voxel size of at least {fitting_size} mesh units (fraction {fitting_fraction}) or free memory", needed_bytes >> 20, available_bytes >> 20)]
     OutOfMemory {

@@ -5,6 +5,7 @@ mod components;
 mod error;
 mod figure;
 mod grid;
+mod join;
 mod options;
 mod outlier;
 mod sizing;
@@ -15,6 +16,7 @@ mod winding;
 
 pub use error::VoxelError;
 pub use grid::{Connectivity, Grid, Neighbour, NEIGHBOURS_26};
+pub use join::DroppedPiece;
 pub use options::{VoxelOptions, VoxelSize};
 pub use solid::{Solid, VoxelReport};
 

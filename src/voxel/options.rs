@@ -28,6 +28,12 @@ pub struct VoxelOptions {
     /// Winding-number threshold above which a voxel centre counts as inside. Default 0.5, the
     /// usual choice for generalised winding numbers (Jacobson et al. 2013).
     pub inside_threshold: f64,
+    /// Interior pieces (separate shells: a head, hands, clothing) lying within this fraction of
+    /// the grid's longest side of the figure are joined to it by a bridge across the gap;
+    /// pieces farther away are dropped with a warning naming them. Default 0.1, the margin
+    /// within which the voxelization keeps a loose piece of the mesh as part of the figure.
+    /// 0 keeps only the largest piece.
+    pub join_gap: f64,
 }
 
 impl Default for VoxelOptions {
@@ -37,6 +43,7 @@ impl Default for VoxelOptions {
             max_voxels: 64 << 20,
             padding: 2,
             inside_threshold: 0.5,
+            join_gap: 0.1,
         }
     }
 }
@@ -55,7 +62,8 @@ impl VoxelOptions {
     /// [`VoxelError::InvalidSize`] for a size that is not a positive finite number (a fraction
     /// not in (0, 1]), [`VoxelError::BudgetTooSmall`] when `max_voxels` is below
     /// [`VoxelOptions::minimum_voxels`] (no mesh could ever be voxelized), and
-    /// [`VoxelError::InvalidThreshold`] for an `inside_threshold` outside [0, 1).
+    /// [`VoxelError::InvalidThreshold`] for an `inside_threshold` outside [0, 1), and
+    /// [`VoxelError::InvalidJoinGap`] for a `join_gap` outside [0, 1].
     ///
     /// # Example
     /// ```
@@ -82,6 +90,11 @@ impl VoxelOptions {
         if !(0.0..1.0).contains(&self.inside_threshold) {
             return Err(VoxelError::InvalidThreshold {
                 value: self.inside_threshold,
+            });
+        }
+        if !(0.0..=1.0).contains(&self.join_gap) {
+            return Err(VoxelError::InvalidJoinGap {
+                value: self.join_gap,
             });
         }
         Ok(())

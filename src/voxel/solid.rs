@@ -1,6 +1,6 @@
 //! The voxelized figure.
 
-use super::Grid;
+use super::{DroppedPiece, Grid};
 use serde::Serialize;
 
 /// A voxelized figure: which voxels of a [`Grid`] are inside the mesh.
@@ -27,10 +27,18 @@ pub struct VoxelReport {
     pub interior_voxels: usize,
     /// Number of voxels touched by triangles.
     pub surface_voxels: usize,
-    /// Number of 26-connected interior components found before keeping the largest.
+    /// Number of 26-connected interior components found (before joining).
     pub components: usize,
-    /// Interior voxels dropped with the smaller components.
+    /// Components joined to the figure across a gap (separate shells: a head, hands, clothes).
+    pub joined_pieces: usize,
+    /// The widest gap crossed by a join, in mesh units.
+    pub widest_gap: f64,
+    /// Outside voxels made inside to bridge the gaps.
+    pub bridge_voxels: usize,
+    /// Interior voxels dropped with the components lying apart from the figure.
     pub dropped_voxels: usize,
+    /// The components dropped, largest first.
+    pub dropped_pieces: Vec<DroppedPiece>,
     /// Voxels whose inside/outside votes disagreed (a sign of holes or self-intersections).
     pub ambiguous_voxels: usize,
     /// Connected pieces of the mesh left out of the voxelization because they lie apart from
@@ -67,12 +75,56 @@ impl VoxelReport {
         }
         let all = self.interior_voxels + self.dropped_voxels;
         if self.dropped_voxels as f64 >= DROPPED_WARNING * all as f64 && self.dropped_voxels > 0 {
+            let named: Vec<String> = self
+                .dropped_pieces
+                .iter()
+                .take(3)
+                .map(|p| {
+                    format!(
+                        "{} voxels around ({:.3}, {:.3}, {:.3})",
+                        p.voxels, p.centre[0], p.centre[1], p.centre[2]
+                    )
+                })
+                .collect();
+            let more = self.dropped_pieces.len().saturating_sub(named.len());
             out.push(format!(
-                "the figure's interior has {} separate parts: the largest was kept, the others \
-                 ({} voxels, {:.1} % of the interior) were dropped",
-                self.components,
+                "{} piece{} of the interior ({} voxels, {:.1} % of the interior) {} too far apart \
+                 from the figure to join it and {} dropped: {}{} (raise the join gap if {} part of \
+                 the figure, or delete {} from the mesh)",
+                self.dropped_pieces.len(),
+                if self.dropped_pieces.len() == 1 {
+                    ""
+                } else {
+                    "s"
+                },
                 self.dropped_voxels,
-                100.0 * self.dropped_voxels as f64 / all.max(1) as f64
+                100.0 * self.dropped_voxels as f64 / all.max(1) as f64,
+                if self.dropped_pieces.len() == 1 {
+                    "lies"
+                } else {
+                    "lie"
+                },
+                if self.dropped_pieces.len() == 1 {
+                    "was"
+                } else {
+                    "were"
+                },
+                named.join(", "),
+                if more > 0 {
+                    format!(" and {more} more")
+                } else {
+                    String::new()
+                },
+                if self.dropped_pieces.len() == 1 {
+                    "it is"
+                } else {
+                    "they are"
+                },
+                if self.dropped_pieces.len() == 1 {
+                    "it"
+                } else {
+                    "them"
+                },
             ));
         }
         out

@@ -1,7 +1,7 @@
 //! The voxelization driver: grid sizing, classification, component filtering.
 
-use super::components::keep_largest_component;
 use super::figure::{figure_mesh, LeftOut};
+use super::join::join_pieces;
 use super::outlier::far_outlier;
 use super::sizing::grid_of;
 use super::surface::surface_voxels;
@@ -78,7 +78,12 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
     }
     drop(votes);
     let surface = surface_voxels(&grid, &corners);
-    let (components, dropped_voxels) = keep_largest_component(&grid, &mut inside);
+    let longest = grid.dims.iter().max().copied().unwrap_or(0);
+    let reach = (options.join_gap * longest.saturating_sub(2 * options.padding) as f64).round();
+    let joining = join_pieces(&grid, &mut inside, reach as usize);
+    if std::env::var_os("SKELFIT_DEBUG_JOIN").is_some() {
+        eprintln!("join: {joining:?} reach {reach}");
+    }
     let interior_voxels = inside.iter().filter(|&&b| b).count();
     if interior_voxels == 0 {
         if let Some((vertex, position, core)) = far_outlier(mesh) {
@@ -94,8 +99,12 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
     let report = VoxelReport {
         interior_voxels,
         surface_voxels: surface.iter().filter(|&&b| b).count(),
-        components,
-        dropped_voxels,
+        components: joining.components,
+        joined_pieces: joining.joined,
+        widest_gap: joining.widest_gap as f64 * h,
+        bridge_voxels: joining.bridge_voxels,
+        dropped_voxels: joining.dropped_voxels,
+        dropped_pieces: joining.dropped,
         ambiguous_voxels,
         left_out_pieces: left_out.pieces,
         left_out_triangles: left_out.triangles,
