@@ -81,6 +81,10 @@ pub struct RigArgs {
     /// Slicing-based refinement of humanoid joints (seed 004) after the fit.
     #[arg(long, value_name = "on|off", default_value = "on", value_parser = ["on", "off"])]
     pub refine: String,
+    /// Make the paired joints of a bilaterally symmetric figure mirror each other across its
+    /// median plane (figures that are not symmetric, e.g. posed with one arm raised, keep theirs).
+    #[arg(long, value_name = "on|off", default_value = "on", value_parser = ["on", "off"])]
+    pub symmetry: String,
     /// Add bone meshes (dissertation 9.1) to OUT.glb as child nodes of their joints.
     #[arg(long)]
     pub bones: bool,
@@ -124,6 +128,7 @@ impl RigArgs {
         };
         options.fit.preset = self.preset.into();
         options.refine.in_rig = self.refine == "on";
+        options.refine.symmetry = self.symmetry == "on";
         if let Some(path) = &self.labels {
             options.overrides = Some(Overrides::load(path)?);
         }

@@ -11,7 +11,7 @@ use crate::fit::{
 };
 use crate::medial::dms;
 use crate::mesh::Mesh;
-use crate::refine::{refine, RefineError, RefineOptions};
+use crate::refine::{refine, symmetrize, RefineError, RefineOptions};
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{apply_preset, Preset, RefineKind, Template};
 use crate::voxel::{voxelize, Solid};
@@ -216,6 +216,13 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
             Err(e) => warnings.push(format!("refine: {e}; the fitted joints are kept")),
         }
         lap("refine", &mut timings);
+    }
+    if options.refine.symmetry {
+        let symmetry = symmetrize(&fit.skeleton, mesh, &solid, input.up.cross(input.forward));
+        if symmetry.applied {
+            fit.skeleton = symmetry.skeleton;
+        }
+        lap("symmetry", &mut timings);
     }
     apply_preset(&mut fit.skeleton, &fit.canonical, options.fit.preset)
         .map_err(|e| FitError::Preset(e.to_string()))?;

@@ -18,6 +18,9 @@
 //!   ─▶ skeleton: refined joints moved, the rest carried along, frames turned
 //! ```
 //!
+//! [`symmetrize`] (`symmetry.rs`, any template): the paired joints of a bilaterally symmetric
+//! figure are made to mirror each other across its median plane.
+//!
 //! Anything that cannot be found keeps its rough position with a warning naming the joint.
 
 mod arms;
@@ -33,6 +36,7 @@ mod limb_joints;
 mod options;
 mod shoulder;
 mod spine;
+mod symmetry;
 mod torso;
 mod warning;
 
@@ -46,5 +50,6 @@ pub use limb_joints::{ankle, arc_near, bend, on_axis, wrist, BendRule};
 pub use options::RefineOptions;
 pub use shoulder::{armpit, shoulder, upper_arm_line};
 pub use spine::{spine, Spine, SPINE_JOINTS};
+pub use symmetry::{symmetrize, Symmetry, SYMMETRIC_SHARE};
 pub use torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
 pub use warning::RefineWarning;

@@ -10,6 +10,9 @@ pub struct RefineOptions {
     /// Whether [`crate::pipeline::rig`] refines the joints of humanoid fits (`skelfit rig
     /// --refine on|off`); [`super::refine`] itself ignores it. Default true.
     pub in_rig: bool,
+    /// Whether [`crate::pipeline::rig`] makes the paired joints of a bilaterally symmetric
+    /// figure mirror each other ([`super::symmetrize`]), for every template. Default true.
+    pub symmetry: bool,
     /// Canonical keys (e.g. `knee_L`) left at their rough positions even when refinement
     /// finds them. Default empty (refine every joint it can).
     pub keep: Vec<String>,
@@ -239,6 +242,7 @@ impl Default for RefineOptions {
     fn default() -> Self {
         Self {
             in_rig: true,
+            symmetry: true,
             head_slice_step: 0.004,
             head_shrink_ratio: 0.75,
             head_turn_degrees: 60.0,

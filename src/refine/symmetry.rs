@@ -1,0 +1,184 @@
+//! Bilateral symmetry: a figure whose body mirrors itself across its median plane gets paired
+//! joints that mirror each other too.
+//!
+//! Every fitting and refining step places the left and right joints of a pair from their own
+//! side's geometry, so noise (a hand shape, a sleeve, a slicing that stops one voxel early) makes
+//! them disagree although the body is symmetric. When the voxelized figure is symmetric (at
+//! least [`SYMMETRIC_SHARE`] of its interior voxels have their mirror image inside), each pair
+//! `X_L`/`X_R` moves to the mean of one and the other's mirror image; the other joints stay
+//! and frames turn with their segments ([`carry`]). The median plane is the one across `left` halfway between the
+//! mesh's extremes along `left` (where a symmetric figure's extremes mirror each other). A figure that is not symmetric (a pose with one arm raised, a prop in one hand)
+//! keeps its joints.
+
+use super::carry;
+use crate::mesh::Mesh;
+use crate::skeleton::{JointId, Skeleton};
+use crate::voxel::Solid;
+use glam::DVec3;
+use std::collections::BTreeMap;
+
+/// Share of the interior voxels whose mirror image must be inside for a symmetric figure.
+/// Chosen so that tessellation and voxel noise (a mirror falling one voxel off the surface) pass
+/// and a raised arm or a one-sided prop (a tenth of the body or more) does not.
+pub const SYMMETRIC_SHARE: f64 = 0.9;
+
+/// What [`symmetrize`] did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Symmetry {
+    /// Share of the interior voxels whose mirror image is inside.
+    pub share: f64,
+    /// Whether the pairs were made to mirror each other.
+    pub applied: bool,
+    /// Pairs moved, with how far apart the two were from mirroring each other (mesh units).
+    pub pairs: Vec<(String, f64)>,
+    /// The skeleton (unchanged when not applied).
+    pub skeleton: Skeleton,
+}
+
+/// Mirrors `p` across the plane through `origin` with unit normal `left`.
+fn mirror(p: DVec3, origin: DVec3, left: DVec3) -> DVec3 {
+    p - 2.0 * (p - origin).dot(left) * left
+}
+
+/// Share of `solid`'s interior voxels whose mirror image across the plane (`origin`, `left`)
+/// is inside.
+fn symmetric_share(solid: &Solid, origin: DVec3, left: DVec3) -> f64 {
+    let (mut inside, mut mirrored) = (0usize, 0usize);
+    for (i, &v) in solid.inside.iter().enumerate() {
+        if !v {
+            continue;
+        }
+        inside += 1;
+        let m = mirror(solid.grid.centre(solid.grid.coords(i)), origin, left);
+        if solid
+            .grid
+            .voxel_at(m)
+            .is_some_and(|c| solid.inside[solid.grid.index(c)])
+        {
+            mirrored += 1;
+        }
+    }
+    mirrored as f64 / inside.max(1) as f64
+}
+
+/// Makes the paired joints of `skeleton` (names ending `_L` and `_R`) mirror each other across
+/// the median plane of `mesh` (voxelized into `solid`), whose normal is `left` (see the module
+/// docs).
+pub fn symmetrize(skeleton: &Skeleton, mesh: &Mesh, solid: &Solid, left: DVec3) -> Symmetry {
+    let unchanged = |share| Symmetry {
+        share,
+        applied: false,
+        pairs: Vec::new(),
+        skeleton: skeleton.clone(),
+    };
+    let Some(left) = left.try_normalize() else {
+        return unchanged(0.0);
+    };
+    let (lo, hi) = mesh
+        .triangles
+        .iter()
+        .flatten()
+        .map(|&i| mesh.positions[i as usize].dot(left))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
+            (lo.min(t), hi.max(t))
+        });
+    if !(lo <= hi) {
+        return unchanged(0.0);
+    }
+    let origin = left * (lo + hi) / 2.0;
+    let share = symmetric_share(solid, origin, left);
+    if share < SYMMETRIC_SHARE {
+        return unchanged(share);
+    }
+    let mut targets: BTreeMap<JointId, DVec3> = BTreeMap::new();
+    let mut pairs = Vec::new();
+    for (l, joint) in skeleton.joints.iter().enumerate() {
+        let Some(stem) = joint.name.strip_suffix("_L") else {
+            continue;
+        };
+        let Some(r) = skeleton.find(&format!("{stem}_R")) else {
+            continue;
+        };
+        let (pl, pr) = (joint.position, skeleton.joints[r.0].position);
+        let mirrored = mirror(pr, origin, left);
+        let mean = (pl + mirrored) / 2.0;
+        targets.insert(JointId(l), mean);
+        targets.insert(r, mirror(mean, origin, left));
+        pairs.push((stem.to_string(), pl.distance(mirrored)));
+    }
+    // The joints on the median plane stay where they are.
+    for (j, joint) in skeleton.joints.iter().enumerate() {
+        targets.entry(JointId(j)).or_insert(joint.position);
+    }
+    Symmetry {
+        share,
+        applied: true,
+        pairs,
+        skeleton: carry(skeleton, &targets),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::skeleton::Joint;
+    use crate::voxel::{voxelize, VoxelOptions};
+
+    fn figure(arm_raised: bool) -> crate::mesh::Mesh {
+        // A trunk with two arms; the left one raised when asked.
+        let mut mesh = crate::mesh::Mesh::capsule(DVec3::ZERO, 0.3, 1.6, 8, 16);
+        let arm =
+            |x: f64, y: f64| crate::mesh::Mesh::capsule(DVec3::new(x, y, 0.0), 0.1, 0.8, 8, 16);
+        for part in [
+            if arm_raised {
+                arm(0.5, 1.0)
+            } else {
+                arm(0.5, 0.0)
+            },
+            arm(-0.5, 0.0),
+        ] {
+            let base = mesh.positions.len() as u32;
+            mesh.positions.extend(&part.positions);
+            mesh.triangles
+                .extend(part.triangles.iter().map(|t| t.map(|i| i + base)));
+        }
+        mesh
+    }
+
+    fn skeleton() -> Skeleton {
+        let mut s = Skeleton::default();
+        s.joints.push(Joint::new("pelvis", None, DVec3::ZERO));
+        s.joints.push(Joint::new(
+            "hand_L",
+            Some(JointId(0)),
+            DVec3::new(0.55, 0.1, 0.0),
+        ));
+        s.joints.push(Joint::new(
+            "hand_R",
+            Some(JointId(0)),
+            DVec3::new(-0.45, -0.1, 0.0),
+        ));
+        s
+    }
+
+    #[test]
+    fn a_symmetric_figure_gets_mirrored_pairs_and_an_asymmetric_one_keeps_its_joints() {
+        let solid = voxelize(&figure(false), &VoxelOptions::default()).unwrap();
+        let s = symmetrize(&skeleton(), &figure(false), &solid, DVec3::X);
+        assert!(s.applied && s.share >= SYMMETRIC_SHARE, "{}", s.share);
+        let (l, r) = (s.skeleton.joints[1].position, s.skeleton.joints[2].position);
+        assert!(
+            (l.x + r.x).abs() < 1e-9 && (l.y - r.y).abs() < 1e-9,
+            "{l} {r}"
+        );
+        assert!((l.x - 0.5).abs() < 1e-9 && l.y.abs() < 1e-9, "{l}");
+        assert_eq!(s.pairs.len(), 1);
+        assert!((s.pairs[0].1 - 0.2236).abs() < 0.02, "{:?}", s.pairs);
+        assert_eq!(s.skeleton.joints[0].position, DVec3::ZERO);
+
+        let raised = voxelize(&figure(true), &VoxelOptions::default()).unwrap();
+        let s = symmetrize(&skeleton(), &figure(true), &raised, DVec3::X);
+        assert!(!s.applied && s.share < SYMMETRIC_SHARE, "{}", s.share);
+        assert_eq!(s.skeleton, skeleton());
+    }
+}
