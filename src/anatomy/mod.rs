@@ -40,6 +40,7 @@ mod level_graph;
 mod limb_root;
 mod neck;
 mod options;
+mod orient;
 mod output;
 mod overrides;
 mod parts;
@@ -51,7 +52,8 @@ pub use bone_labels::label_vertices_by_bones;
 pub use error::AnatomyError;
 pub use frame::{parse_direction, Frame};
 pub use level_graph::{level_graph, LevelGraph, LevelVertex, Marks, NO_VERTEX};
-pub use options::{Forward, LabelOptions, LevelOptions, RuleOptions};
+pub use options::{Forward, LabelOptions, LevelOptions, RuleOptions, Up};
+pub use orient::{find_up, UpChoice, UpScore};
 pub use output::{labels_json, labels_ply, labels_svg, part_colour};
 pub use overrides::{Overrides, SectionOverride};
 pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
@@ -118,13 +120,26 @@ pub fn label_pieces(
     if surface.is_empty() {
         return Err(AnatomyError::EmptySurface);
     }
-    let mut labelling = match options.forward {
-        Forward::Direction(f) => {
-            let frame = Frame::new(options.up, f)?;
+    let up_found = match options.up {
+        Up::Direction(_) => None,
+        Up::Auto => Some(find_up(solid, surface, options)),
+    };
+    let up = up_found.as_ref().map_or(options.up.or_default(), |c| c.up);
+    // A figure found lying in the file (Z-up from Blender, CAD tools, scanners) faces where the
+    // given forward points after the same turn that takes +Y to its up: +Z forward becomes -Y
+    // for a Z-up file, Blender's convention.
+    let forward = match options.forward {
+        Forward::Direction(f) if up_found.is_some() => {
+            Forward::Direction(glam::DQuat::from_rotation_arc(DVec3::Y, up) * f)
+        }
+        other => other,
+    };
+    let mut labelling = match forward {
+        Forward::Direction(f) if f.cross(up).length_squared() > 1e-6 * f.length_squared() => {
+            let frame = Frame::new(up, f)?;
             label_in_frame(mesh, solid, surface, options, overrides, frame, false)?
         }
-        Forward::Auto => {
-            let up = options.up;
+        Forward::Direction(_) | Forward::Auto => {
             let first_guess = if up.normalize_or_zero().dot(DVec3::Z).abs() < 0.9 {
                 DVec3::Z
             } else {
@@ -143,7 +158,11 @@ pub fn label_pieces(
             second
         }
     };
-    // What the voxelization left out comes first.
+    // What the voxelization left out comes first, then how up was found.
+    if let Some(choice) = up_found.as_ref().filter(|c| c.up != DVec3::Y) {
+        labelling.warnings.insert(0, choice.note.clone());
+    }
+    labelling.up_found = up_found;
     labelling.warnings.splice(0..0, solid.report.warnings());
     Ok(labelling)
 }
@@ -286,6 +305,7 @@ fn label_in_frame(
         figure: draft.figure,
         frame,
         forward_guessed,
+        up_found: None,
         trunk_axis: draft.trunk_axis,
         trunk_angle: draft.trunk_angle,
         parts,

@@ -17,6 +17,27 @@ pub enum Forward {
     Auto,
 }
 
+/// How the up direction is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Up {
+    /// A given direction.
+    Direction(DVec3),
+    /// Found from the figure (see [`find_up`](super::find_up)): +Y (the glTF convention) when
+    /// the figure stands on a pair of legs under it, else the axis (±X, ±Y,
+    /// ±Z) whose labels make the most complete one; +Y with a warning when none is complete.
+    Auto,
+}
+
+impl Up {
+    /// The given direction, or +Y for [`Up::Auto`] (the first candidate).
+    pub fn or_default(self) -> DVec3 {
+        match self {
+            Up::Direction(d) => d,
+            Up::Auto => DVec3::Y,
+        }
+    }
+}
+
 /// Options of the level graph ([`level_graph`](super::level_graph), ch.7.3.1-7.3.2).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct LevelOptions {
@@ -163,8 +184,9 @@ pub struct LabelOptions {
     pub level: LevelOptions,
     /// Labelling rules.
     pub rules: RuleOptions,
-    /// Up direction. Default +Y (ch.7.1.2).
-    pub up: DVec3,
+    /// Up direction. Default [`Up::Auto`] (ch.7.1.2 has the user give it; the figure's labels
+    /// find it when not given).
+    pub up: Up,
     /// Forward direction. Default +Z (refdata convention; ch.7.1.2 has the user give it).
     pub forward: Forward,
 }
@@ -177,7 +199,7 @@ impl Default for LabelOptions {
             paths: PathOptions::default(),
             level: LevelOptions::default(),
             rules: RuleOptions::default(),
-            up: DVec3::Y,
+            up: Up::Auto,
             forward: Forward::Direction(DVec3::Z),
         }
     }
@@ -251,9 +273,11 @@ impl LabelOptions {
         ] {
             check(name, v, v >= 0.0, "non-negative")?;
         }
-        super::Frame::new(self.up, self.up.any_orthonormal_vector())?;
-        if let Forward::Direction(f) = self.forward {
-            super::Frame::new(self.up, f)?;
+        if let Up::Direction(up) = self.up {
+            super::Frame::new(up, up.any_orthonormal_vector())?;
+            if let Forward::Direction(f) = self.forward {
+                super::Frame::new(up, f)?;
+            }
         }
         Ok(())
     }

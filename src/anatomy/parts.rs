@@ -161,6 +161,8 @@ pub struct Labelling {
     pub frame: Frame,
     /// Whether forward was guessed (`Forward::Auto`).
     pub forward_guessed: bool,
+    /// How up was found (`Up::Auto`), `None` when it was given.
+    pub up_found: Option<super::UpChoice>,
     /// Principal axis of the trunk's DMS voxels (unit).
     pub trunk_axis: DVec3,
     /// Angle between the trunk axis and up, degrees.

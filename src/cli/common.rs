@@ -124,6 +124,30 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
         .with_context(|| format!("writing {}", path.display()))
 }
 
+/// `--up`: `auto` (found from the figure) or a direction.
+pub fn parse_up(text: &str) -> anyhow::Result<skelfit::anatomy::Up> {
+    use anyhow::Context;
+    if text.eq_ignore_ascii_case("auto") {
+        return Ok(skelfit::anatomy::Up::Auto);
+    }
+    let d = skelfit::anatomy::parse_direction(text)
+        .map_err(anyhow::Error::msg)
+        .context("--up")?;
+    Ok(skelfit::anatomy::Up::Direction(d))
+}
+
+/// `--forward`: `auto` (guessed from head/tail or feet) or a direction.
+pub fn parse_forward(text: &str) -> anyhow::Result<skelfit::anatomy::Forward> {
+    use anyhow::Context;
+    if text.eq_ignore_ascii_case("auto") {
+        return Ok(skelfit::anatomy::Forward::Auto);
+    }
+    let d = skelfit::anatomy::parse_direction(text)
+        .map_err(anyhow::Error::msg)
+        .context("--forward")?;
+    Ok(skelfit::anatomy::Forward::Direction(d))
+}
+
 /// A hint for labels that make no complete body plan (a humanoid's two legs, two arms and
 /// head; a quadruped's four legs and head; a winged figure's two legs, two wings and head):
 /// the commonest cause is a mesh whose up axis is not the one assumed (Z-up files from CAD

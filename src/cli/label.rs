@@ -7,9 +7,8 @@ use super::common::{load_mesh, write_file, Outputs, VoxelArgs};
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
 use skelfit::anatomy::{
-    agreement, label_with_overrides, labels_json, labels_ply, labels_svg, parse_direction,
-    reference_regions, weight_regions, Forward, Label, LabelOptions, Labelling, LimbPair,
-    Overrides, Region, Side,
+    agreement, label_with_overrides, labels_json, labels_ply, labels_svg, reference_regions,
+    weight_regions, Label, LabelOptions, Labelling, LimbPair, Overrides, Region, Side,
 };
 use skelfit::eval::{load_skeleton, ReferenceRig};
 use skelfit::mesh::Mesh;
@@ -38,11 +37,13 @@ pub struct LabelArgs {
     /// labels.json to write (with --table: the folder for the table).
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
-    /// Up direction: an axis (+Y, -Z, ...) or a vector x,y,z.
+    /// Up direction: an axis (+Y, -Z, ...), a vector x,y,z, or `auto` (found from the figure:
+    /// +Y when it stands on its legs under +Y, else the axis under which it does; the choice
+    /// and its confidence are reported).
     #[arg(
         long,
         value_name = "DIR",
-        default_value = "+Y",
+        default_value = "auto",
         allow_hyphen_values = true
     )]
     pub up: String,
@@ -100,13 +101,9 @@ impl LabelArgs {
     pub fn options(&self) -> anyhow::Result<LabelOptions> {
         let mut options = LabelOptions {
             voxel: self.voxel.options()?,
-            up: parse_direction(&self.up).map_err(anyhow::Error::msg)?,
+            up: super::common::parse_up(&self.up)?,
+            forward: super::common::parse_forward(&self.forward)?,
             ..Default::default()
-        };
-        options.forward = if self.forward.eq_ignore_ascii_case("auto") {
-            Forward::Auto
-        } else {
-            Forward::Direction(parse_direction(&self.forward).map_err(anyhow::Error::msg)?)
         };
         if let Some(j) = self.junction_fraction {
             options.level.junction_fraction = j;
@@ -153,7 +150,6 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
         Some(p) => Some(Overrides::load(p)?),
         None => None,
     };
-    let up = options.up;
     let labels = match args.vertex_labels {
         VertexLabels::Medial => label_with_overrides(&mesh, &options, overrides.as_ref()),
         VertexLabels::Bones => label_by_bones(
@@ -196,7 +192,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     for w in &labels.warnings {
         eprintln!("skelfit: warning: {w}");
     }
-    if let Some(hint) = super::common::orientation_hint(&labels, up) {
+    if let Some(hint) = super::common::orientation_hint(&labels, labels.frame.up) {
         eprintln!("skelfit: hint: {hint}");
     }
     Ok(())

@@ -7,7 +7,7 @@ use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use serde_json::json;
-use skelfit::anatomy::{parse_direction, Forward, Overrides};
+use skelfit::anatomy::Overrides;
 use skelfit::export::{bvh_text, glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions};
 use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice};
 use skelfit::template::{Preset, Template};
@@ -59,11 +59,13 @@ pub struct RigArgs {
     /// Naming preset of the output joints.
     #[arg(long, value_enum, default_value_t = PresetArg::Anatomical)]
     pub preset: PresetArg,
-    /// Up direction: an axis (+Y, -Z, ...) or a vector x,y,z.
+    /// Up direction: an axis (+Y, -Z, ...), a vector x,y,z, or `auto` (found from the figure:
+    /// +Y when it stands on its legs under +Y, else the axis under which it does; the choice
+    /// and its confidence are reported).
     #[arg(
         long,
         value_name = "DIR",
-        default_value = "+Y",
+        default_value = "auto",
         allow_hyphen_values = true
     )]
     pub up: String,
@@ -100,18 +102,8 @@ impl RigArgs {
     pub fn options(&self) -> anyhow::Result<RigOptions> {
         let mut options = RigOptions::default();
         options.label.voxel = self.voxel.options()?;
-        options.label.up = parse_direction(&self.up)
-            .map_err(anyhow::Error::msg)
-            .context("--up")?;
-        options.label.forward = if self.forward.eq_ignore_ascii_case("auto") {
-            Forward::Auto
-        } else {
-            Forward::Direction(
-                parse_direction(&self.forward)
-                    .map_err(anyhow::Error::msg)
-                    .context("--forward")?,
-            )
-        };
+        options.label.up = super::common::parse_up(&self.up)?;
+        options.label.forward = super::common::parse_forward(&self.forward)?;
         options.template = match self.template.as_str() {
             "auto" => TemplateChoice::Auto,
             name @ ("humanoid" | "quadruped" | "winged") => TemplateChoice::Builtin(name.into()),

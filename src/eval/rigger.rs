@@ -2,7 +2,7 @@
 //! function. A new method (e.g. the anatomical rig) is a new [`RigMethod`] variant, its options
 //! in [`RiggerOptions`] and one arm in [`rig_mesh`].
 
-use crate::anatomy::Forward;
+use crate::anatomy::{Forward, Up};
 use crate::mesh::Mesh;
 use crate::pipeline::{general_skeleton, rig, GeneralSkeletonOptions, RigOptions};
 use crate::skeleton::{JointId, Skeleton};
@@ -109,7 +109,7 @@ pub fn rig_mesh(mesh: &Mesh, options: &RiggerOptions) -> crate::Result<Rigged> {
         }
         RigMethod::Anatomical => {
             let mut rig_options = options.anatomical.clone();
-            rig_options.label.up = options.orientation.up;
+            rig_options.label.up = Up::Direction(options.orientation.up);
             rig_options.label.forward = Forward::Direction(options.orientation.forward);
             let rig = rig(mesh, &rig_options)?;
             Ok(Rigged {

@@ -201,7 +201,7 @@ fn a_figure_rotated_to_z_up_gets_the_same_labels() {
         let turn = DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2);
         let rotated = mesh.transformed(|p| turn * p);
         let options = LabelOptions {
-            up: DVec3::Z,
+            up: skelfit::anatomy::Up::Direction(DVec3::Z),
             forward: Forward::Direction(DVec3::NEG_Y),
             ..Default::default()
         };

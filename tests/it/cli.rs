@@ -215,11 +215,12 @@ fn rig_refuses_an_unknown_template_and_a_missing_mesh() {
     assert!(!glb.exists());
 }
 
-/// A Z-up file read as +Y up lies on its back and labels as no complete body plan: `skelfit
-/// rig` says so and names `--up`; with `--up +Z --forward -Y` the hint goes away, and the upright file
-/// never gets it.
+/// A Z-up file: `skelfit rig` with no orientation flags finds +Z up and says so (no hint);
+/// read as +Y up (`--up +Y`) it lies on its back and labels as no complete body plan: the rig
+/// says so and names `--up`; with `--up +Z --forward -Y` the hint goes away, and the upright
+/// file never gets it.
 #[test]
-fn rig_hints_at_the_up_axis_of_a_lying_figure() {
+fn rig_finds_the_up_axis_of_a_z_up_file_and_hints_when_told_a_wrong_one() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = skelfit::mesh::load(Path::new(&bundled_humanoid())).unwrap();
     let lying = mesh.transformed(|p| glam::DVec3::new(p.x, -p.z, p.y));
@@ -227,13 +228,19 @@ fn rig_hints_at_the_up_axis_of_a_lying_figure() {
     skelfit::export::write_obj(&path, &lying).unwrap();
     let path = path.display().to_string();
     let out_glb = dir.path().join("out.glb").display().to_string();
-    let hint = |args: &[&str]| {
+    let run = |args: &[&str]| {
         let out = skelfit(args);
         assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
-        stderr(&out).contains("skelfit: hint:") && stderr(&out).contains("--up")
+        stderr(&out)
     };
-    assert!(hint(&["rig", &path, "-o", &out_glb]));
-    assert!(!hint(&[
+    let hint = |text: &str| text.contains("skelfit: hint:") && text.contains("--up");
+    let found = run(&["rig", &path, "-o", &out_glb]);
+    assert!(
+        !hint(&found) && found.contains("up is +Z (found automatically"),
+        "{found}"
+    );
+    assert!(hint(&run(&["rig", &path, "-o", &out_glb, "--up", "+Y"])));
+    assert!(!hint(&run(&[
         "rig",
         &path,
         "-o",
@@ -242,8 +249,8 @@ fn rig_hints_at_the_up_axis_of_a_lying_figure() {
         "+Z",
         "--forward",
         "-Y"
-    ]));
-    assert!(!hint(&["rig", &bundled_humanoid(), "-o", &out_glb]));
+    ])));
+    assert!(!hint(&run(&["rig", &bundled_humanoid(), "-o", &out_glb])));
 }
 
 /// `skelfit check` on the bundled body's rig: the standard humanoid sweep, every pose posed,

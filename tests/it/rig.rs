@@ -818,3 +818,79 @@ fn quadrupeds_with_reference_ears_get_ears() {
         }
     }
 }
+
+/// The bundled body and horse turned Z-up (as Blender and CAD tools write them) rig with no
+/// orientation given: up is found (+Z), forward follows Blender's convention (-Y), and the
+/// joints match the Y-up rig's turned the same way.
+#[test]
+fn z_up_copies_rig_without_orientation_flags_like_the_y_up_files() {
+    let turn = glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z);
+    for dir in [
+        "data/humanoid/mh_neutral_default",
+        "data/quadruped/quaternius_horse",
+    ] {
+        let y_up = load(
+            &Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join(dir)
+                .join("mesh.obj"),
+        )
+        .unwrap();
+        let mut z_up = y_up.clone();
+        for p in &mut z_up.positions {
+            *p = turn * *p;
+        }
+        let explicit = RigOptions {
+            label: skelfit::anatomy::LabelOptions {
+                up: skelfit::anatomy::Up::Direction(DVec3::Y),
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let reference = rig(&y_up, &explicit).unwrap();
+        let found = rig(&z_up, &RigOptions::default()).unwrap();
+        let choice = found.labelling.up_found.as_ref().expect("up was found");
+        assert!(choice.up.distance(DVec3::Z) < 1e-9, "{dir}: {choice:?}");
+        assert!(choice.confidence > 0.5, "{dir}: {choice:?}");
+        assert!(
+            found.warnings.iter().any(|w| w.starts_with("up is +Z")),
+            "{dir}: {:?}",
+            found.warnings
+        );
+        let (lo, hi) = y_up.bounding_box().unwrap();
+        let size = (hi - lo).max_element();
+        let mut worst: f64 = 0.0;
+        for (key, id) in &reference.fit.canonical {
+            let other = found
+                .fit
+                .canonical
+                .get(key)
+                .unwrap_or_else(|| panic!("{dir}: {key}"));
+            let p = reference.fit.skeleton.joints[id.0].position;
+            let q = turn.inverse() * found.fit.skeleton.joints[other.0].position;
+            worst = worst.max(p.distance(q) / size);
+        }
+        assert!(
+            worst < 0.03,
+            "{dir}: a joint differs by {:.1} % of the size",
+            100.0 * worst
+        );
+    }
+}
+
+/// Y-up files keep +Y at once (one labelling of the level graph), and a figure standing either
+/// way up cannot be oriented: +Y with confidence 0.
+#[test]
+fn y_up_figures_keep_up_at_once() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    let labels = skelfit::anatomy::label(&mesh, &Default::default()).unwrap();
+    let choice = labels.up_found.unwrap();
+    assert_eq!(choice.up, DVec3::Y);
+    assert_eq!(choice.scores.len(), 1, "{choice:?}");
+    assert!(choice.scores[0].complete && choice.confidence == 1.0);
+    // A capsule (no legs): nothing stands; +Y is kept with confidence 0.
+    let capsule = Mesh::capsule(DVec3::ZERO, 0.3, 1.0, 8, 16);
+    let labels = skelfit::anatomy::label(&capsule, &Default::default()).unwrap();
+    let choice = labels.up_found.unwrap();
+    assert_eq!((choice.up, choice.confidence), (DVec3::Y, 0.0));
+}
