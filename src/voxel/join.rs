@@ -137,7 +137,11 @@ pub(crate) fn join_pieces(grid: &Grid, inside: &mut [bool], max_gap: usize) -> J
     let mut touched_figure = Vec::new();
     let mut touched_piece = Vec::new();
     let mut sources = figure_boundary;
-    while max_gap > 0 {
+    if max_gap == 0 {
+        // Joining is off: every piece but the largest is dropped below.
+        sources.clear();
+    }
+    while !sources.is_empty() {
         // Distances from the figure as it stands, and the gap to every component in reach.
         for &v in &touched_figure {
             from_figure[v] = UNSEEN;
