@@ -87,6 +87,10 @@ pub struct RigArgs {
     /// median plane (figures that are not symmetric, e.g. posed with one arm raised, keep theirs).
     #[arg(long, value_name = "on|off", default_value = "on", value_parser = ["on", "off"])]
     pub symmetry: String,
+    /// Fail (exit code 1, nothing written) when the rig lacks a body part the template expects
+    /// (a head, an arm, a leg, a wing) instead of writing it with a warning.
+    #[arg(long)]
+    pub strict: bool,
     /// Add bone meshes (dissertation 9.1) to OUT.glb as child nodes of their joints.
     #[arg(long)]
     pub bones: bool,
@@ -162,6 +166,16 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
         rig(&mesh, &options)
     })
     .context("fitting the anatomical control skeleton")?;
+    if args.strict && !rigged.missing.is_empty() {
+        for w in &rigged.warnings {
+            eprintln!("skelfit: warning: {w}");
+        }
+        anyhow::bail!(
+            "--strict: the rig lacks {} that the {} template expects; nothing was written (see the warnings above for why, or label the parts with --labels)",
+            rigged.missing.join(", "),
+            rigged.fit.template
+        );
+    }
     let clock = Instant::now();
     let mut bone_warnings = Vec::new();
     let glb = if args.bones {
@@ -211,6 +225,14 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
         eprintln!("skelfit: hint: {hint}");
     }
+    if !rigged.missing.is_empty() {
+        eprintln!(
+            "skelfit: missing: the rig lacks {} that the {} template expects (no joints for {}; --strict makes this an error)",
+            rigged.missing.join(", "),
+            rigged.fit.template,
+            if rigged.missing.len() == 1 { "it" } else { "them" }
+        );
+    }
     Ok(())
 }
 
@@ -252,6 +274,8 @@ pub fn run_info(mesh: &Path, rigged: &Rig, load_ms: f64) -> serde_json::Value {
         "mesh": mesh.display().to_string(),
         "template": rigged.fit.template,
         "figure": rigged.labelling.figure.name(),
+        "missing_parts": rigged.missing,
+        "up_found": rigged.labelling.up_found,
         "up": frame.up.to_array(),
         "forward": frame.forward.to_array(),
         "grid": grid.dims,

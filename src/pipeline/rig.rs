@@ -118,6 +118,9 @@ pub struct Rig {
     pub timings: Vec<(String, f64)>,
     /// Warnings of every stage (labelling, paths, fit, skin), as sentences.
     pub warnings: Vec<String>,
+    /// Body parts the template expects that the labelling did not find (`arm R`, `head`, ...;
+    /// see [`missing_parts`]): the rig has no joints for them.
+    pub missing: Vec<String>,
 }
 
 impl Rig {
@@ -229,7 +232,9 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().map(ToString::to_string));
     lap("skin", &mut timings);
+    let missing = missing_parts(&template.name, &labelling);
     Ok(Rig {
+        missing,
         fit,
         skin,
         labelling,
@@ -239,6 +244,43 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         timings,
         warnings,
     })
+}
+
+/// The body parts a built-in template expects that `labelling` lacks: the humanoid's head,
+/// arms and legs; the quadruped's head and fore and hind legs; the winged figure's head, wings
+/// and legs (each paired part with its side, e.g. `arm R`, `fore leg L`). Empty for other
+/// templates.
+pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
+    use crate::anatomy::{LimbPair, Side};
+    let has = |label: Label, side: Option<Side>, pair: Option<LimbPair>| {
+        labelling.parts.iter().any(|p| {
+            p.label == label
+                && (side.is_none() || p.side == side)
+                && (pair.is_none() || p.limb_pair == pair)
+        })
+    };
+    let sides = [(Some(Side::Left), "L"), (Some(Side::Right), "R")];
+    let mut expected: Vec<(Label, Option<Side>, Option<LimbPair>, String)> =
+        vec![(Label::Head, None, None, "head".to_string())];
+    let paired: &[(Label, Option<LimbPair>, &str)] = match template {
+        "humanoid" => &[(Label::Arm, None, "arm"), (Label::Leg, None, "leg")],
+        "quadruped" => &[
+            (Label::Leg, Some(LimbPair::Fore), "fore leg"),
+            (Label::Leg, Some(LimbPair::Hind), "hind leg"),
+        ],
+        "winged" => &[(Label::Wing, None, "wing"), (Label::Leg, None, "leg")],
+        _ => return Vec::new(),
+    };
+    for &(label, pair, name) in paired {
+        for (side, s) in sides {
+            expected.push((label, side, pair, format!("{name} {s}")));
+        }
+    }
+    expected
+        .into_iter()
+        .filter(|(label, side, pair, _)| !has(*label, *side, *pair))
+        .map(|(_, _, _, name)| name)
+        .collect()
 }
 
 /// How the warning of [`label_by_bones`] begins when it kept the medial per-vertex labels.

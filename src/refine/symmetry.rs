@@ -82,7 +82,10 @@ pub fn symmetrize(skeleton: &Skeleton, mesh: &Mesh, solid: &Solid, left: DVec3) 
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
             (lo.min(t), hi.max(t))
         });
-    if lo.partial_cmp(&hi).is_none_or(|o| o == std::cmp::Ordering::Greater) {
+    if lo
+        .partial_cmp(&hi)
+        .is_none_or(|o| o == std::cmp::Ordering::Greater)
+    {
         return unchanged(0.0);
     }
     let origin = left * (lo + hi) / 2.0;

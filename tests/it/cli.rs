@@ -288,3 +288,47 @@ fn check_poses_the_bundled_rig_through_the_sweep_without_tearing() {
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("error"));
 }
+
+/// Never silent: a figure lacking a part the template expects (the bundled body without its
+/// right arm) rigs with the missing part named at the end of the output and in the JSON;
+/// `--strict` makes it exit code 1 and writes nothing. The whole body passes `--strict`.
+#[test]
+fn rig_names_missing_parts_and_strict_fails_on_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut mesh = skelfit::mesh::load(Path::new(&bundled_humanoid())).unwrap();
+    let positions = mesh.positions.clone();
+    mesh.triangles.retain(|t| {
+        t.iter().all(|&i| {
+            let p = positions[i as usize];
+            !(p.x < -0.2 && p.y > 0.9)
+        })
+    });
+    let path = dir.path().join("one_arm.obj");
+    skelfit::export::write_obj(&path, &mesh).unwrap();
+    let path = path.display().to_string();
+    let glb = dir.path().join("out.glb");
+    let json = dir.path().join("out.json");
+    let (g, j) = (glb.display().to_string(), json.display().to_string());
+    let out = skelfit(&["rig", &path, "-o", &g, "--json", &j]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let last = stderr(&out).lines().last().unwrap_or_default().to_string();
+    assert!(
+        last.starts_with("skelfit: missing:") && last.contains("arm R"),
+        "{last}"
+    );
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(
+        written["run"]["missing_parts"],
+        serde_json::json!(["arm R"])
+    );
+    std::fs::remove_file(&glb).unwrap();
+    std::fs::remove_file(&json).unwrap();
+    let out = skelfit(&["rig", &path, "-o", &g, "--json", &j, "--strict"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("--strict") && stderr(&out).contains("arm R"));
+    assert!(!glb.exists() && !json.exists());
+    let out = skelfit(&["rig", &bundled_humanoid(), "-o", &g, "--strict"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(!stderr(&out).contains("skelfit: missing:"));
+}

@@ -633,6 +633,8 @@ fn a_one_armed_figure_gets_a_rig_whose_warning_names_the_missing_arm() {
         "{:?}",
         r.warnings
     );
+    // Never silent: the rig lists the part it lacks.
+    assert_eq!(r.missing, vec!["arm R".to_string()]);
     assert!(r.fit.skeleton.validate().is_ok());
 }
 
@@ -641,6 +643,8 @@ fn a_sphere_gets_a_best_effort_rig_with_warnings() {
     let mesh = Mesh::uv_sphere(DVec3::ZERO, 1.0, 24, 48);
     let r = rig(&mesh, &RigOptions::default()).unwrap();
     assert!(!r.warnings.is_empty());
+    // Not mistaken for a full figure: the parts it lacks are listed.
+    assert!(r.missing.len() >= 4, "{:?}", r.missing);
     assert!(r.fit.skeleton.validate().is_ok());
 }
 
