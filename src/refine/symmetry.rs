@@ -7,7 +7,7 @@
 //! least [`SYMMETRIC_SHARE`] of its interior voxels have their mirror image inside), each pair
 //! `X_L`/`X_R` moves to the mean of one and the other's mirror image; the other joints stay
 //! and frames turn with their segments ([`carry`]). The median plane is the one across `left` halfway between the
-//! mesh's extremes along `left` (where a symmetric figure's extremes mirror each other). A figure that is not symmetric (a pose with one arm raised, a prop in one hand)
+//! figure's extremes along `left` (its mesh vertices in the voxel grid) (where a symmetric figure's extremes mirror each other). A figure that is not symmetric (a pose with one arm raised, a prop in one hand)
 //! keeps its joints.
 
 use super::carry;
@@ -74,11 +74,14 @@ pub fn symmetrize(skeleton: &Skeleton, mesh: &Mesh, solid: &Solid, left: DVec3) 
     let Some(left) = left.try_normalize() else {
         return unchanged(0.0);
     };
+    // The figure's vertices: those in the grid (loose pieces left out of the voxels are not).
     let (lo, hi) = mesh
         .triangles
         .iter()
         .flatten()
-        .map(|&i| mesh.positions[i as usize].dot(left))
+        .map(|&i| mesh.positions[i as usize])
+        .filter(|&p| solid.grid.voxel_at(p).is_some())
+        .map(|p| p.dot(left))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
             (lo.min(t), hi.max(t))
         });

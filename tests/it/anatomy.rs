@@ -292,12 +292,12 @@ fn a_sphere_has_no_trunk_and_says_so() {
 #[test]
 fn three_legs_are_labelled_with_an_odd_leg_warning() {
     // A horizontal body along Z with three vertical legs (two at the front, one at the back)
-    // and a head.
+    // and a head on it (a head apart from the body would be joined to it across the gap).
     let body = Mesh::capsule(DVec3::ZERO, 0.25, 0.6, 8, 16).transformed(|p| {
         DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2) * p + DVec3::new(0.0, 1.0, 0.0)
     });
     let leg = |x: f64, z: f64| Mesh::capsule(DVec3::new(x, 0.55, z), 0.08, 0.45, 8, 16);
-    let head = Mesh::uv_sphere(DVec3::new(0.0, 1.35, 0.95), 0.22, 12, 24);
+    let head = Mesh::uv_sphere(DVec3::new(0.0, 1.2, 0.85), 0.22, 12, 24);
     let mesh = merge(&[body, leg(0.15, 0.5), leg(-0.15, 0.5), leg(0.0, -0.5), head]);
     let labels = label(&mesh, &LabelOptions::default()).unwrap();
     assert_eq!(labels.count(Label::Leg), 3, "{:?}", parts(&labels));

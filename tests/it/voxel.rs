@@ -95,14 +95,54 @@ fn largest_component_is_kept_and_the_rest_reported() {
             .extend(small.triangles.iter().map(|t| t.map(|i| i + offset)));
         mesh
     };
-    // Beside the figure (within a tenth of its size): voxelized, then dropped as a smaller
-    // interior component.
-    let solid = voxelize(&with_cube_at(1.05, 1.35), &options(1.0 / 128.0)).unwrap();
+    // Beside the figure (within a tenth of its size): voxelized and joined to it across the
+    // gap (a head or a hand modelled as its own shell).
+    let beside = |gap: f64| {
+        let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        let small = Mesh::cuboid(
+            DVec3::new(1.0 + gap, 0.35, 0.35),
+            DVec3::new(1.3 + gap, 0.65, 0.65),
+        );
+        let offset = mesh.positions.len() as u32;
+        mesh.positions.extend(small.positions);
+        mesh.triangles
+            .extend(small.triangles.iter().map(|t| t.map(|i| i + offset)));
+        mesh
+    };
+    let solid = voxelize(&beside(0.05), &options(1.0 / 128.0)).unwrap();
     assert_eq!(solid.report.components, 2);
     assert_eq!(solid.report.left_out_pieces, 0);
+    assert_eq!(
+        (solid.report.joined_pieces, solid.report.dropped_voxels),
+        (1, 0)
+    );
+    assert!(solid.report.bridge_voxels > 0 && solid.report.widest_gap > 0.0);
+    assert!(relative_error(solid.interior_volume(), 1.027) < 0.05);
+    assert!(solid.report.warnings().is_empty());
+    // With joining limited to gaps of 2 % of the grid's side it is dropped, and named.
+    let narrow = VoxelOptions {
+        join_gap: 0.02,
+        ..options(1.0 / 128.0)
+    };
+    let solid = voxelize(&beside(0.05), &narrow).unwrap();
+    assert_eq!(solid.report.components, 2);
     assert!(solid.report.dropped_voxels > 0);
+    assert_eq!(solid.report.dropped_pieces.len(), 1);
     assert!(relative_error(solid.interior_volume(), 1.0) < 0.05);
-    assert!(solid.report.warnings()[0].contains("2 separate parts"));
+    let warning = &solid.report.warnings()[0];
+    assert!(
+        warning.contains("1 piece of the interior") && warning.contains("around (1.2"),
+        "{warning}"
+    );
+    // Diagonally beside (a gap of 0.087 counted in face steps: 15 voxels): dropped too.
+    let solid = voxelize(&with_cube_at(1.05, 1.35), &options(1.0 / 128.0)).unwrap();
+    assert_eq!(
+        (
+            solid.report.joined_pieces,
+            solid.report.dropped_pieces.len()
+        ),
+        (0, 1)
+    );
     // Far away: left out before voxelizing, so the grid fits the unit cube alone.
     let solid = voxelize(&with_cube_at(3.0, 3.3), &options(1.0 / 128.0)).unwrap();
     assert_eq!(solid.report.left_out_pieces, 1);
