@@ -43,6 +43,7 @@
 
 mod bind;
 pub mod check;
+pub mod compare;
 mod deform;
 mod error;
 mod geodesic;
