@@ -109,40 +109,6 @@ impl SkinBind {
         None
     }
 
-    /// Which joints carry a nonzero weight in any `JOINTS_n`/`WEIGHTS_n` pair of the
-    /// primitives of `mesh_nodes` (nodes using this skin).
-    pub fn deforming(
-        &self,
-        document: &Document,
-        mesh_nodes: &[usize],
-        buffers: &[&[u8]],
-    ) -> Result<Vec<bool>, String> {
-        let mut deform = vec![false; self.joints.len()];
-        let nodes: Vec<_> = document.nodes().collect();
-        for &n in mesh_nodes {
-            let Some(mesh) = nodes[n].mesh() else {
-                continue;
-            };
-            for primitive in mesh.primitives() {
-                let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
-                for list in vertex_weights(&primitive, buffers, &what)? {
-                    for (j, _) in list {
-                        let slot = deform.get_mut(usize::from(j)).ok_or_else(|| {
-                            format!(
-                                "a JOINTS attribute of {what} names joint {j} but skin {} has {} \
-                                 joints",
-                                self.skin,
-                                self.joints.len()
-                            )
-                        })?;
-                        *slot = true;
-                    }
-                }
-            }
-        }
-        Ok(deform)
-    }
-
     /// The skin's joints in the bind pose as a [`Skeleton`], parents before children, and the
     /// skeleton index of each skin joint.
     pub fn skeleton(
