@@ -43,12 +43,16 @@ pub struct PoseDistance {
     pub max: f64,
     /// Poses measured.
     pub poses: usize,
+    /// Vertices measured: those both weightings bind (a vertex with no weight in either is
+    /// left out, e.g. a rigid part the file attaches to a joint node instead of skinning it).
+    pub vertices: usize,
 }
 
 /// The distance between `mesh` skinned to `skeleton` with weights `a` and with weights `b`
 /// (per vertex `(joint, weight)` lists summing to one), over [`RandomPoseOptions::poses`]
 /// seeded random poses (see [`random_pose`]), linear blend skinning as in
-/// [`check_deformation`](super::check::check_deformation).
+/// [`check_deformation`](super::check::check_deformation). Vertices without weights in `a`
+/// or in `b` are left out.
 ///
 /// # Errors
 /// [`SkinError::SizeMismatch`] when `a` or `b` has another length than the mesh's vertices.
@@ -68,6 +72,11 @@ pub fn pose_distance(
             });
         }
     }
+    let measured: Vec<bool> = a
+        .iter()
+        .zip(b)
+        .map(|(a, b)| !a.is_empty() && !b.is_empty())
+        .collect();
     let mut random = SplitMix64(options.seed);
     let (mut sum, mut max, mut count) = (0.0, 0.0f64, 0usize);
     for _ in 0..options.poses {
@@ -75,7 +84,12 @@ pub fn pose_distance(
         let matrices = skeleton.skinning_matrices(&pose);
         let posed_a = blend(&mesh.positions, a, &matrices);
         let posed_b = blend(&mesh.positions, b, &matrices);
-        for (p, q) in posed_a.iter().zip(&posed_b) {
+        for ((p, q), _) in posed_a
+            .iter()
+            .zip(&posed_b)
+            .zip(&measured)
+            .filter(|(_, &m)| m)
+        {
             let d = p.distance(*q);
             sum += d;
             max = max.max(d);
@@ -86,6 +100,7 @@ pub fn pose_distance(
         mean: if count > 0 { sum / count as f64 } else { 0.0 },
         max,
         poses: options.poses,
+        vertices: measured.iter().filter(|&&m| m).count(),
     })
 }
 
