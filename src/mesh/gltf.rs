@@ -27,7 +27,10 @@ pub struct GltfScene {
     /// is the nearest ancestor node that is a joint of the skin; its name is the node name, or
     /// `joint_<node index>` for an unnamed node (`<name>_<node index>` if the name is already
     /// taken); `deform` is true iff some vertex has a nonzero weight on it in a
-    /// `JOINTS_n`/`WEIGHTS_n` pair (of any skin listing the joint's node). Joints are in skin order, moved only where needed to put
+    /// `JOINTS_n`/`WEIGHTS_n` pair (of any skin listing the joint's node).
+    /// A joint's `frame` is the rotation of its bind-pose transform, so written back its node
+    /// turns as the artist's did (identity where that transform mirrors, shears or scales
+    /// unevenly). Joints are in skin order, moved only where needed to put
     /// parents before children.
     pub skeleton: Option<Skeleton>,
     /// For every vertex of the file's triangle primitives, in reading order, its index in

@@ -168,6 +168,27 @@ fn skin_on_an_artists_gltf_skeleton_keeps_its_names_and_deforms_cleanly() {
         hierarchy(written.skeleton.as_ref().unwrap()),
         hierarchy(source.skeleton.as_ref().unwrap())
     );
+    // The joints keep the artist's rest rotations (rest = bind pose in this file), so
+    // animations made for the skeleton play: every joint node below the root turns as in
+    // the source file.
+    let rotations = |path: &Path| -> BTreeMap<String, [f32; 4]> {
+        let (document, _, _) = gltf::import(path).unwrap();
+        document
+            .nodes()
+            .filter_map(|n| Some((n.name()?.to_string(), n.transform().decomposed().1)))
+            .collect()
+    };
+    let (source_rotations, written_rotations) =
+        (rotations(&model.join("source.glb")), rotations(&glb));
+    let skeleton = source.skeleton.as_ref().unwrap();
+    for joint in skeleton.joints.iter().filter(|j| j.parent.is_some()) {
+        let (a, b) = (
+            source_rotations[&joint.name],
+            written_rotations[&joint.name],
+        );
+        let dot: f32 = a.iter().zip(b).map(|(x, y)| x * y).sum();
+        assert!(dot.abs() > 0.9999, "{}: {a:?} vs {b:?}", joint.name);
+    }
     // The artist's weights tear 8 edges past 2x over this sweep (reports/deformation).
     let (over_2, poses) = stretched_edges(&glb, &model.join("rig_gltf.json"));
     assert_eq!(poses, 14);
