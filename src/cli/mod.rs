@@ -17,6 +17,7 @@ mod report;
 mod rig;
 mod simplify;
 mod skeleton;
+mod skin;
 mod study;
 mod voxelize;
 
@@ -69,6 +70,10 @@ enum Command {
     /// Fit the general control skeleton of any figure (dissertation ch.5), skin the mesh to it
     /// and write a skinned .glb (plus JSON/BVH on request).
     Skeleton(skeleton::SkeletonArgs),
+    /// Skin a mesh to a skeleton you already have (refdata or skelfit JSON, BVH, a glTF/GLB's
+    /// skin) with the rig's weights and write a skinned .glb with the skeleton's own joint
+    /// names and hierarchy (control joints, deform: false, get no weight).
+    Skin(skin::SkinArgs),
     /// Level-of-detail controls on any skeleton JSON (seed 003): simplify branches, merge
     /// junctions, prune short branches, collapse short bones.
     Simplify(simplify::SimplifyArgs),
@@ -117,6 +122,7 @@ pub fn main() -> ExitCode {
         Command::Rig(args) => rig::run(args),
         Command::Skeleton(args) => skeleton::run(args),
         Command::Simplify(args) => simplify::run(args),
+        Command::Skin(args) => skin::run(args),
         Command::Study(args) => study::run(args),
         Command::Voxelize(args) => voxelize::run(args),
     };

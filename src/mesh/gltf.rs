@@ -27,7 +27,10 @@ pub struct GltfScene {
     /// is the nearest ancestor node that is a joint of the skin; its name is the node name, or
     /// `joint_<node index>` for an unnamed node (`<name>_<node index>` if the name is already
     /// taken); `deform` is true iff some vertex has a nonzero weight on it in a
-    /// `JOINTS_n`/`WEIGHTS_n` pair. Joints are in skin order, moved only where needed to put
+    /// `JOINTS_n`/`WEIGHTS_n` pair (of any skin listing the joint's node).
+    /// A joint's `frame` is the rotation of its bind-pose transform, so written back its node
+    /// turns as the artist's did (identity where that transform mirrors, shears or scales
+    /// unevenly). Joints are in skin order, moved only where needed to put
     /// parents before children.
     pub skeleton: Option<Skeleton>,
     /// For every vertex of the file's triangle primitives, in reading order, its index in
@@ -35,9 +38,12 @@ pub struct GltfScene {
     /// [`load_with_source_map`](super::load_with_source_map).
     pub source_vertices: Vec<Option<u32>>,
     /// Skin weights of each vertex of `mesh` to the joints of `skeleton` (`JOINTS_n` /
-    /// `WEIGHTS_n` of the primitives skinned by that skin, zero weights left out, normalised
-    /// to sum to one), as the artist painted them; `None` when no mesh node is skinned. A
-    /// vertex of an unskinned primitive, or whose weights are all zero, has an empty list;
+    /// `WEIGHTS_n` of the skinned primitives, zero weights left out, normalised to sum to
+    /// one), as the artist painted them; `None` when no mesh node is skinned. Primitives
+    /// skinned by another skin (modular characters give each piece its own skin over the
+    /// same joints) count through the joint nodes both skins list; weights on nodes that are
+    /// not joints of the rig's skin are dropped. A vertex of an unskinned primitive (a rigid
+    /// part attached to a joint node), or whose weights are all zero, has an empty list;
     /// welded vertices take the weights of their first copy.
     pub weights: Option<Vec<Vec<(JointId, f64)>>>,
 }
@@ -193,9 +199,21 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
                 None => tree.world[n],
             },
         };
-        let by_rig = rig.is_some_and(|r| node.skin().map(|s| s.index()) == Some(r.skin));
+        // Joint indices of this node's skin → the rig's: the rig's own skin as it is, another
+        // skin through the joint nodes both list (modular characters give every piece its own
+        // skin over the same joints).
+        let joint_map: Option<Vec<Option<usize>>> = match (rig, node.skin()) {
+            (Some(rig), Some(skin)) => Some(
+                skin.joints()
+                    .map(|j| rig.joint_of_node.get(&j.index()).copied())
+                    .collect(),
+            ),
+            _ => None,
+        };
         if let Some(mesh) = node.mesh() {
-            append_mesh(&mesh, transform, by_rig, &buffers, &mut raw).map_err(|e| match e {
+            let skin = node.skin().map_or(0, |s| s.index());
+            let weights = joint_map.as_deref().map(|map| (map, skin));
+            append_mesh(&mesh, transform, weights, &buffers, &mut raw).map_err(|e| match e {
                 Failure::Message(m) => error(m),
                 Failure::Mesh(e) => e,
             })?;
@@ -203,14 +221,11 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
     }
 
     if let Some(rig) = rig {
-        let skinned: Vec<usize> = mesh_nodes
-            .iter()
-            .copied()
-            .filter(|&n| nodes[n].skin().map(|s| s.index()) == Some(rig.skin))
-            .collect();
-        let deform = rig
-            .deforming(&document, &skinned, &buffers)
-            .map_err(error)?;
+        // A joint deforms iff some vertex of a skinned primitive has weight on it.
+        let mut deform = vec![false; rig.joints.len()];
+        for &(j, _) in raw.weights.iter().flatten() {
+            deform[j.0] = true;
+        }
         let (skeleton, id_of) = rig.skeleton(&document, &tree, &deform).map_err(error)?;
         for weights in &mut raw.weights {
             for (j, _) in weights.iter_mut() {
@@ -257,12 +272,14 @@ impl From<String> for Failure {
 }
 
 /// Appends the triangle primitives of `mesh`, transformed by `transform`.
-/// `skinned` says that the node is skinned by the rig's skin: its vertices' `JOINTS_n` /
-/// `WEIGHTS_n` are kept (as skin joint indices).
+/// `skinned` is given when the node is skinned: the rig's joint index of each joint of the
+/// node's skin (`None`: not a joint of the rig) and the skin's index (for messages); its
+/// vertices' `JOINTS_n` / `WEIGHTS_n` are kept as rig skin joint indices, weights on joints
+/// outside the rig dropped.
 fn append_mesh(
     mesh: &gltf::Mesh,
     transform: DMat4,
-    skinned: bool,
+    skinned: Option<(&[Option<usize>], usize)>,
     buffers: &[&[u8]],
     raw: &mut RawScene,
 ) -> Result<(), Failure> {
@@ -330,16 +347,26 @@ fn append_mesh(
         }
         raw.positions.extend(positions);
         let mut weights = vec![Vec::new(); vertex_count];
-        if skinned {
+        if let Some((map, skin)) = skinned {
             for (vertex, list) in vertex_weights(&primitive, buffers, &what)?
                 .into_iter()
                 .enumerate()
                 .take(vertex_count)
             {
-                weights[vertex] = list
-                    .into_iter()
-                    .map(|(j, w)| (JointId(usize::from(j)), f64::from(w)))
-                    .collect();
+                let mut mapped = Vec::with_capacity(list.len());
+                for (j, w) in list {
+                    let joint = map.get(usize::from(j)).ok_or_else(|| {
+                        format!(
+                            "a JOINTS attribute of {what} names joint {j} but skin {skin} has {} \
+                             joints",
+                            map.len()
+                        )
+                    })?;
+                    if let Some(joint) = joint {
+                        mapped.push((JointId(*joint), f64::from(w)));
+                    }
+                }
+                weights[vertex] = mapped;
             }
         }
         raw.weights.extend(weights);

@@ -3,7 +3,7 @@
 use super::gltf_accessor;
 use super::gltf_nodes::NodeTree;
 use crate::skeleton::{Joint, JointId, Skeleton};
-use glam::{DMat4, DVec3};
+use glam::{DMat4, DQuat, DVec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::{Document, Semantic, Skin};
 use std::collections::HashMap;
@@ -109,40 +109,6 @@ impl SkinBind {
         None
     }
 
-    /// Which joints carry a nonzero weight in any `JOINTS_n`/`WEIGHTS_n` pair of the
-    /// primitives of `mesh_nodes` (nodes using this skin).
-    pub fn deforming(
-        &self,
-        document: &Document,
-        mesh_nodes: &[usize],
-        buffers: &[&[u8]],
-    ) -> Result<Vec<bool>, String> {
-        let mut deform = vec![false; self.joints.len()];
-        let nodes: Vec<_> = document.nodes().collect();
-        for &n in mesh_nodes {
-            let Some(mesh) = nodes[n].mesh() else {
-                continue;
-            };
-            for primitive in mesh.primitives() {
-                let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
-                for list in vertex_weights(&primitive, buffers, &what)? {
-                    for (j, _) in list {
-                        let slot = deform.get_mut(usize::from(j)).ok_or_else(|| {
-                            format!(
-                                "a JOINTS attribute of {what} names joint {j} but skin {} has {} \
-                                 joints",
-                                self.skin,
-                                self.joints.len()
-                            )
-                        })?;
-                        *slot = true;
-                    }
-                }
-            }
-        }
-        Ok(deform)
-    }
-
     /// The skin's joints in the bind pose as a [`Skeleton`], parents before children, and the
     /// skeleton index of each skin joint.
     pub fn skeleton(
@@ -154,8 +120,11 @@ impl SkinBind {
         let nodes: Vec<_> = document.nodes().collect();
         let count = self.joints.len();
         let mut positions = Vec::with_capacity(count);
+        let mut frames = Vec::with_capacity(count);
         for k in 0..count {
-            positions.push(self.joint_bind_world(k)?.transform_point3(DVec3::ZERO));
+            let world = self.joint_bind_world(k)?;
+            positions.push(world.transform_point3(DVec3::ZERO));
+            frames.push(bind_frame(&world));
         }
         let parents: Vec<Option<usize>> = self
             .joints
@@ -201,12 +170,45 @@ impl SkinBind {
                     parent: parents[k].filter(|&p| p != k).map(|p| JointId(id_of[p])),
                     position: positions[k],
                     deform: deform[k],
+                    frame: frames[k],
                     ..Default::default()
                 }
             })
             .collect();
         Ok((Skeleton { joints }, id_of))
     }
+}
+
+/// Largest relative difference between the scale factors of a joint's bind transform for it
+/// to count as a rotation times a uniform scale.
+const UNIFORM_SCALE_TOLERANCE: f64 = 1e-3;
+
+/// The rotation of a joint's bind-pose world transform: its rest orientation, so that the
+/// joint's frame (and the node rotations an exporter writes from it) is the artist's. Identity
+/// when the transform mirrors, shears or scales unevenly (no rotation describes it).
+fn bind_frame(world: &DMat4) -> DQuat {
+    let (scale, rotation, _) = world.to_scale_rotation_translation();
+    let (low, high) = (scale.min_element(), scale.max_element());
+    let uniform = low > 0.0 && (high - low) <= UNIFORM_SCALE_TOLERANCE * high;
+    if uniform && rotation.is_finite() {
+        // Shears show as a rotation that does not map the axes onto the matrix's columns.
+        let rebuilt = DMat4::from_scale_rotation_translation(scale, rotation, DVec3::ZERO);
+        let linear = |m: &DMat4| {
+            [
+                m.x_axis.truncate(),
+                m.y_axis.truncate(),
+                m.z_axis.truncate(),
+            ]
+        };
+        let close = linear(&rebuilt)
+            .iter()
+            .zip(linear(world))
+            .all(|(a, b)| (*a - b).length() <= UNIFORM_SCALE_TOLERANCE * high);
+        if close {
+            return rotation.normalize();
+        }
+    }
+    DQuat::IDENTITY
 }
 
 /// The nonzero `(joint, weight)` pairs of every vertex of `primitive`, over all its

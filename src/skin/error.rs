@@ -72,12 +72,48 @@ pub enum SkinError {
         /// Index of the vertex.
         vertex: usize,
     },
+    /// No joint of the skeleton deforms the skin (all are control joints).
+    #[error("none of the skeleton's {joints} joints deforms the skin (all have deform: false): mark the bones that carry the skin deform: true")]
+    NoDeformingJoint {
+        /// Number of joints.
+        joints: usize,
+    },
+    /// The skeleton's size is far from the figure's, as when skeleton and mesh are in
+    /// different units.
+    #[error("the skeleton is {ratio:.3} times the size of the figure (bounding boxes of its deforming joints and of the mesh's interior; about 0.8 is usual): it looks {} times too {} ({units}); scale the skeleton's positions by {} or export skeleton and mesh in the same units", trimmed(factor.max(1.0 / factor)), if *factor > 1.0 { "large" } else { "small" }, trimmed(1.0 / factor))]
+    UnitMismatch {
+        /// Skeleton size over figure size.
+        ratio: f64,
+        /// The likely factor between the units (skeleton over mesh; above 1: too large).
+        factor: f64,
+        /// Which units usually differ by that factor.
+        units: &'static str,
+    },
+    /// Too few deforming joints lie inside the figure: the skeleton is in another place or
+    /// frame than the mesh.
+    #[error("only {inside} of the skeleton's {deforming} deforming joints lie inside the mesh (skeleton centre [{:.4}, {:.4}, {:.4}], mesh centre [{:.4}, {:.4}, {:.4}]): give a skeleton in the mesh's frame (same origin, same up axis) and units", skeleton_centre[0], skeleton_centre[1], skeleton_centre[2], figure_centre[0], figure_centre[1], figure_centre[2])]
+    SkeletonOutside {
+        /// Deforming joints inside the figure.
+        inside: usize,
+        /// Deforming joints.
+        deforming: usize,
+        /// Centre of the deforming joints' bounding box, mesh frame.
+        skeleton_centre: [f64; 3],
+        /// Centre of the figure's interior, mesh frame.
+        figure_centre: [f64; 3],
+    },
     /// A pose rotation is not finite.
     #[error("the pose rotation of joint {joint} is not finite: give finite unit quaternions")]
     NonFinitePose {
         /// Index of the joint.
         joint: usize,
     },
+}
+
+/// A number with at most six decimals, trailing zeros cut: `100`, `2.54`, `0.01`.
+fn trimmed(value: f64) -> String {
+    let text = format!("{value:.6}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// Something skinning had to work around; returned with the result, never printed.
@@ -108,6 +144,33 @@ pub enum SkinWarning {
         /// The largest total anchor weight dropped at one vertex.
         max_dropped: f64,
     },
+    /// Deforming joints of a given skeleton that lie outside the figure
+    /// ([`placement`](super::placement)): bones near them are bound through the nearest
+    /// interior voxels, or not at all.
+    JointsOutside {
+        /// Their names, in joint order.
+        joints: Vec<String>,
+        /// Number of deforming joints.
+        deforming: usize,
+    },
+    /// A joint sits on its parent: the bone between them has no length, so the parent's
+    /// weights come from its other bones (or from a point).
+    ZeroLengthBone {
+        /// The parent joint.
+        parent: String,
+        /// The joint sitting on it.
+        joint: String,
+    },
+    /// A bone between two joints inside the figure runs through empty space (between the
+    /// legs, from a hand to the hip): its voxels on either side get its joint's weight.
+    BoneOutside {
+        /// The bone's parent joint.
+        parent: String,
+        /// The bone's child joint.
+        joint: String,
+        /// The longest stretch outside as a share of the bone's length.
+        share: f64,
+    },
 }
 
 impl std::fmt::Display for SkinWarning {
@@ -125,6 +188,31 @@ impl std::fmt::Display for SkinWarning {
                 f,
                 "{count} vertices have more than four influences; engine weights keep the four largest (at most {:.1} % of a vertex's weight dropped)",
                 100.0 * max_dropped
+            ),
+            SkinWarning::JointsOutside { joints, deforming } => {
+                const SHOWN: usize = 12;
+                let mut names = joints[..joints.len().min(SHOWN)].join(", ");
+                if joints.len() > SHOWN {
+                    names.push_str(&format!(" and {} more", joints.len() - SHOWN));
+                }
+                write!(
+                    f,
+                    "{} of {deforming} deforming joints lie outside the mesh: {names}; their bones are bound through the nearest interior voxels (or not at all): check their placement",
+                    joints.len()
+                )
+            }
+            SkinWarning::ZeroLengthBone { parent, joint } => write!(
+                f,
+                "joint {joint} sits on its parent {parent} (a bone of zero length); {parent} is weighted from its other bones"
+            ),
+            SkinWarning::BoneOutside {
+                parent,
+                joint,
+                share,
+            } => write!(
+                f,
+                "the bone {parent} -> {joint} runs through empty space ({:.0} % of its length outside the mesh): the skin on both sides follows {parent}; check the hierarchy",
+                100.0 * share
             ),
         }
     }

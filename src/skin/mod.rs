@@ -43,18 +43,23 @@
 
 mod bind;
 pub mod check;
+pub mod compare;
 mod deform;
 mod error;
 mod geodesic;
+mod given;
 mod influence;
 mod options;
+mod placement;
 mod segments;
 mod weights;
 
 pub use bind::{skin, skin_from_bones, Skin};
 pub use deform::deform;
 pub use error::{SkinError, SkinWarning};
+pub use given::{skin_skeleton, SkeletonSkinOptions, SkinnedSkeleton};
 pub use influence::{influence, Influence};
 pub use options::{SkinMethod, SkinOptions};
+pub use placement::{placement, Placement, PlacementOptions};
 pub use segments::{bone_segments, SegmentVoxels};
 pub use weights::{anchor_weights, engine_weights, EngineWeights, MAX_ENGINE_INFLUENCES};

@@ -19,4 +19,5 @@ mod refine;
 mod rig;
 mod robust;
 mod skin;
+mod skin_skeleton;
 mod voxel;

@@ -865,3 +865,29 @@ fn corrupted_files_give_errors_not_panics() {
         }
     }
 }
+
+/// Regression: the weights of pieces skinned by other skins over the same joints were dropped
+/// (Quaternius modular characters give every piece its own skin), leaving 3781 of the cyberpunk
+/// character's 3932 vertices without weights and its artist check posing almost nothing.
+#[test]
+fn gltf_weights_come_from_every_skin_over_the_rigs_joints() {
+    let Some(dir) = crate::common::model("humanoid/quaternius_cyberpunk_character") else {
+        return;
+    };
+    let scene = skelfit::mesh::load_gltf_scene(&dir.join("source.glb")).unwrap();
+    let skeleton = scene.skeleton.unwrap();
+    let weights = scene.weights.unwrap();
+    assert!(weights.iter().all(|w| !w.is_empty()));
+    for w in &weights {
+        let sum: f64 = w.iter().map(|(_, x)| x).sum();
+        assert!((sum - 1.0).abs() < 1e-9);
+        assert!(w.iter().all(|&(j, _)| skeleton.joint(j).deform));
+    }
+    // The legs' pieces are skinned by other skins than the first: their joints deform.
+    for name in ["UpperLeg.L", "LowerLeg.R", "Head"] {
+        let joint = skeleton
+            .find(name)
+            .unwrap_or_else(|| panic!("no joint {name}"));
+        assert!(skeleton.joint(joint).deform, "{name}");
+    }
+}
