@@ -52,10 +52,12 @@ mod bvh;
 mod chamfer;
 mod correspondence;
 mod error;
+mod labels;
 mod metrics;
 mod reference;
 mod rig;
 mod rigger;
+mod skin_weights;
 mod study;
 mod table;
 #[cfg(test)]
@@ -77,6 +79,7 @@ pub use correspondence::{
     Correspondence, JointPair, MatchMethod, NamingPreset,
 };
 pub use error::EvalError;
+pub use labels::{label_reference_file, label_score, LabelScore};
 pub use metrics::{
     evaluate, figure_size, resolve_measure, ErrorSummary, EvalOptions, Evaluation, FigureMeasure,
     FigureSize, JointError, JointPairing, SizeSource,
@@ -84,6 +87,7 @@ pub use metrics::{
 pub use reference::{load_gltf_rig, load_skeleton, parse_json_rig, REFDATA_FORMAT};
 pub use rig::{ReferenceRig, RigFormat};
 pub use rigger::{rig_mesh, Orientation, RigMethod, Rigged, RiggerOptions};
+pub use skin_weights::{reference_skin, ReferenceSkin, VERTEX_MATCH_FRACTION};
 pub use study::{
     rotation_study, study_csv, study_markdown, study_table, tessellation_study,
     DisplacementPairing, JointDisplacement, Study, StudyKind, StudyOptions, StudyVariant,
