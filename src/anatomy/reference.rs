@@ -374,7 +374,8 @@ impl WeightRegions {
     pub fn counts_for(&self, j: JointId, predicted: Region) -> bool {
         let own = self.region.get(j.0).copied().flatten();
         let girdle = self.girdle.get(j.0).copied().flatten();
-        own == Some(predicted) || (girdle.is_some() && (predicted == Region::Trunk || girdle == Some(predicted)))
+        own == Some(predicted)
+            || (girdle.is_some() && (predicted == Region::Trunk || girdle == Some(predicted)))
     }
 
     /// The share of `weights` (one vertex's `(joint, weight)` list) on joints that count for
@@ -662,7 +663,11 @@ mod tests {
         let score = weight_share(&predicted, &regions, &weights);
         assert_eq!(score.compared, 6);
         let expected = 100.0 * (1.0 + 1.0 + 0.5 + 0.75 + 0.0 + 0.0) / 6.0;
-        assert!((score.percent - expected).abs() < 1e-12, "{}", score.percent);
+        assert!(
+            (score.percent - expected).abs() < 1e-12,
+            "{}",
+            score.percent
+        );
         // Per heaviest region: trunk (spine; clavicle+upper arm tie → trunk first; clavicle;
         // right girdle), fore_L never heaviest, hind_L (spine + thigh).
         let trunk_row = score.per_region.iter().find(|r| r.0 == "trunk").unwrap();

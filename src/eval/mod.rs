@@ -50,6 +50,7 @@
 mod bench;
 mod bvh;
 mod chamfer;
+mod core;
 mod correspondence;
 mod error;
 mod labels;
@@ -74,6 +75,7 @@ pub use chamfer::{
     bone_segments, chamfer, point_segment_distance, sample_segments, ChamferDistances,
     ChamferOptions,
 };
+pub use core::{core_error, CoreError, CORE_KEYS};
 pub use correspondence::{
     canonical_map, correspond, detect_preset, parse_presets, preset, presets, CanonicalSource,
     Correspondence, JointPair, MatchMethod, NamingPreset,

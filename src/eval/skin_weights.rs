@@ -4,7 +4,7 @@
 use super::{EvalError, ReferenceRig};
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
@@ -29,9 +29,11 @@ pub struct ReferenceSkin {
 }
 
 /// The skin weights of refdata model folder `model` for the vertices of `mesh` (its
-/// `mesh.obj`): read from `model/source.glb`, whose bind-pose mesh times `scale_applied`
-/// (from `model/provenance.json`, default 1) is the mesh; each mesh vertex takes the weights of
-/// the glTF vertex at its position (within [`VERTEX_MATCH_FRACTION`] of the mesh's diagonal).
+/// `mesh.obj`): read from `model/source.glb`, whose bind-pose mesh times `scale_applied`, then
+/// moved by `post_transform_matrix` (both from `model/provenance.json`; default 1 and the
+/// identity; the matrix row-major, acting on column vectors) is the mesh; each mesh vertex
+/// takes the weights of the glTF vertex at its position (within [`VERTEX_MATCH_FRACTION`] of
+/// the mesh's diagonal).
 ///
 /// `Ok(None)` when there is no `source.glb`, it has no skin, or `rig` is not its skin (a joint
 /// of `rig` is missing from it).
@@ -67,16 +69,22 @@ pub fn reference_skin(
             Some((key.clone(), skeleton.find(name)?))
         })
         .collect();
-    let scale = std::fs::read(model.join("provenance.json"))
+    let provenance = std::fs::read(model.join("provenance.json"))
         .ok()
         .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
-        .and_then(|v| v["scale_applied"].as_f64())
-        .unwrap_or(1.0);
+        .unwrap_or_default();
+    let scale = provenance["scale_applied"].as_f64().unwrap_or(1.0);
+    let post = post_transform(&provenance["post_transform_matrix"]);
     let Some((lo, hi)) = mesh.bounding_box() else {
         return Ok(None);
     };
     let tolerance = VERTEX_MATCH_FRACTION * (hi - lo).length().max(f64::MIN_POSITIVE);
-    let points: Vec<DVec3> = scene.mesh.positions.iter().map(|p| *p * scale).collect();
+    let points: Vec<DVec3> = scene
+        .mesh
+        .positions
+        .iter()
+        .map(|p| post.transform_point3(*p * scale))
+        .collect();
     let found = nearest_within(&points, &mesh.positions, tolerance);
     let weights: Vec<Vec<(JointId, f64)>> = found
         .iter()
@@ -89,6 +97,33 @@ pub fn reference_skin(
         weights,
         matched,
     }))
+}
+
+/// The 4×4 matrix of a row-major JSON array of four rows; the identity when absent or not a
+/// finite 4×4 array.
+fn post_transform(rows: &serde_json::Value) -> DMat4 {
+    let rows: Option<Vec<Vec<f64>>> = rows.as_array().map(|rows| {
+        rows.iter()
+            .map(|r| {
+                r.as_array()
+                    .map(|r| r.iter().filter_map(serde_json::Value::as_f64).collect())
+                    .unwrap_or_default()
+            })
+            .collect()
+    });
+    match rows {
+        Some(rows) if rows.len() == 4 && rows.iter().all(|r| r.len() == 4) => {
+            let m = DMat4::from_cols_array_2d(&std::array::from_fn(|c| {
+                std::array::from_fn(|r| rows[r][c])
+            }));
+            if m.is_finite() {
+                m
+            } else {
+                DMat4::IDENTITY
+            }
+        }
+        _ => DMat4::IDENTITY,
+    }
 }
 
 /// For every query point, the index of the nearest of `points` within `tolerance` (a hash grid
@@ -126,8 +161,29 @@ mod tests {
     use super::*;
 
     #[test]
+    fn post_transform_reads_rows_and_falls_back_to_the_identity() {
+        let rows = serde_json::json!([
+            [0.0, 0.0, -1.0, 0.5],
+            [0.0, 1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0]
+        ]);
+        let m = post_transform(&rows);
+        assert_eq!(
+            m.transform_point3(DVec3::new(1.0, 2.0, 3.0)),
+            DVec3::new(-2.5, 2.0, 1.0)
+        );
+        assert_eq!(post_transform(&serde_json::Value::Null), DMat4::IDENTITY);
+        assert_eq!(post_transform(&serde_json::json!([[1.0]])), DMat4::IDENTITY);
+    }
+
+    #[test]
     fn nearest_within_finds_only_points_inside_the_tolerance() {
-        let points = [DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0), DVec3::new(1.0, 1e-7, 0.0)];
+        let points = [
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1e-7, 0.0),
+        ];
         let queries = [
             DVec3::new(1e-7, 0.0, 0.0),
             DVec3::new(1.0, 0.9e-7, 0.0),

@@ -35,7 +35,8 @@ pub struct GltfScene {
     /// [`load_with_source_map`](super::load_with_source_map).
     pub source_vertices: Vec<Option<u32>>,
     /// Skin weights of each vertex of `mesh` to the joints of `skeleton` (`JOINTS_n` /
-    /// `WEIGHTS_n` of the primitives skinned by that skin, zero weights left out, normalised
+    /// `WEIGHTS_n` of the primitives skinned by that skin, or by another skin whose joints
+    /// are all joints of it, mapped by joint node; zero weights left out, normalised
     /// to sum to one), as the artist painted them; `None` when no mesh node is skinned. A
     /// vertex of an unskinned primitive, or whose weights are all zero, has an empty list;
     /// welded vertices take the weights of their first copy.
@@ -193,11 +194,15 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
                 None => tree.world[n],
             },
         };
-        let by_rig = rig.is_some_and(|r| node.skin().map(|s| s.index()) == Some(r.skin));
+        let to_rig = node
+            .skin()
+            .and_then(|skin| rig_joints(rig, &binds, skin.index()));
         if let Some(mesh) = node.mesh() {
-            append_mesh(&mesh, transform, by_rig, &buffers, &mut raw).map_err(|e| match e {
-                Failure::Message(m) => error(m),
-                Failure::Mesh(e) => e,
+            append_mesh(&mesh, transform, to_rig.as_deref(), &buffers, &mut raw).map_err(|e| {
+                match e {
+                    Failure::Message(m) => error(m),
+                    Failure::Mesh(e) => e,
+                }
             })?;
         }
     }
@@ -208,9 +213,15 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
             .copied()
             .filter(|&n| nodes[n].skin().map(|s| s.index()) == Some(rig.skin))
             .collect();
-        let deform = rig
+        let mut deform = rig
             .deforming(&document, &skinned, &buffers)
             .map_err(error)?;
+        // Joints weighted only through another skin over the rig's joints deform too.
+        for (j, _) in raw.weights.iter().flatten() {
+            if let Some(slot) = deform.get_mut(j.0) {
+                *slot = true;
+            }
+        }
         let (skeleton, id_of) = rig.skeleton(&document, &tree, &deform).map_err(error)?;
         for weights in &mut raw.weights {
             for (j, _) in weights.iter_mut() {
@@ -222,6 +233,23 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         raw.skeleton = Some(skeleton);
     }
     Ok(raw)
+}
+
+/// For a mesh node skinned by skin `skin`, the rig's joint index of each of that skin's
+/// joints: the identity for the rig's own skin; for another skin whose joints are all joints
+/// of the rig's skin (exporters such as FBX2glTF write one skin per mesh over the same joint
+/// nodes), the rig index of each joint node; `None` otherwise (the node's weights are not the
+/// rig's).
+fn rig_joints(rig: Option<&SkinBind>, binds: &[SkinBind], skin: usize) -> Option<Vec<usize>> {
+    let rig = rig?;
+    if rig.skin == skin {
+        return Some((0..rig.joints.len()).collect());
+    }
+    let bind = binds.iter().find(|b| b.skin == skin)?;
+    bind.joints
+        .iter()
+        .map(|node| rig.joint_of_node.get(node).copied())
+        .collect()
 }
 
 /// Checks that every primitive attribute names an existing accessor, which the `gltf` crate's
@@ -257,12 +285,13 @@ impl From<String> for Failure {
 }
 
 /// Appends the triangle primitives of `mesh`, transformed by `transform`.
-/// `skinned` says that the node is skinned by the rig's skin: its vertices' `JOINTS_n` /
-/// `WEIGHTS_n` are kept (as skin joint indices).
+/// `to_rig` is given when the node's weights are the rig's ([`rig_joints`]): its vertices'
+/// `JOINTS_n` / `WEIGHTS_n` are kept, each joint index mapped through it to the rig skin's
+/// joint index (an index beyond it is dropped).
 fn append_mesh(
     mesh: &gltf::Mesh,
     transform: DMat4,
-    skinned: bool,
+    to_rig: Option<&[usize]>,
     buffers: &[&[u8]],
     raw: &mut RawScene,
 ) -> Result<(), Failure> {
@@ -330,7 +359,7 @@ fn append_mesh(
         }
         raw.positions.extend(positions);
         let mut weights = vec![Vec::new(); vertex_count];
-        if skinned {
+        if let Some(to_rig) = to_rig {
             for (vertex, list) in vertex_weights(&primitive, buffers, &what)?
                 .into_iter()
                 .enumerate()
@@ -338,7 +367,9 @@ fn append_mesh(
             {
                 weights[vertex] = list
                     .into_iter()
-                    .map(|(j, w)| (JointId(usize::from(j)), f64::from(w)))
+                    .filter_map(|(j, w)| {
+                        Some((JointId(*to_rig.get(usize::from(j))?), f64::from(w)))
+                    })
                     .collect();
             }
         }
