@@ -48,6 +48,7 @@
 //! ```
 
 mod bench;
+mod bench_core;
 mod bvh;
 mod chamfer;
 mod core;
@@ -67,8 +68,11 @@ mod tests;
 pub use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
 pub use bench::{
     bench_counts, bench_csv, bench_markdown, bench_model, bench_table, find_bench_models,
-    joint_model_table, stage_names, timing_table, BenchCounts, BenchModel, BenchOptions,
-    BenchResult,
+    is_real_character, joint_model_table, stage_names, timing_table, BenchCounts, BenchModel,
+    BenchOptions, BenchResult, ANATOMY_CAPTION,
+};
+pub use bench_core::{
+    anatomy_table, core_summary, core_summary_lines, CoreSummary, TOP_WARNINGS, WARNING_CHARS,
 };
 pub use bvh::parse_bvh;
 pub use chamfer::{
@@ -88,7 +92,7 @@ pub use metrics::{
 };
 pub use reference::{load_gltf_rig, load_skeleton, parse_json_rig, REFDATA_FORMAT};
 pub use rig::{ReferenceRig, RigFormat};
-pub use rigger::{rig_mesh, Orientation, RigMethod, Rigged, RiggerOptions};
+pub use rigger::{rig_mesh, Orientation, RigAnatomy, RigMethod, Rigged, RiggerOptions};
 pub use skin_weights::{reference_skin, ReferenceSkin, VERTEX_MATCH_FRACTION};
 pub use study::{
     rotation_study, study_csv, study_markdown, study_table, tessellation_study,
