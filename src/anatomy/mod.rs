@@ -57,8 +57,9 @@ pub use overrides::{Overrides, SectionOverride};
 pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
 pub use project::NO_PART;
 pub use reference::{
-    agreement, girdle_limbs, joint_regions, part_region, reference_regions, skeleton_regions,
-    vertex_regions, weight_regions, weight_share, Agreement, Region, WeightRegions, WeightShare,
+    agreement, best_regions, girdle_limbs, joint_regions, part_region, reference_regions,
+    skeleton_regions, vertex_regions, weight_regions, weight_share, Agreement, Region,
+    WeightRegions, WeightShare,
 };
 pub use rules::{label_graph, Assignment, Draft};
 

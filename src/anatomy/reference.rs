@@ -396,6 +396,43 @@ impl WeightRegions {
     }
 }
 
+/// For every vertex, the region a labelling should give it to score best in [`weight_share`]:
+/// of the regions its weighted joints stand for (a girdle's limb included), the one with the
+/// largest [`WeightRegions::share`] (ties: the first in [`Region`] order); `None` for a vertex
+/// without weight on a joint with a region. Labelling every vertex so scores the most any
+/// labelling can on these weights.
+pub fn best_regions(
+    regions: &WeightRegions,
+    weights: &[Vec<(JointId, f64)>],
+) -> Vec<Option<Region>> {
+    weights
+        .iter()
+        .map(|list| {
+            let mut candidates: Vec<Region> = list
+                .iter()
+                .flat_map(|&(j, _)| {
+                    [regions.region.get(j.0), regions.girdle.get(j.0)]
+                        .into_iter()
+                        .flatten()
+                        .flatten()
+                        .copied()
+                })
+                .collect();
+            candidates.sort();
+            candidates.dedup();
+            let mut best: Option<(Region, f64)> = None;
+            for r in candidates {
+                if let Some(share) = regions.share(list, r) {
+                    if best.is_none_or(|(_, b)| share > b) {
+                        best = Some((r, share));
+                    }
+                }
+            }
+            best.map(|(r, _)| r)
+        })
+        .collect()
+}
+
 /// Per-vertex labels scored against a rig's own skin weights ([`weight_share`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WeightShare {
@@ -682,6 +719,18 @@ mod tests {
         let best = weight_share(&heaviest, &regions, &weights);
         assert_eq!(best.compared, 7);
         assert!(best.percent > score.percent);
+        // The best labels: clavicle + upper arm is wholly the arm's (girdle counts), so they
+        // beat the heaviest-region labels there; every vertex but spine + thigh scores 1.
+        let ideal = best_regions(&regions, &weights);
+        assert_eq!(ideal[1], fore_l);
+        assert_eq!(ideal[3], hind_l);
+        let top = weight_share(&ideal, &regions, &weights);
+        assert!(
+            (top.percent - 100.0 * (6.0 + 0.75) / 7.0).abs() < 1e-12,
+            "{}",
+            top.percent
+        );
+        assert!(top.percent > best.percent);
     }
 
     #[test]

@@ -218,7 +218,8 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
          legs are fore limbs); girdle bones with a side (canonical `clavicle_*`, or names with shoulder, clavicle, scapula, \
          hips or pelvis such as `Shoulder.L`, `FrontShoulder.R`, `BackShoulder.L`) count for the trunk and for the limb hanging \
          from them (`anatomy::girdle_limbs`). A vertex moved by a single part scores 100 % when labelled with it; a vertex \
-         the artist shared between two parts can score only the larger share. Empty for models without artist weights \
+         the artist shared between two parts can score only the larger share: *ceiling %* is the score of labels that give \
+         every vertex its best part (`anatomy::best_regions`), the most any labelling can reach on that model. Empty for models without artist weights \
          (the MakeHuman bodies). Target: at least 95 % on every model with artist weights.\n\n\
          *agreement %*: share of mesh vertices whose label maps to the body region of the nearest reference bone \
          (same region rule). Reference rig: `rig_game_engine.json`, else `rig_gltf.json`.\n\n\
@@ -235,8 +236,8 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
          most of the vertex's skin weight as the artist painted it (`anatomy::weight_regions`). It is how far the \
          nearest-bone rule is from the rig's own answer to \"which bone moves this vertex\". *weights %* is our default \
          labels' agreement with those heaviest-weight regions (no girdle allowance, whole vertices).\n\n\
-         | model | figure | parts found | heads | arms | legs | tails | weight share % | agreement % | medial % | reference rule vs weights % | weights % | per region (agreeing/vertices) |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+         | model | figure | parts found | heads | arms | legs | tails | weight share % | ceiling % | agreement % | medial % | reference rule vs weights % | weights % | per region (agreeing/vertices) |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for kind in ["humanoid", "quadruped", "other", "robustness"] {
         let dir = refdata.join(kind);
@@ -303,7 +304,7 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
             };
             let _ = writeln!(
                 md,
-                "| {name} | {} | {} | {} | {} | {} | {} | {} | {}{fell_back} | {} | {} | {} | {} |",
+                "| {name} | {} | {} | {} | {} | {} | {} | {} | {} | {}{fell_back} | {} | {} | {} | {} |",
                 labels.figure.name(),
                 labels.parts_summary(),
                 labels.count(Label::Head),
@@ -311,6 +312,7 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
                 labels.count(Label::Leg),
                 labels.count(Label::Tail),
                 share.map(|p| format!("**{p:.1}**")).unwrap_or_default(),
+                percent(score.as_ref().and_then(|s| s.weight_share_ceiling)),
                 percent(score.as_ref().map(|s| s.agreement.percent)),
                 percent(score.as_ref().and_then(|s| s.agreement_medial)),
                 percent(score.as_ref().and_then(|s| s.rule_vs_weights)),
@@ -326,6 +328,7 @@ fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<(
                 "weight_share_per_region": score.as_ref().and_then(|s| s.weight_share.as_ref()).map(|w| &w.per_region),
                 "weight_share_vertices": score.as_ref().and_then(|s| s.weight_share.as_ref()).map(|w| w.compared),
                 "weight_share_medial_percent": score.as_ref().and_then(|s| s.weight_share_medial),
+                "weight_share_ceiling_percent": score.as_ref().and_then(|s| s.weight_share_ceiling),
                 "agreement_percent": score.as_ref().map(|s| s.agreement.percent),
                 "agreement_medial_percent": score.as_ref().and_then(|s| s.agreement_medial),
                 "reference_rule_vs_weights_percent": score.as_ref().and_then(|s| s.rule_vs_weights),

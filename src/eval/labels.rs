@@ -5,8 +5,8 @@
 
 use super::{load_skeleton, reference_skin, EvalError};
 use crate::anatomy::{
-    agreement, reference_regions, vertex_regions, weight_regions, weight_share, Agreement,
-    Labelling, WeightRegions, WeightShare,
+    agreement, best_regions, reference_regions, vertex_regions, weight_regions, weight_share,
+    Agreement, Labelling, WeightRegions, WeightShare,
 };
 use crate::mesh::Mesh;
 use serde::Serialize;
@@ -48,6 +48,10 @@ pub struct LabelScore {
     pub weight_share: Option<WeightShare>,
     /// The same for the second labelling.
     pub weight_share_medial: Option<f64>,
+    /// The best a labelling can score: the weight share of the labels that give every vertex
+    /// its best region ([`crate::anatomy::best_regions`]). Below 100 % where the artist shared
+    /// vertices between parts.
+    pub weight_share_ceiling: Option<f64>,
     /// The reference measured against itself: the share of vertices whose nearest-bone region
     /// is also the region carrying most of their weight ([`crate::anatomy::weight_regions`]).
     pub rule_vs_weights: Option<f64>,
@@ -83,6 +87,7 @@ pub fn label_score(
         agreement_medial: medial.map(|m| agreement(m, &nearest).percent),
         weight_share: None,
         weight_share_medial: None,
+        weight_share_ceiling: None,
         rule_vs_weights: None,
         agreement_with_weights: None,
         weighted_vertices: 0,
@@ -108,6 +113,8 @@ pub fn label_score(
     score.weight_share_medial =
         medial.map(|m| weight_share(&vertex_regions(m), &regions, &skin.weights).percent);
     let by_weight = weight_regions(&skin.skeleton, &skin.canonical, &skin.weights);
+    let best = best_regions(&regions, &skin.weights);
+    score.weight_share_ceiling = Some(weight_share(&best, &regions, &skin.weights).percent);
     let (n, same) = nearest
         .iter()
         .zip(&by_weight)
