@@ -163,7 +163,7 @@ mod tests {
         // Lying down: the head is beside the pelvis, so the size is the longest side.
         let lying: Vec<_> = BODY
             .iter()
-            .map(|&(k, p, [x, y, z])| (k, p, [x, 0.1 * y, y]))
+            .map(|&(k, p, [x, y, _])| (k, p, [x, 0.1 * y, y]))
             .collect();
         let rig = figure(&lying);
         let e = evaluate(&rig, &rig, None, &EvalOptions::default()).unwrap();

@@ -10,7 +10,11 @@
 //!                                      table ─▶ rows ─▶ CSV / JSON / Markdown; aggregate
 //!
 //! rig_mesh (RigMethod) ─▶ bench_model (one model of a folder) ─▶ bench tables
+//!                     │       core_error (core joints of upright figures, missing ones listed)
 //!                     └─▶ tessellation_study / rotation_study ─▶ displacement per variant
+//!
+//! label_score (a refdata model's per-vertex labels) ─▶ nearest-bone agreement,
+//!     reference_skin (source.glb weights) ─▶ weight share (anatomy::weight_share) and ceiling
 //! ```
 //!
 //! Skeletons that share no joint keys (the general control skeleton against an anatomical
