@@ -5,6 +5,8 @@
 #   reports/studies/   tessellation and rotation studies of the bundled MakeHuman body and horse
 #   reports/rig/       bench of the anatomical rig (skelfit rig) on the whole reference set, and
 #                      its tessellation/rotation studies of the bundled models (reports/rig/studies/)
+#   reports/real/      the anatomical rig on the real game characters of the reference set, one
+#                      HTML page per character (projections of predicted vs reference joints)
 #   reports/labels/    body-part labelling accuracy on the reference set
 #   reports/scaling/   time against interior voxel count (mesh to skinned general skeleton)
 # Usage: tools/regenerate_reports.sh   (from anywhere; takes a few minutes)
@@ -35,6 +37,7 @@ done
 if [ -f "$REFDATA/README.md" ]; then
   "$BIN" bench "$REFDATA" --rig game_engine --method "$METHOD" --out reports/refdata --html
   "$BIN" bench "$REFDATA" --rig game_engine --method anatomical --out reports/rig --html
+  "$BIN" bench "$REFDATA" --rig game_engine --method anatomical --select real --out reports/real --html --model-pages
   "$BIN" label --table "$REFDATA" -o reports/labels
 else
   echo "reference data not found at $REFDATA (set SKELFIT_REFDATA): reports/refdata not regenerated" >&2

@@ -16,7 +16,8 @@
 //!   `project.rs`: labels per interior voxel and per mesh vertex; [`label_vertices_by_bones`]
 //!   (`bone_labels.rs`): per-vertex labels from the nearest bone of a fitted skeleton instead
 //!   (`skelfit label --vertex-labels bones`, [`crate::pipeline::label_by_bones`]); [`reference_regions`] (`reference.rs`): the body region of each mesh
-//!   vertex from a reference rig, for the accuracy table; `output.rs`: labels.json, PLY, SVG.
+//!   vertex from a reference rig, for the accuracy table, and [`weight_share`]: per-vertex
+//!   labels scored against skin weights (girdle bones counting for trunk and limb); `output.rs`: labels.json, PLY, SVG.
 //!
 //! Determinism: the heart comes from deterministic sources and every step is sequential or
 //! ordered by a total key, so labels are identical on any number of threads.
@@ -59,8 +60,9 @@ pub use overrides::{Overrides, SectionOverride};
 pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
 pub use project::NO_PART;
 pub use reference::{
-    agreement, joint_regions, part_region, reference_regions, skeleton_regions, weight_regions,
-    Agreement, Region,
+    agreement, best_regions, girdle_limbs, joint_regions, part_region, reference_regions,
+    skeleton_regions, vertex_regions, weight_regions, weight_share, Agreement, Region,
+    WeightRegions, WeightShare,
 };
 pub use rules::{label_graph, Assignment, Draft};
 

@@ -206,4 +206,28 @@ impl Labelling {
     pub fn count(&self, label: Label) -> usize {
         self.parts.iter().filter(|p| p.label == label).count()
     }
+
+    /// The parts in order as `trunk, head, arm L, arm R, leg L fore, ...` (label, side, and
+    /// for legs the pair).
+    pub fn parts_summary(&self) -> String {
+        self.parts
+            .iter()
+            .map(|p| {
+                let mut s = p.label.name().to_string();
+                if let Some(side) = p.side {
+                    s.push(' ');
+                    s.push_str(side.letter());
+                }
+                if p.label == Label::Leg {
+                    match p.limb_pair {
+                        Some(LimbPair::Fore) => s.push_str(" fore"),
+                        Some(LimbPair::Hind) => s.push_str(" hind"),
+                        None => {}
+                    }
+                }
+                s
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
 }

@@ -22,6 +22,14 @@
 //! → trunk; head, neck, jaw → head; tail → tail; arm → fore limb; leg → its `limb_pair` (fore
 //! or hind); wing → wing; digit → its limb's region. A quadruped's front legs are therefore
 //! compared as fore limbs whether the rig calls them arms (the Khronos fox) or front legs.
+//!
+//! **Girdles.** A joint the rule puts in the trunk as a *girdle bone* (a canonical
+//! `clavicle_*`, or a name with `shoulder`, `clavicle`, `scapula`, `hips` or `pelvis`, such as
+//! `Shoulder.L`, `FrontShoulder.R`, `BackShoulder.L`) that has a side moves skin that belongs
+//! to the trunk and to the limb hanging from it alike. [`girdle_limbs`] names that limb (the
+//! region of its nearest descendant on a limb of the same side), and the skin-weight score
+//! ([`weight_share`]) counts such a bone's weight for both. A central `Hips`/`pelvis` (no side)
+//! is the trunk's root, not a girdle.
 
 use super::{Label, Labelling, LimbPair, Side};
 use crate::eval::ReferenceRig;
@@ -120,6 +128,9 @@ fn words(name: &str) -> Vec<String> {
     out
 }
 
+/// Words that make a joint a girdle bone (rule 2's trunk words other than the column's).
+const GIRDLE_WORDS: [&str; 5] = ["shoulder", "clavicle", "scapula", "hips", "pelvis"];
+
 fn name_region(name: &str) -> Option<Region> {
     let w = words(name);
     let has = |list: &[&str]| w.iter().any(|x| list.contains(&x.as_str()));
@@ -136,7 +147,7 @@ fn name_region(name: &str) -> Option<Region> {
         "head", "neck", "ear", "jaw", "mouth", "tongue", "eye", "nose", "horn",
     ]) {
         Region::Head
-    } else if has(&["shoulder", "clavicle", "scapula", "hips", "pelvis"]) {
+    } else if has(&GIRDLE_WORDS) {
         Region::Trunk
     } else if has(&["wing"]) {
         Region::Wing(None)
@@ -246,21 +257,247 @@ pub fn weight_regions(
     let region = joint_regions(skeleton, canonical);
     weights
         .iter()
-        .map(|list| {
-            let mut per: BTreeMap<Region, f64> = BTreeMap::new();
-            for &(j, w) in list {
-                if let Some(r) = region.get(j.0).copied().flatten() {
-                    *per.entry(r).or_default() += w;
+        .map(|list| heaviest_region(&region, list))
+        .collect()
+}
+
+/// The region carrying the largest share of `list`'s weight (ties: the first in [`Region`]
+/// order); `None` when no weight lies on a joint with a region.
+fn heaviest_region(region: &[Option<Region>], list: &[(JointId, f64)]) -> Option<Region> {
+    let mut per: BTreeMap<Region, f64> = BTreeMap::new();
+    for &(j, w) in list {
+        if let Some(r) = region.get(j.0).copied().flatten() {
+            *per.entry(r).or_default() += w;
+        }
+    }
+    let mut best: Option<(Region, f64)> = None;
+    for (r, w) in per {
+        if best.is_none_or(|(_, b)| w > b) {
+            best = Some((r, w));
+        }
+    }
+    best.map(|(r, _)| r)
+}
+
+/// For every joint of `skeleton`, the limb region its skin weight also counts for when it is a
+/// girdle bone (module documentation, "Girdles"), else `None`: a joint whose region
+/// ([`joint_regions`]) is the trunk, classed there as a girdle (canonical `clavicle_*` key, or
+/// by a girdle word in its name when the canonical map does not name it), with a side, takes
+/// the region of its first descendant (in joint order) that lies on a fore limb, hind limb or
+/// wing of that side. A girdle with no such descendant counts for the trunk only.
+pub fn girdle_limbs(
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+) -> Vec<Option<Region>> {
+    let joints = &skeleton.joints;
+    let region = joint_regions(skeleton, canonical);
+    let canonical_of: std::collections::HashMap<usize, &str> =
+        canonical.iter().map(|(k, id)| (id.0, k.as_str())).collect();
+    let side_of = |j: usize| -> Option<Side> {
+        match canonical_of.get(&j) {
+            Some(key) => key.parse::<Canonical>().ok().and_then(|k| k.side()),
+            None => {
+                let w = words(&joints[j].name);
+                let has = |list: &[&str]| w.iter().any(|x| list.contains(&x.as_str()));
+                if has(&["l", "left"]) {
+                    Some(Side::Left)
+                } else if has(&["r", "right"]) {
+                    Some(Side::Right)
+                } else {
+                    None
                 }
             }
+        }
+    };
+    let is_girdle = |j: usize| -> bool {
+        if region[j] != Some(Region::Trunk) {
+            return false;
+        }
+        match canonical_of.get(&j) {
+            Some(key) => matches!(key.parse::<Canonical>(), Ok(Canonical::Clavicle(_))),
+            None => words(&joints[j].name)
+                .iter()
+                .any(|w| GIRDLE_WORDS.contains(&w.as_str())),
+        }
+    };
+    // Parents come before children, so a joint's ancestors are known when it is reached.
+    let descends_from = |mut j: usize, ancestor: usize| -> bool {
+        while let Some(p) = joints[j].parent {
+            if p.0 == ancestor {
+                return true;
+            }
+            j = p.0;
+        }
+        false
+    };
+    (0..joints.len())
+        .map(|g| {
+            let side = side_of(g)?;
+            if !is_girdle(g) {
+                return None;
+            }
+            (g + 1..joints.len())
+                .filter(|&d| descends_from(d, g))
+                .find_map(|d| match region[d] {
+                    Some(r @ (Region::Fore(s) | Region::Hind(s) | Region::Wing(s)))
+                        if s == Some(side) =>
+                    {
+                        Some(r)
+                    }
+                    _ => None,
+                })
+        })
+        .collect()
+}
+
+/// Which parts a joint's skin weight counts for in [`weight_share`]: its own region, and for a
+/// girdle bone also its limb ([`girdle_limbs`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WeightRegions {
+    /// Region of every joint ([`joint_regions`]); `None`: a joint with no region, whose weight
+    /// is left out.
+    pub region: Vec<Option<Region>>,
+    /// The limb a girdle joint's weight also counts for ([`girdle_limbs`]).
+    pub girdle: Vec<Option<Region>>,
+}
+
+impl WeightRegions {
+    /// The regions of `skeleton`'s joints by the module's rule, girdles included.
+    pub fn new(skeleton: &Skeleton, canonical: &BTreeMap<String, JointId>) -> Self {
+        Self {
+            region: joint_regions(skeleton, canonical),
+            girdle: girdle_limbs(skeleton, canonical),
+        }
+    }
+
+    /// Whether weight on joint `j` counts for a vertex labelled `predicted`.
+    pub fn counts_for(&self, j: JointId, predicted: Region) -> bool {
+        let own = self.region.get(j.0).copied().flatten();
+        let girdle = self.girdle.get(j.0).copied().flatten();
+        own == Some(predicted)
+            || (girdle.is_some() && (predicted == Region::Trunk || girdle == Some(predicted)))
+    }
+
+    /// The share of `weights` (one vertex's `(joint, weight)` list) on joints that count for
+    /// `predicted`, over the weight on joints with a region; `None` when no weight lies on a
+    /// joint with a region.
+    pub fn share(&self, weights: &[(JointId, f64)], predicted: Region) -> Option<f64> {
+        let (mut total, mut counted) = (0.0, 0.0);
+        for &(j, w) in weights {
+            if self.region.get(j.0).copied().flatten().is_none() || w.is_nan() || w <= 0.0 {
+                continue;
+            }
+            total += w;
+            if self.counts_for(j, predicted) {
+                counted += w;
+            }
+        }
+        (total > 0.0).then(|| counted / total)
+    }
+}
+
+/// For every vertex, the region a labelling should give it to score best in [`weight_share`]:
+/// of the regions its weighted joints stand for (a girdle's limb included), the one with the
+/// largest [`WeightRegions::share`] (ties: the first in [`Region`] order); `None` for a vertex
+/// without weight on a joint with a region. Labelling every vertex so scores the most any
+/// labelling can on these weights.
+pub fn best_regions(
+    regions: &WeightRegions,
+    weights: &[Vec<(JointId, f64)>],
+) -> Vec<Option<Region>> {
+    weights
+        .iter()
+        .map(|list| {
+            let mut candidates: Vec<Region> = list
+                .iter()
+                .flat_map(|&(j, _)| {
+                    [regions.region.get(j.0), regions.girdle.get(j.0)]
+                        .into_iter()
+                        .flatten()
+                        .flatten()
+                        .copied()
+                })
+                .collect();
+            candidates.sort();
+            candidates.dedup();
             let mut best: Option<(Region, f64)> = None;
-            for (r, w) in per {
-                if best.is_none_or(|(_, b)| w > b) {
-                    best = Some((r, w));
+            for r in candidates {
+                if let Some(share) = regions.share(list, r) {
+                    if best.is_none_or(|(_, b)| share > b) {
+                        best = Some((r, share));
+                    }
                 }
             }
             best.map(|(r, _)| r)
         })
+        .collect()
+}
+
+/// Per-vertex labels scored against a rig's own skin weights ([`weight_share`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WeightShare {
+    /// Vertices scored: with a predicted region and weight on joints with a region.
+    pub compared: usize,
+    /// Mean over those vertices of the share of the vertex's weight that lies on bones of its
+    /// predicted part, in percent (0 when nothing was compared).
+    pub percent: f64,
+    /// Per region of the vertex's weight ([`weight_regions`], the part whose bones move it
+    /// most): (region name, vertices, mean share in percent), in [`Region`] order.
+    pub per_region: Vec<(String, usize, f64)>,
+}
+
+/// Scores per-vertex labels against skin weights, the artist's answer to "which bones move
+/// this vertex": each vertex scores the share of its weight that lies on bones of its
+/// predicted region ([`WeightRegions::share`]; a girdle bone's weight counts for the trunk and
+/// for its limb), and the result is the mean over the vertices. `predicted[v]` is vertex `v`'s
+/// region (`None`: not labelled, not scored); `weights[v]` its `(joint, weight)` list on
+/// `regions`' skeleton (empty: not scored). A labelling that gives every vertex the region of
+/// its heaviest bone scores the mean heaviest share, 100 % only where every vertex is moved by
+/// a single part.
+pub fn weight_share(
+    predicted: &[Option<Region>],
+    regions: &WeightRegions,
+    weights: &[Vec<(JointId, f64)>],
+) -> WeightShare {
+    let mut per: BTreeMap<Region, (usize, f64)> = BTreeMap::new();
+    let (mut compared, mut sum) = (0usize, 0.0);
+    for (p, w) in predicted.iter().zip(weights) {
+        let Some(p) = *p else { continue };
+        let Some(share) = regions.share(w, p) else {
+            continue;
+        };
+        compared += 1;
+        sum += share;
+        if let Some(heaviest) = heaviest_region(&regions.region, w) {
+            let e = per.entry(heaviest).or_default();
+            e.0 += 1;
+            e.1 += share;
+        }
+    }
+    WeightShare {
+        compared,
+        percent: if compared > 0 {
+            100.0 * sum / compared as f64
+        } else {
+            0.0
+        },
+        per_region: per
+            .into_iter()
+            .map(|(r, (n, s))| (r.name(), n, 100.0 * s / n as f64))
+            .collect(),
+    }
+}
+
+/// The region of each mesh vertex by `labelling`'s per-vertex labels ([`part_region`] of
+/// `mesh_parts`); `None` for a vertex with no part.
+pub fn vertex_regions(labelling: &Labelling) -> Vec<Option<Region>> {
+    let regions: Vec<Region> = (0..labelling.parts.len())
+        .map(|i| part_region(labelling, i))
+        .collect();
+    labelling
+        .mesh_parts
+        .iter()
+        .map(|&p| regions.get(p as usize).copied())
         .collect()
 }
 
@@ -379,5 +616,135 @@ mod tests {
             Some(Region::Fore(Some(Side::Left)))
         );
         assert_eq!(key_region("tail_mid"), Some(Region::Tail));
+    }
+
+    /// pelvis → spine → {clavicle_l → upperarm_l → forearm_l, Shoulder.R → UpperArm.R,
+    /// neck}, pelvis → {thigh_l, Hips}: canonical keys for the left side, names only for the
+    /// right girdle and the central `Hips`.
+    fn girdle_rig() -> (Skeleton, BTreeMap<String, JointId>) {
+        let names = [
+            ("pelvis", None),
+            ("spine", Some(0)),
+            ("clavicle_l", Some(1)),
+            ("upperarm_l", Some(2)),
+            ("forearm_l", Some(3)),
+            ("Shoulder.R", Some(1)),
+            ("UpperArm.R", Some(5)),
+            ("thigh_l", Some(0)),
+            ("Hips", Some(0)),
+            ("neck", Some(1)),
+        ];
+        let skeleton = Skeleton {
+            joints: names
+                .iter()
+                .enumerate()
+                .map(|(i, &(name, parent))| crate::skeleton::Joint {
+                    name: name.into(),
+                    parent: parent.map(JointId),
+                    position: DVec3::new(0.0, i as f64, 0.0),
+                    deform: true,
+                    ..Default::default()
+                })
+                .collect(),
+        };
+        let canonical = [
+            ("pelvis", 0),
+            ("chest", 1),
+            ("clavicle_L", 2),
+            ("shoulder_L", 3),
+            ("elbow_L", 4),
+            ("hip_L", 7),
+        ]
+        .into_iter()
+        .map(|(k, j)| (k.to_string(), JointId(j)))
+        .collect();
+        (skeleton, canonical)
+    }
+
+    #[test]
+    fn girdle_bones_name_the_limb_hanging_from_them() {
+        let (skeleton, canonical) = girdle_rig();
+        let girdle = girdle_limbs(&skeleton, &canonical);
+        let fore_l = Some(Region::Fore(Some(Side::Left)));
+        let fore_r = Some(Region::Fore(Some(Side::Right)));
+        assert_eq!(girdle[2], fore_l, "canonical clavicle_L");
+        assert_eq!(girdle[5], fore_r, "Shoulder.R by its name");
+        // The pelvis (canonical), the central Hips (no side), limb and column joints are no
+        // girdles.
+        for j in [0, 1, 3, 4, 6, 7, 8, 9] {
+            assert_eq!(girdle[j], None, "{}", skeleton.joints[j].name);
+        }
+    }
+
+    #[test]
+    fn weight_share_counts_girdle_weight_for_trunk_and_limb() {
+        let (skeleton, canonical) = girdle_rig();
+        let regions = WeightRegions::new(&skeleton, &canonical);
+        let w = |list: &[(usize, f64)]| -> Vec<(JointId, f64)> {
+            list.iter().map(|&(j, w)| (JointId(j), w)).collect()
+        };
+        let trunk = Some(Region::Trunk);
+        let fore_l = Some(Region::Fore(Some(Side::Left)));
+        let hind_l = Some(Region::Hind(Some(Side::Left)));
+        let predicted = vec![trunk, fore_l, trunk, hind_l, hind_l, None, trunk, fore_l];
+        let weights = vec![
+            w(&[(1, 1.0)]),             // spine, trunk: 1
+            w(&[(2, 0.5), (3, 0.5)]),   // clavicle + upper arm, arm: 1 (girdle counts)
+            w(&[(2, 0.5), (3, 0.5)]),   // the same, trunk: 0.5 (girdle yes, upper arm no)
+            w(&[(1, 0.25), (7, 0.75)]), // spine + thigh, leg: 0.75
+            w(&[(2, 1.0)]),             // clavicle, leg: 0 (not the girdle's limb)
+            w(&[(1, 1.0)]),             // no prediction: not scored
+            Vec::new(),                 // no weights: not scored
+            w(&[(5, 1.0)]),             // right girdle, left arm: 0 (other side)
+        ];
+        let score = weight_share(&predicted, &regions, &weights);
+        assert_eq!(score.compared, 6);
+        let expected = 100.0 * (1.0 + 1.0 + 0.5 + 0.75 + 0.0 + 0.0) / 6.0;
+        assert!(
+            (score.percent - expected).abs() < 1e-12,
+            "{}",
+            score.percent
+        );
+        // Per heaviest region: trunk (spine; clavicle+upper arm tie → trunk first; clavicle;
+        // right girdle), fore_L never heaviest, hind_L (spine + thigh).
+        let trunk_row = score.per_region.iter().find(|r| r.0 == "trunk").unwrap();
+        assert_eq!(trunk_row.1, 5);
+        let hind_row = score.per_region.iter().find(|r| r.0 == "hind_L").unwrap();
+        assert_eq!((hind_row.1, hind_row.2), (1, 75.0));
+        // Labelling every vertex by its heaviest region scores exactly its heaviest share.
+        let heaviest: Vec<Option<Region>> = weights
+            .iter()
+            .map(|l| heaviest_region(&regions.region, l))
+            .collect();
+        let best = weight_share(&heaviest, &regions, &weights);
+        assert_eq!(best.compared, 7);
+        assert!(best.percent > score.percent);
+        // The best labels: clavicle + upper arm is wholly the arm's (girdle counts), so they
+        // beat the heaviest-region labels there; every vertex but spine + thigh scores 1.
+        let ideal = best_regions(&regions, &weights);
+        assert_eq!(ideal[1], fore_l);
+        assert_eq!(ideal[3], hind_l);
+        let top = weight_share(&ideal, &regions, &weights);
+        assert!(
+            (top.percent - 100.0 * (6.0 + 0.75) / 7.0).abs() < 1e-12,
+            "{}",
+            top.percent
+        );
+        assert!(top.percent > best.percent);
+    }
+
+    #[test]
+    fn weight_on_joints_without_a_region_is_left_out() {
+        let skeleton = Skeleton {
+            joints: vec![crate::skeleton::Joint {
+                name: "FFB.L".into(),
+                deform: true,
+                ..Default::default()
+            }],
+        };
+        let regions = WeightRegions::new(&skeleton, &BTreeMap::new());
+        let weights = vec![vec![(JointId(0), 1.0)]];
+        let score = weight_share(&[Some(Region::Trunk)], &regions, &weights);
+        assert_eq!((score.compared, score.percent), (0, 0.0));
     }
 }

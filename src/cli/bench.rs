@@ -1,4 +1,4 @@
-//! `skelfit bench DIR [--rig game_engine] [--method general] [--out reports/NAME] [--html]`:
+//! `skelfit bench DIR [--rig game_engine] [--method general] [--select all|real] [--out reports/NAME] [--html]`:
 //! rig every model of a refdata-style folder in parallel, evaluate each against its reference
 //! rig, and write accuracy and timing tables (CSV, Markdown, JSON; HTML on request).
 
@@ -11,7 +11,7 @@ use skelfit::eval::{
     BenchOptions, BenchResult, RigMethod,
 };
 use skelfit::export::{write_skeleton_json, JsonOptions};
-use skelfit::report::{bench_html, html_report, ReportInput, ReportOptions};
+use skelfit::report::{bench_html, failure_report, html_report, ReportInput, ReportOptions};
 use std::path::{Path, PathBuf};
 
 /// The rigging method (`--method`). Add a value here when a method is added to
@@ -35,6 +35,17 @@ impl From<MethodArg> for RigMethod {
     }
 }
 
+/// Which models of the folder `skelfit bench` runs (`--select`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
+pub enum SelectArg {
+    /// Every model found.
+    #[default]
+    All,
+    /// Only real game characters: models whose provenance.json names the `converter` that
+    /// made them from the artist's skinned file (refdata README, "Real game characters").
+    Real,
+}
+
 /// Arguments of `skelfit bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -48,6 +59,9 @@ pub struct BenchArgs {
     /// Rigging method.
     #[arg(long, value_enum, default_value_t = MethodArg::General)]
     pub method: MethodArg,
+    /// Which models to run.
+    #[arg(long, value_enum, default_value_t = SelectArg::All)]
+    pub select: SelectArg,
     /// Output folder for bench.csv, bench.md, bench.json (and index.html); created if missing.
     #[arg(long, default_value = "reports/bench")]
     pub out: PathBuf,
@@ -83,7 +97,15 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let mut options = BenchOptions::default();
     options.rigger.method = args.method.into();
     options.rigger.general.voxel = args.voxel.options()?;
-    let models = find_bench_models(&args.dir, &args.rig)?;
+    let mut models = find_bench_models(&args.dir, &args.rig)?;
+    if args.select == SelectArg::Real {
+        models.retain(|m| m.real);
+        anyhow::ensure!(
+            !models.is_empty(),
+            "no real game characters (provenance.json with a `converter`) in {}",
+            args.dir.display()
+        );
+    }
     super::common::output_folder(&args.out)?;
     let bar = indicatif::ProgressBar::new(models.len() as u64);
     if let Ok(style) = indicatif::ProgressStyle::with_template(
@@ -175,7 +197,8 @@ fn write_skeletons(dir: &Path, results: &[BenchResult]) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes `models/<model>.html` for every evaluated model; returns the relative links.
+/// Writes `models/<model>.html` for every model (the projections of predicted and reference
+/// joints when it was evaluated, else the reason it failed); returns the relative links.
 fn write_model_pages(
     dir: &Path,
     models: &[skelfit::eval::BenchModel],
@@ -185,10 +208,22 @@ fn write_model_pages(
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let mut links = Vec::with_capacity(results.len());
     for (model, result) in models.iter().zip(results) {
+        let name = format!("{}.html", result.model);
+        let options = ReportOptions {
+            extra_rows: page_rows(result),
+            notes: result.notes.clone(),
+            ..Default::default()
+        };
         let (Some(evaluation), Some(predicted), Some(reference)) =
             (&result.evaluation, &result.predicted, &result.reference_rig)
         else {
-            links.push(None);
+            let title = format!("skelfit bench: {} ({})", result.model, result.method.name());
+            let failure = result.failure.as_deref().unwrap_or("not evaluated");
+            write_file(
+                &dir.join(&name),
+                failure_report(&title, failure, &options).as_bytes(),
+            )?;
+            links.push(Some(format!("models/{name}")));
             continue;
         };
         let mesh = super::common::load_mesh(&model.mesh)?;
@@ -205,12 +240,54 @@ fn write_model_pages(
             reference: &reference,
             mesh: Some(&mesh),
         };
-        let name = format!("{}.html", result.model);
-        write_file(
-            &dir.join(&name),
-            html_report(&input, &ReportOptions::default()).as_bytes(),
-        )?;
+        write_file(&dir.join(&name), html_report(&input, &options).as_bytes())?;
         links.push(Some(format!("models/{name}")));
     }
     Ok(links)
+}
+
+/// Summary rows of a model page beyond the evaluation's: category, real character, and what
+/// the anatomical rig found (figure, template, parts, missing parts, core joint error).
+fn page_rows(result: &BenchResult) -> Vec<(String, String)> {
+    let mut rows = vec![
+        ("category".to_owned(), result.category.clone()),
+        (
+            "real game character".to_owned(),
+            if result.real { "yes" } else { "no" }.to_owned(),
+        ),
+    ];
+    let list = |v: &[String]| {
+        if v.is_empty() {
+            "none".to_owned()
+        } else {
+            v.join(", ")
+        }
+    };
+    if let Some(a) = &result.anatomy {
+        rows.extend([
+            ("figure class".to_owned(), a.figure.clone()),
+            ("template".to_owned(), a.template.clone()),
+            ("parts found".to_owned(), a.parts.clone()),
+            ("missing parts".to_owned(), list(&a.missing_parts)),
+        ]);
+    }
+    if let Some(c) = &result.core {
+        rows.extend([
+            (
+                "core joint error".to_owned(),
+                format!(
+                    "mean {:.4} ({:.2} % of height), max {:.2} % ({}); {} of {} core joints paired",
+                    c.mean,
+                    c.mean_percent,
+                    c.max_percent,
+                    if c.worst.is_empty() { "–" } else { &c.worst },
+                    c.paired,
+                    c.mapped.len()
+                ),
+            ),
+            ("missing core joints".to_owned(), list(&c.missing)),
+        ]);
+    }
+    rows.push(("rig warnings".to_owned(), result.warnings.len().to_string()));
+    rows
 }

@@ -3,8 +3,9 @@
 //! and per-stage timings. One model at a time here; callers run [`bench_model`] in parallel.
 
 use super::{
-    aggregate, evaluate, load_skeleton, percent_cell, rig_mesh, EvalError, EvalOptions, Evaluation,
-    JointPairing, MatchMethod, ReferenceRig, RigMethod, RiggerOptions, Table,
+    aggregate, core_error, evaluate, load_skeleton, percent_cell, rig_mesh, CoreError, EvalError,
+    EvalOptions, Evaluation, JointPairing, MatchMethod, ReferenceRig, RigAnatomy, RigMethod,
+    RiggerOptions, Table,
 };
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -25,6 +26,19 @@ pub struct BenchModel {
     pub reference: Option<PathBuf>,
     /// Why the reference is not the requested rig (fallback) or is missing.
     pub note: Option<String>,
+    /// A real game character ([`is_real_character`]).
+    #[serde(default)]
+    pub real: bool,
+}
+
+/// Whether the refdata model folder `dir` holds a real game character: its `provenance.json`
+/// names the `converter` that made it from the artist's skinned file (refdata README, "Real
+/// game characters"; the earlier glTF models and the generated bodies have none).
+pub fn is_real_character(dir: &Path) -> bool {
+    std::fs::read(dir.join("provenance.json"))
+        .ok()
+        .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
+        .is_some_and(|p| p.get("converter").is_some())
 }
 
 /// The `rig_*.json` files of `dir`, sorted by name.
@@ -79,6 +93,7 @@ fn bench_model_in(dir: &Path, category: &str, rig: &str) -> BenchModel {
         mesh: dir.join("mesh.obj"),
         reference,
         note,
+        real: is_real_character(dir),
     }
 }
 
@@ -182,6 +197,18 @@ pub struct BenchResult {
     /// The reference rig (for pictures; not serialised).
     #[serde(skip)]
     pub reference_rig: Option<ReferenceRig>,
+    /// A real game character ([`BenchModel::real`]).
+    #[serde(default)]
+    pub real: bool,
+    /// The core joint error ([`core_error`]), for upright figures paired by canonical keys.
+    #[serde(default)]
+    pub core: Option<CoreError>,
+    /// What the anatomical rig found (figure, template, parts, missing parts).
+    #[serde(default)]
+    pub anatomy: Option<RigAnatomy>,
+    /// The rigging method's warnings (also among `notes`).
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 impl BenchResult {
@@ -224,6 +251,10 @@ pub fn bench_model(model: &BenchModel, options: &BenchOptions) -> BenchResult {
         failure: None,
         predicted: None,
         reference_rig: None,
+        real: model.real,
+        core: None,
+        anatomy: None,
+        warnings: Vec::new(),
     };
     if let Err(message) = run_model(model, options, &mut result) {
         result.failure = Some(message);
@@ -248,7 +279,9 @@ fn run_model(
     let rigged = rig_mesh(&mesh, &options.rigger)
         .map_err(|e| format!("{} rig failed: {e}", options.rigger.method.name()))?;
     result.timings.extend(rigged.timings);
-    result.notes.extend(rigged.warnings);
+    result.notes.extend(rigged.warnings.iter().cloned());
+    result.warnings = rigged.warnings;
+    result.anatomy = rigged.anatomy;
     result.predicted_joints = rigged.skeleton.len();
     let mut predicted = ReferenceRig::from_skeleton(model.name.clone(), rigged.skeleton);
     predicted.canonical = rigged.canonical;
@@ -257,6 +290,7 @@ fn run_model(
         evaluate(&predicted, &reference, Some(&mesh), &options.eval).map_err(|e| e.to_string())?;
     result.timings.push(("evaluate".into(), millis(clock)));
     result.notes.extend(evaluation.warnings.iter().cloned());
+    result.core = core_error(&evaluation);
     result.evaluation = Some(evaluation);
     result.predicted = Some(predicted);
     result.reference_rig = Some(reference);
@@ -325,6 +359,18 @@ pub fn bench_csv(results: &[BenchResult]) -> Result<String, EvalError> {
         "cd_j2j_percent",
         "cd_j2b_percent",
         "cd_b2b_percent",
+        "core_mean",
+        "core_mean_percent",
+        "core_max_percent",
+        "core_paired",
+        "core_mapped",
+        "core_missing",
+        "real",
+        "figure",
+        "template",
+        "parts",
+        "missing_parts",
+        "warnings",
     ]
     .map(String::from)
     .to_vec();
@@ -367,6 +413,22 @@ pub fn bench_csv(results: &[BenchResult]) -> Result<String, EvalError> {
             num(e.map(|e| e.chamfer_percent.j2b)),
             num(e.map(|e| e.chamfer_percent.b2b)),
         ];
+        let c = r.core.as_ref();
+        let a = r.anatomy.as_ref();
+        row.extend([
+            num(c.map(|c| c.mean)),
+            num(c.map(|c| c.mean_percent)),
+            num(c.map(|c| c.max_percent)),
+            c.map(|c| c.paired.to_string()).unwrap_or_default(),
+            c.map(|c| c.mapped.len().to_string()).unwrap_or_default(),
+            c.map(|c| c.missing.join(" ")).unwrap_or_default(),
+            r.real.to_string(),
+            a.map(|a| a.figure.clone()).unwrap_or_default(),
+            a.map(|a| a.template.clone()).unwrap_or_default(),
+            a.map(|a| a.parts.clone()).unwrap_or_default(),
+            a.map(|a| a.missing_parts.join(", ")).unwrap_or_default(),
+            r.warnings.len().to_string(),
+        ]);
         row.extend(stages.iter().map(|s| num(r.stage_ms(s))));
         row.push(r.total_ms().to_string());
         row.push(r.failure.clone().unwrap_or_default());
@@ -399,10 +461,13 @@ pub fn bench_table(results: &[BenchResult]) -> Table {
         "J2J %",
         "J2B %",
         "B2B %",
+        "core %",
+        "core missing",
         "status",
     ];
     let numeric = [
-        false, false, false, false, true, true, true, true, true, false, true, true, true, false,
+        false, false, false, false, true, true, true, true, true, false, true, true, true, true,
+        false, false,
     ];
     let rows = results
         .iter()
@@ -427,6 +492,17 @@ pub fn bench_table(results: &[BenchResult]) -> Table {
                 chamfer(|e| e.chamfer_percent.j2j),
                 chamfer(|e| e.chamfer_percent.j2b),
                 chamfer(|e| e.chamfer_percent.b2b),
+                percent_cell(r.core.as_ref().map(|c| c.mean_percent)),
+                r.core.as_ref().map_or_else(
+                    || "–".to_owned(),
+                    |c| {
+                        if c.missing.is_empty() {
+                            "none".to_owned()
+                        } else {
+                            c.missing.join(", ")
+                        }
+                    },
+                ),
                 match &r.failure {
                     Some(f) => format!("failed: {f}"),
                     None => status(r).to_owned(),
@@ -559,8 +635,13 @@ pub fn joint_model_table(results: &[BenchResult]) -> Table {
     }
 }
 
+/// What the columns of [`super::anatomy_table`] mean (Markdown).
+pub const ANATOMY_CAPTION: &str = "*figure*: the labelling's figure class; *template*: the template fitted; *parts found*: the labelled body parts; *core mean* (mesh units) and *core %* (% of height): mean error over the core joints (pelvis, neck, head, shoulders, elbows, wrists, hips, knees, ankles) that the reference maps and the prediction has (upright figures paired by canonical keys; `–` otherwise); *core paired*: of those the reference maps; *missing core joints*: mapped by the reference but absent from the prediction, so not in the mean; *missing parts*: limbs or tail the template expects but the fit could not build; *warnings*: the rig's warnings, the first ones quoted (all are under Notes).";
+
 /// The run as a Markdown page: `title`, the caller's `preamble` (e.g. the command that made
-/// it), a summary, the accuracy table, the per-joint table pooled over models (when any model
+/// it), a summary (with the core joint error over upright models and real characters), the
+/// accuracy table, the anatomical rig per model ([`super::anatomy_table`], when the method
+/// found body parts), the per-joint table pooled over models (when any model
 /// has per-joint errors), the per-joint and model table in mesh units, the timing table and the notes.
 pub fn bench_markdown(results: &[BenchResult], title: &str, preamble: &str) -> String {
     let evaluations: Vec<Evaluation> = results
@@ -600,6 +681,9 @@ pub fn bench_markdown(results: &[BenchResult], title: &str, preamble: &str) -> S
             c.b2b
         ));
     }
+    for line in super::core_summary_lines(results) {
+        md.push_str(&format!("* {line}\n"));
+    }
     let total: f64 = results.iter().map(BenchResult::total_ms).sum();
     md.push_str(&format!(
         "* time summed over models: {:.2} s (stage timings below are wall-clock per model, models run in parallel)\n\n",
@@ -608,6 +692,15 @@ pub fn bench_markdown(results: &[BenchResult], title: &str, preamble: &str) -> S
     md.push_str("Errors are percentages of figure size (height for upright figures, longest bounding-box side otherwise, measured on the mesh). J2J/J2B/B2B are the symmetric joint-to-joint, joint-to-bone and bone-to-bone chamfer distances (RigNet), topology-free.\n\n");
     md.push_str("## Accuracy\n\n");
     md.push_str(&bench_table(results).markdown());
+    if results
+        .iter()
+        .any(|r| r.anatomy.is_some() || r.core.is_some())
+    {
+        md.push_str("\n## Anatomical rig per model\n\n");
+        md.push_str(ANATOMY_CAPTION);
+        md.push_str("\n\n");
+        md.push_str(&super::anatomy_table(results).markdown());
+    }
     if !dataset.keys.is_empty() {
         md.push_str("\n## Per joint, pooled over models\n\n");
         md.push_str(&super::key_table(&dataset.keys).markdown());

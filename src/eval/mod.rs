@@ -10,7 +10,11 @@
 //!                                      table ─▶ rows ─▶ CSV / JSON / Markdown; aggregate
 //!
 //! rig_mesh (RigMethod) ─▶ bench_model (one model of a folder) ─▶ bench tables
+//!                     │       core_error (core joints of upright figures, missing ones listed)
 //!                     └─▶ tessellation_study / rotation_study ─▶ displacement per variant
+//!
+//! label_score (a refdata model's per-vertex labels) ─▶ nearest-bone agreement,
+//!     reference_skin (source.glb weights) ─▶ weight share (anatomy::weight_share) and ceiling
 //! ```
 //!
 //! Skeletons that share no joint keys (the general control skeleton against an anatomical
@@ -48,14 +52,18 @@
 //! ```
 
 mod bench;
+mod bench_core;
 mod bvh;
 mod chamfer;
+mod core;
 mod correspondence;
 mod error;
+mod labels;
 mod metrics;
 mod reference;
 mod rig;
 mod rigger;
+mod skin_weights;
 mod study;
 mod table;
 #[cfg(test)]
@@ -64,26 +72,32 @@ mod tests;
 pub use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
 pub use bench::{
     bench_counts, bench_csv, bench_markdown, bench_model, bench_table, find_bench_models,
-    joint_model_table, stage_names, timing_table, BenchCounts, BenchModel, BenchOptions,
-    BenchResult,
+    is_real_character, joint_model_table, stage_names, timing_table, BenchCounts, BenchModel,
+    BenchOptions, BenchResult, ANATOMY_CAPTION,
+};
+pub use bench_core::{
+    anatomy_table, core_summary, core_summary_lines, CoreSummary, TOP_WARNINGS, WARNING_CHARS,
 };
 pub use bvh::parse_bvh;
 pub use chamfer::{
     bone_segments, chamfer, point_segment_distance, sample_segments, ChamferDistances,
     ChamferOptions,
 };
+pub use core::{core_error, CoreError, CORE_KEYS};
 pub use correspondence::{
     canonical_map, correspond, detect_preset, parse_presets, preset, presets, CanonicalSource,
     Correspondence, JointPair, MatchMethod, NamingPreset,
 };
 pub use error::EvalError;
+pub use labels::{label_reference_file, label_score, LabelScore};
 pub use metrics::{
     evaluate, figure_size, resolve_measure, ErrorSummary, EvalOptions, Evaluation, FigureMeasure,
     FigureSize, JointError, JointPairing, SizeSource,
 };
 pub use reference::{load_gltf_rig, load_skeleton, parse_json_rig, REFDATA_FORMAT};
 pub use rig::{ReferenceRig, RigFormat};
-pub use rigger::{rig_mesh, Orientation, RigMethod, Rigged, RiggerOptions};
+pub use rigger::{rig_mesh, Orientation, RigAnatomy, RigMethod, Rigged, RiggerOptions};
+pub use skin_weights::{reference_skin, ReferenceSkin, VERTEX_MATCH_FRACTION};
 pub use study::{
     rotation_study, study_csv, study_markdown, study_table, tessellation_study,
     DisplacementPairing, JointDisplacement, Study, StudyKind, StudyOptions, StudyVariant,

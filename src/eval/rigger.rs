@@ -3,6 +3,7 @@
 //! in [`RiggerOptions`] and one arm in [`rig_mesh`].
 
 use crate::anatomy::{Forward, Up};
+use crate::fit::FitWarning;
 use crate::mesh::Mesh;
 use crate::pipeline::{general_skeleton, rig, GeneralSkeletonOptions, RigOptions};
 use crate::skeleton::{JointId, Skeleton};
@@ -90,6 +91,47 @@ pub struct Rigged {
     pub timings: Vec<(String, f64)>,
     /// Warnings of every stage, as sentences.
     pub warnings: Vec<String>,
+    /// What the anatomical rig found (`None` for methods without body parts).
+    pub anatomy: Option<RigAnatomy>,
+}
+
+/// What [`RigMethod::Anatomical`] found in a figure, for reports.
+#[derive(Debug, Clone, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct RigAnatomy {
+    /// Figure class of the labelling (`human-like`, `animal-like`, `unknown`).
+    pub figure: String,
+    /// The template fitted (`humanoid`, `quadruped`, `winged`...).
+    pub template: String,
+    /// The labelled parts ([`crate::anatomy::Labelling::parts_summary`]).
+    pub parts: String,
+    /// Parts the template expects that the fit could not build: `arm R`, `leg pair`, `tail`
+    /// (from the fit's missing-limb and missing-tail warnings).
+    pub missing_parts: Vec<String>,
+}
+
+impl RigAnatomy {
+    /// The anatomy of a rig from [`crate::pipeline::rig`].
+    pub fn of(rig: &crate::pipeline::Rig) -> Self {
+        let missing_parts = rig
+            .fit
+            .warnings
+            .iter()
+            .filter_map(|w| match w {
+                FitWarning::MissingLimb { group, side } => Some(match side {
+                    Some(side) => format!("{group} {}", side.letter()),
+                    None => format!("{group} pair"),
+                }),
+                FitWarning::MissingTail => Some("tail".to_owned()),
+                _ => None,
+            })
+            .collect();
+        Self {
+            figure: rig.labelling.figure.name().to_owned(),
+            template: rig.fit.template.clone(),
+            parts: rig.labelling.parts_summary(),
+            missing_parts,
+        }
+    }
 }
 
 /// Fits a skeleton into `mesh` with `options.method`.
@@ -105,6 +147,7 @@ pub fn rig_mesh(mesh: &Mesh, options: &RiggerOptions) -> crate::Result<Rigged> {
                 canonical: BTreeMap::new(),
                 timings: general.timings,
                 warnings: general.warnings,
+                anatomy: None,
             })
         }
         RigMethod::Anatomical => {
@@ -112,7 +155,9 @@ pub fn rig_mesh(mesh: &Mesh, options: &RiggerOptions) -> crate::Result<Rigged> {
             rig_options.label.up = Up::Direction(options.orientation.up);
             rig_options.label.forward = Forward::Direction(options.orientation.forward);
             let rig = rig(mesh, &rig_options)?;
+            let anatomy = Some(RigAnatomy::of(&rig));
             Ok(Rigged {
+                anatomy,
                 skeleton: rig.fit.skeleton,
                 canonical: rig.fit.canonical,
                 timings: rig.timings,

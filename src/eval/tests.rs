@@ -733,7 +733,82 @@ fn bench_failures_are_recorded_not_returned() {
     assert!(result.evaluation.is_none());
     let csv = bench_csv(std::slice::from_ref(&result)).unwrap();
     assert!(csv.lines().nth(1).unwrap().contains(",failed,"), "{csv}");
-    assert!(bench_table(&[result]).rows[0][13].starts_with("failed: "));
+    let table = bench_table(std::slice::from_ref(&result));
+    assert!(table.rows[0].last().unwrap().starts_with("failed: "));
+    assert_eq!(table.rows[0].len(), table.headers.len());
+    // The anatomy table says the model failed and leaves its values out.
+    let anatomy = anatomy_table(std::slice::from_ref(&result));
+    let row = &anatomy.rows[0];
+    assert_eq!(row.len(), anatomy.headers.len());
+    assert_eq!(row[7], "–", "core %");
+    assert!(row.last().unwrap().starts_with("failed: "), "{row:?}");
+    assert_eq!(core_summary(&[result], &|_| true), None);
+}
+
+#[test]
+fn anatomy_table_lists_missing_core_joints_and_parts() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("m");
+    std::fs::create_dir_all(&model).unwrap();
+    std::fs::write(model.join("mesh.obj"), "v 0 0 0\n").unwrap();
+    std::fs::write(model.join("provenance.json"), r#"{"converter": "x"}"#).unwrap();
+    let models = find_bench_models(dir.path(), "game_engine").unwrap();
+    assert!(models[0].real);
+    let mut result = bench_model(&models[0], &BenchOptions::default());
+    assert!(result.real);
+    result.failure = None;
+    result.anatomy = Some(RigAnatomy {
+        figure: "human-like".into(),
+        template: "humanoid".into(),
+        parts: "trunk, head, arm L".into(),
+        missing_parts: vec!["arm R".into()],
+    });
+    result.core = Some(CoreError {
+        mapped: vec!["pelvis".into(), "shoulder_R".into()],
+        paired: 1,
+        mean: 0.02,
+        mean_percent: 1.25,
+        max_percent: 1.25,
+        worst: "pelvis".into(),
+        missing: vec!["shoulder_R".into()],
+    });
+    result.warnings = vec![
+        "w".repeat(WARNING_CHARS + 5),
+        "second".into(),
+        "third".into(),
+    ];
+    let mut other = result.clone();
+    other.real = false;
+    other.core.as_mut().unwrap().mean_percent = 3.25;
+    other.core.as_mut().unwrap().missing.clear();
+    let results = [result, other];
+    let table = anatomy_table(&results);
+    let cell = |r: usize, h: &str| {
+        let c = table.headers.iter().position(|x| x == h).unwrap();
+        table.rows[r][c].clone()
+    };
+    assert_eq!(cell(0, "real"), "yes");
+    assert_eq!(cell(0, "core %"), "1.25");
+    assert_eq!(cell(0, "core paired"), "1/2");
+    assert_eq!(cell(0, "missing core joints"), "shoulder_R");
+    assert_eq!(cell(1, "missing core joints"), "none");
+    assert_eq!(cell(0, "missing parts"), "arm R");
+    assert_eq!(cell(0, "warnings"), "3");
+    let top = cell(0, "top warnings");
+    assert!(top.ends_with("… · second"), "{top}");
+    assert_eq!(bench_table(&results).rows[0][14], "shoulder_R");
+    let all = core_summary(&results, &|_| true).unwrap();
+    assert_eq!((all.models, all.with_missing), (2, 1));
+    assert!((all.percent.median - 2.25).abs() < 1e-12);
+    let real = core_summary(&results, &|r| r.real).unwrap();
+    assert_eq!(real.models, 1);
+    let lines = core_summary_lines(&results);
+    assert_eq!(lines.len(), 2);
+    assert!(
+        lines[1].contains("over 1 real characters: median 1.25 %"),
+        "{}",
+        lines[1]
+    );
 }
 
 #[test]

@@ -29,6 +29,11 @@ pub struct ReportOptions {
     pub svg: SvgOptions,
     /// Bar chart options.
     pub chart: ChartOptions,
+    /// Further summary rows `(name, value)` after the evaluation's (e.g. the rig's template,
+    /// parts and core joint error).
+    pub extra_rows: Vec<(String, String)>,
+    /// Notes listed at the end of the page (e.g. the rig's warnings).
+    pub notes: Vec<String>,
 }
 
 pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;color:#222}\
@@ -56,7 +61,7 @@ pub fn html_report(input: &ReportInput, options: &ReportOptions) -> String {
     for warning in &e.warnings {
         let _ = write!(html, "<p class=\"warn\">warning: {}</p>", escape(warning));
     }
-    html.push_str(&summary_table(e));
+    html.push_str(&summary_table(e, &options.extra_rows));
     let s = &options.svg;
     let _ = write!(
         html,
@@ -77,7 +82,52 @@ pub fn html_report(input: &ReportInput, options: &ReportOptions) -> String {
         html.push_str(&error_bar_chart(e, &options.chart));
         html.push_str(&joint_table(e));
     }
+    html.push_str(&notes_list(&options.notes));
     html.push_str("</body></html>\n");
+    html
+}
+
+/// A page for a model that could not be evaluated: `title`, the reason, the extra summary rows
+/// and the notes of `options` (no projections: there is no evaluation to draw).
+pub fn failure_report(title: &str, failure: &str, options: &ReportOptions) -> String {
+    let mut html = String::new();
+    let _ = write!(
+        html,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{t}</title><style>{STYLE}</style></head><body><h1>{t}</h1><p class=\"warn\">failed: {}</p>",
+        escape(failure),
+        t = escape(title)
+    );
+    if !options.extra_rows.is_empty() {
+        html.push_str("<h2>Summary</h2>");
+        html.push_str(&rows_table(&options.extra_rows));
+    }
+    html.push_str(&notes_list(&options.notes));
+    html.push_str("</body></html>\n");
+    html
+}
+
+fn notes_list(notes: &[String]) -> String {
+    if notes.is_empty() {
+        return String::new();
+    }
+    let items: String = notes
+        .iter()
+        .map(|n| format!("<li>{}</li>", escape(n)))
+        .collect();
+    format!("<h2>Notes</h2><ul>{items}</ul>")
+}
+
+fn rows_table(rows: &[(String, String)]) -> String {
+    let mut html = String::from("<table>");
+    for (k, v) in rows {
+        let _ = write!(
+            html,
+            "<tr><th>{}</th><td>{}</td></tr>",
+            escape(k),
+            escape(v)
+        );
+    }
+    html.push_str("</table>");
     html
 }
 
@@ -96,7 +146,7 @@ pub fn write_html_report(
     })
 }
 
-fn summary_table(e: &Evaluation) -> String {
+fn summary_table(e: &Evaluation, extra: &[(String, String)]) -> String {
     let mut rows: Vec<(String, String)> = vec![
         (
             "reference".into(),
@@ -159,17 +209,8 @@ fn summary_table(e: &Evaluation) -> String {
             e.unmatched.join(", "),
         ));
     }
-    let mut html = String::from("<h2>Summary</h2><table>");
-    for (k, v) in rows {
-        let _ = write!(
-            html,
-            "<tr><th>{}</th><td>{}</td></tr>",
-            escape(&k),
-            escape(&v)
-        );
-    }
-    html.push_str("</table>");
-    html
+    rows.extend(extra.iter().cloned());
+    format!("<h2>Summary</h2>{}", rows_table(&rows))
 }
 
 fn joint_table(e: &Evaluation) -> String {

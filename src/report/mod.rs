@@ -17,7 +17,7 @@ mod tests;
 
 pub use chart::{bar_chart, error_bar_chart, line_chart, ChartOptions, LineChartOptions, Series};
 pub use error::ReportError;
-pub use html::{html_report, write_html_report, ReportInput, ReportOptions};
+pub use html::{failure_report, html_report, write_html_report, ReportInput, ReportOptions};
 pub use pages::{bench_html, study_html, table_html};
 pub use slices::{distance_slice, png_bytes, RgbImage};
 pub use svg::{projection_svg, SvgOptions, View};

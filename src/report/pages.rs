@@ -6,8 +6,8 @@ use super::{
     ReportInput, Series, SvgOptions, View,
 };
 use crate::eval::{
-    aggregate, bench_counts, bench_table, key_table, study_table, timing_table, BenchResult,
-    Evaluation, Study, StudyKind, Table,
+    aggregate, anatomy_table, bench_counts, bench_table, core_summary_lines, key_table,
+    study_table, timing_table, BenchResult, Evaluation, Study, StudyKind, Table, ANATOMY_CAPTION,
 };
 use std::fmt::Write;
 
@@ -51,24 +51,43 @@ pub fn table_html(
     html
 }
 
+/// `text` escaped, with Markdown code spans (`...`) as `<code>` and emphasis (`*...*`) as
+/// `<em>`.
+fn markdown_inline(text: &str) -> String {
+    let parts: Vec<String> = text.split('`').map(escape).collect();
+    let mut out = String::new();
+    for (i, part) in parts.iter().enumerate() {
+        match (i % 2, i + 1 < parts.len()) {
+            (1, true) => {
+                let _ = write!(out, "<code>{part}</code>");
+            }
+            _ => {
+                let pieces: Vec<&str> = part.split('*').collect();
+                for (k, piece) in pieces.iter().enumerate() {
+                    match (k % 2, k + 1 < pieces.len()) {
+                        (1, true) => {
+                            let _ = write!(out, "<em>{piece}</em>");
+                        }
+                        (1, false) => {
+                            out.push('*');
+                            out.push_str(piece);
+                        }
+                        _ => out.push_str(piece),
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
 fn page_start(title: &str, preamble: &str) -> String {
     let mut html = format!(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{t}</title><style>{STYLE}</style></head><body><h1>{t}</h1>",
         t = escape(title)
     );
     if !preamble.is_empty() {
-        // Markdown code spans (`...`) become <code> elements.
-        let parts: Vec<String> = preamble.split('`').map(escape).collect();
-        let mut text = String::new();
-        for (i, part) in parts.iter().enumerate() {
-            match (i % 2, i + 1 < parts.len()) {
-                (1, true) => {
-                    let _ = write!(text, "<code>{part}</code>");
-                }
-                _ => text.push_str(part),
-            }
-        }
-        let _ = write!(html, "<p>{text}</p>");
+        let _ = write!(html, "<p>{}</p>", markdown_inline(preamble));
     }
     html
 }
@@ -126,6 +145,9 @@ pub fn bench_html(
             c.b2b
         );
     }
+    for line in core_summary_lines(results) {
+        let _ = write!(html, "<li>{}</li>", escape(&line));
+    }
     html.push_str("</ul>");
     let bars: Vec<(String, f64)> = results
         .iter()
@@ -146,6 +168,14 @@ pub fn bench_html(
     }
     html.push_str("<h2>Accuracy</h2>");
     html.push_str(&table_html(&bench_table(results), Some(0), model_page));
+    if results
+        .iter()
+        .any(|r| r.anatomy.is_some() || r.core.is_some())
+    {
+        html.push_str("<h2>Anatomical rig per model</h2>");
+        let _ = write!(html, "<p>{}</p>", markdown_inline(ANATOMY_CAPTION));
+        html.push_str(&table_html(&anatomy_table(results), Some(0), model_page));
+    }
     if !dataset.keys.is_empty() {
         html.push_str("<h2>Per joint, pooled over models</h2>");
         html.push_str(&table_html(&key_table(&dataset.keys), None, &|_| None));

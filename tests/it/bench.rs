@@ -387,3 +387,71 @@ fn bench_results_do_not_depend_on_the_thread_count() {
     }
     assert_eq!(runs[0], runs[1]);
 }
+
+/// `--select real` runs only the real game characters (provenance.json with a `converter`),
+/// and with `--model-pages` every one of them gets a page: the projections when it was
+/// evaluated, the reason when it failed. The anatomical rig's table gives the core joint error.
+#[test]
+fn bench_select_real_pages_every_real_character() {
+    let tmp = tempfile::tempdir().unwrap();
+    let data = tmp.path().join("data");
+    horse_folder(&data); // no provenance: not real
+    let body = crate::common::data_dir().join("humanoid/mh_neutral_default");
+    let real = data.join("humanoid/body");
+    std::fs::create_dir_all(&real).unwrap();
+    for file in ["mesh.obj", "rig_game_engine.json"] {
+        std::fs::copy(body.join(file), real.join(file)).unwrap();
+    }
+    let provenance = r#"{"converter": "test"}"#;
+    std::fs::write(real.join("provenance.json"), provenance).unwrap();
+    let broken = data.join("humanoid/broken");
+    std::fs::create_dir_all(&broken).unwrap();
+    std::fs::write(
+        broken.join("mesh.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    std::fs::copy(
+        body.join("rig_game_engine.json"),
+        broken.join("rig_game_engine.json"),
+    )
+    .unwrap();
+    std::fs::write(broken.join("provenance.json"), provenance).unwrap();
+    let out = tmp.path().join("out");
+    let o = skelfit(&[
+        "bench",
+        data.to_str().unwrap(),
+        "--method",
+        "anatomical",
+        "--select",
+        "real",
+        "--out",
+        out.to_str().unwrap(),
+        "--html",
+        "--model-pages",
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let bench = json(&out.join("bench.json"));
+    let rows = bench.as_array().unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["model"].as_str().unwrap()).collect();
+    assert_eq!(names, ["body", "broken"]);
+    let body = &rows[0];
+    assert_eq!(body["real"], true);
+    assert_eq!(body["anatomy"]["template"], "humanoid");
+    assert_eq!(body["core"]["mapped"].as_array().unwrap().len(), 15);
+    assert_eq!(body["core"]["missing"].as_array().unwrap().len(), 0);
+    let core = body["core"]["mean_percent"].as_f64().unwrap();
+    assert!(core > 0.0 && core < 2.0, "core {core} % of height");
+    assert!(rows[1]["failure"].is_string());
+    for name in ["body", "broken"] {
+        let page = out.join(format!("models/{name}.html"));
+        assert!(page.is_file(), "{}", page.display());
+    }
+    let failed = std::fs::read_to_string(out.join("models/broken.html")).unwrap();
+    assert!(failed.contains("failed: "), "{failed}");
+    let index = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(index.contains("href=\"models/broken.html\""));
+    let md = std::fs::read_to_string(out.join("bench.md")).unwrap();
+    assert!(md.contains("## Anatomical rig per model"), "{md}");
+    assert!(md.contains("over 1 real characters: median"), "{md}");
+}

@@ -819,6 +819,92 @@ fn skinned_gltf_is_read_in_its_bind_pose() {
 }
 
 #[test]
+fn weights_through_another_skin_over_the_same_joints_are_kept() {
+    // One skin per mesh over the same joint nodes (as FBX2glTF writes): the prop's skin 0 is
+    // the rig (joints [root, child]); the body's skin 1 lists them the other way round
+    // ([child, root]) with its root's IBM moving it +5 x. Every vertex's JOINTS_0 is 0: the
+    // prop's vertices bind to `root`, the body's to the child (`joint_2`), by joint node.
+    let cube = cube();
+    let mut bin = Vec::new();
+    let mut views = Vec::new();
+    let mut view = |bin: &mut Vec<u8>, bytes: Vec<u8>| {
+        views.push(format!(
+            r#"{{"buffer": 0, "byteOffset": {}, "byteLength": {}}}"#,
+            bin.len(),
+            bytes.len()
+        ));
+        bin.extend(bytes);
+    };
+    let floats = |values: &[f64]| -> Vec<u8> {
+        values
+            .iter()
+            .flat_map(|&v| (v as f32).to_le_bytes())
+            .collect()
+    };
+    let positions: Vec<f64> = cube.positions.iter().flat_map(|p| p.to_array()).collect();
+    view(&mut bin, floats(&positions));
+    let indices: Vec<u8> = cube
+        .triangles
+        .iter()
+        .flatten()
+        .flat_map(|i| i.to_le_bytes())
+        .collect();
+    view(&mut bin, indices);
+    view(&mut bin, vec![0u8; 4 * 8]);
+    view(&mut bin, floats(&[1.0, 0.0, 0.0, 0.0].repeat(8)));
+    let child_ibm = glam::DMat4::from_translation(DVec3::new(0.0, -3.0, 0.0));
+    let mut ibm = glam::DMat4::IDENTITY.to_cols_array().to_vec();
+    ibm.extend(child_ibm.to_cols_array());
+    view(&mut bin, floats(&ibm));
+    let mut ibm = child_ibm.to_cols_array().to_vec();
+    ibm.extend(glam::DMat4::from_translation(DVec3::new(5.0, 0.0, 0.0)).to_cols_array());
+    view(&mut bin, floats(&ibm));
+    let (min, max) = cube.bounding_box().unwrap();
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0, 3, 4]}}],
+  "nodes": [{{"name": "Armature", "translation": [0, 1, 0], "children": [1]}},
+            {{"name": "root", "translation": [0, 0, 1], "children": [2]}},
+            {{"translation": [0, 2, 0]}},
+            {{"name": "prop", "mesh": 0, "skin": 0}},
+            {{"name": "body", "mesh": 0, "skin": 1}}],
+  "skins": [{{"joints": [1, 2], "inverseBindMatrices": 4}},
+            {{"joints": [2, 1], "inverseBindMatrices": 5}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "JOINTS_0": 2,
+                "WEIGHTS_0": 3}}, "indices": 1}}]}}],
+  "buffers": [{{"byteLength": {}}}],
+  "bufferViews": [{}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+      "min": [{}, {}, {}], "max": [{}, {}, {}]}},
+    {{"bufferView": 1, "componentType": 5125, "count": 36, "type": "SCALAR"}},
+    {{"bufferView": 2, "componentType": 5121, "count": 8, "type": "VEC4"}},
+    {{"bufferView": 3, "componentType": 5126, "count": 8, "type": "VEC4"}},
+    {{"bufferView": 4, "componentType": 5126, "count": 2, "type": "MAT4"}},
+    {{"bufferView": 5, "componentType": 5126, "count": 2, "type": "MAT4"}}]}}"#,
+        bin.len(),
+        views.join(", "),
+        min.x,
+        min.y,
+        min.z,
+        max.x,
+        max.y,
+        max.z,
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "two_skins.glb", glb(&json, &bin));
+    let scene = load_gltf_scene(&path).unwrap();
+    assert_eq!(scene.mesh.positions.len(), 16);
+    let skeleton = scene.skeleton.unwrap();
+    assert_eq!(skeleton.joints[1].name, "joint_2");
+    assert!(skeleton.joints.iter().all(|j| j.deform));
+    let weights = scene.weights.unwrap();
+    for (p, w) in scene.mesh.positions.iter().zip(&weights) {
+        let joint = if p.x > 2.0 { 1 } else { 0 };
+        assert_eq!(w, &vec![(skelfit::skeleton::JointId(joint), 1.0)], "{p}");
+    }
+}
+
+#[test]
 fn corrupted_files_give_errors_not_panics() {
     // Deterministic byte corruption of valid files of every format. A panic inside a parser
     // would surface as the "reader failed" message of the last-resort guard.
