@@ -8,10 +8,11 @@ use super::skeleton::with_spinner;
 use anyhow::{bail, Context};
 use clap::Args;
 use serde_json::json;
-use skelfit::eval::{load_skeleton, ReferenceRig};
+use skelfit::eval::{load_skeleton, ReferenceRig, RigFormat};
 use skelfit::export::{bvh_text, glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions};
+use skelfit::mesh::load_gltf_scene;
 use skelfit::skin::{skin_skeleton, SkeletonSkinOptions, SkinError, SkinnedSkeleton};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Arguments of `skelfit skin`.
@@ -81,7 +82,7 @@ pub fn run(args: &SkinArgs) -> anyhow::Result<()> {
     let mut outputs = args.outputs()?;
     let start = Instant::now();
     let mesh = load_mesh(&args.mesh)?;
-    let mut rig = load_skeleton(&args.skeleton)
+    let mut rig = given_skeleton(&args.skeleton)
         .with_context(|| format!("loading skeleton {}", args.skeleton.display()))?;
     if args.skeleton_scale != 1.0 {
         for joint in &mut rig.skeleton.joints {
@@ -144,6 +145,38 @@ pub fn run(args: &SkinArgs) -> anyhow::Result<()> {
         eprintln!("skelfit: warning: {w}");
     }
     Ok(())
+}
+
+/// The skeleton of `path` as [`load_skeleton`] reads it; a glTF/GLB whose skin has joints
+/// sharing a name is refused (the loader renames them, and the written file would then not
+/// match the animations made for the skeleton).
+fn given_skeleton(path: &Path) -> anyhow::Result<ReferenceRig> {
+    let gltf = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb") || e.eq_ignore_ascii_case("gltf"));
+    if !gltf {
+        return Ok(load_skeleton(path)?);
+    }
+    let scene = load_gltf_scene(path)?;
+    let Some(skeleton) = scene.skeleton else {
+        bail!(
+            "the file has no skin: give a glTF/GLB with a skinned mesh, or a JSON or BVH skeleton"
+        );
+    };
+    if !scene.duplicate_joint_names.is_empty() {
+        bail!(
+            "several joints of the skin are called {}: joint names must be unique; rename them in the file",
+            scene.duplicate_joint_names.join(", ")
+        );
+    }
+    let model = path
+        .file_stem()
+        .map_or_else(|| "skeleton".into(), |s| s.to_string_lossy().into_owned());
+    let mut rig = ReferenceRig::from_skeleton(model, skeleton);
+    rig.rig = Some("gltf".into());
+    rig.format = RigFormat::Gltf;
+    Ok(rig)
 }
 
 /// A number with at most six decimals, trailing zeros cut.

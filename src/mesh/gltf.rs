@@ -33,6 +33,11 @@ pub struct GltfScene {
     /// unevenly). Joints are in skin order, moved only where needed to put
     /// parents before children.
     pub skeleton: Option<Skeleton>,
+    /// Names that several joints of the skin share, in skeleton order: the first joint keeps
+    /// the name, every later one is renamed `<name>_<node index>` in `skeleton`. Empty when
+    /// the names are unique. Animations and engines find joints by name, so a caller that
+    /// writes the skeleton back (`skelfit skin`) refuses such a file.
+    pub duplicate_joint_names: Vec<String>,
     /// For every vertex of the file's triangle primitives, in reading order, its index in
     /// `mesh` (`None`: used by no face); see
     /// [`load_with_source_map`](super::load_with_source_map).
@@ -110,6 +115,7 @@ pub fn load_gltf_scene(path: &Path) -> Result<GltfScene, MeshError> {
     Ok(GltfScene {
         mesh,
         skeleton: raw.skeleton,
+        duplicate_joint_names: raw.duplicate_joint_names,
         source_vertices,
         weights,
     })
@@ -136,6 +142,8 @@ struct RawScene {
     triangles: Vec<[u32; 3]>,
     skipped_primitives: usize,
     skeleton: Option<Skeleton>,
+    /// Names several joints of the rig's skin share.
+    duplicate_joint_names: Vec<String>,
     /// Per position: weights to skin joints of the rig (skin joint indices until the skeleton
     /// is built, then skeleton ids).
     weights: Vec<Vec<(JointId, f64)>>,
@@ -181,6 +189,7 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         triangles: Vec::new(),
         skipped_primitives: 0,
         skeleton: None,
+        duplicate_joint_names: Vec::new(),
         weights: Vec::new(),
     };
     for &n in &mesh_nodes {
@@ -226,7 +235,8 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         for &(j, _) in raw.weights.iter().flatten() {
             deform[j.0] = true;
         }
-        let (skeleton, id_of) = rig.skeleton(&document, &tree, &deform).map_err(error)?;
+        let (skeleton, id_of, shared) = rig.skeleton(&document, &tree, &deform).map_err(error)?;
+        raw.duplicate_joint_names = shared;
         for weights in &mut raw.weights {
             for (j, _) in weights.iter_mut() {
                 // In range: `deforming` checked every joint index with a nonzero weight.

@@ -109,14 +109,15 @@ impl SkinBind {
         None
     }
 
-    /// The skin's joints in the bind pose as a [`Skeleton`], parents before children, and the
-    /// skeleton index of each skin joint.
+    /// The skin's joints in the bind pose as a [`Skeleton`], parents before children, the
+    /// skeleton index of each skin joint, and the names several joints share (in skeleton
+    /// order; every later joint of such a name is renamed `<name>_<node index>`).
     pub fn skeleton(
         &self,
         document: &Document,
         tree: &NodeTree,
         deform: &[bool],
-    ) -> Result<(Skeleton, Vec<usize>), String> {
+    ) -> Result<(Skeleton, Vec<usize>, Vec<String>), String> {
         let nodes: Vec<_> = document.nodes().collect();
         let count = self.joints.len();
         let mut positions = Vec::with_capacity(count);
@@ -151,6 +152,7 @@ impl SkinBind {
             id_of[k] = id;
         }
         let mut taken = std::collections::HashSet::new();
+        let mut shared: Vec<String> = Vec::new();
         let joints = order
             .iter()
             .map(|&k| {
@@ -160,6 +162,9 @@ impl SkinBind {
                     .filter(|n| !n.is_empty())
                     .map_or_else(|| format!("joint_{node}"), str::to_string);
                 let name = if taken.contains(&base) {
+                    if !shared.contains(&base) {
+                        shared.push(base.clone());
+                    }
                     format!("{base}_{node}")
                 } else {
                     base
@@ -175,7 +180,7 @@ impl SkinBind {
                 }
             })
             .collect();
-        Ok((Skeleton { joints }, id_of))
+        Ok((Skeleton { joints }, id_of, shared))
     }
 }
 

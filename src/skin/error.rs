@@ -154,7 +154,7 @@ pub enum SkinWarning {
         deforming: usize,
     },
     /// A joint sits on its parent: the bone between them has no length, so the parent's
-    /// weights come from its other bones (or from a point).
+    /// weights come from that point and its other bones only.
     ZeroLengthBone {
         /// The parent joint.
         parent: String,
@@ -203,7 +203,7 @@ impl std::fmt::Display for SkinWarning {
             }
             SkinWarning::ZeroLengthBone { parent, joint } => write!(
                 f,
-                "joint {joint} sits on its parent {parent} (a bone of zero length); {parent} is weighted from its other bones"
+                "joint {joint} sits on its parent {parent} (a bone of zero length): {parent}'s skin comes from that point and its other bones only"
             ),
             SkinWarning::BoneOutside {
                 parent,

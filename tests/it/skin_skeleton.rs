@@ -336,3 +336,60 @@ fn doubtful_skeletons_skin_with_warnings_naming_the_joints() {
     assert!(out.status.success());
     assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
 }
+
+#[test]
+fn skin_reads_bvh_skeletons_and_refuses_gltf_skins_with_duplicate_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let mesh = bundled().join("mesh.obj");
+    let (first, bvh) = (d.join("first.glb"), d.join("first.bvh"));
+    let out = skelfit(&[
+        "skin",
+        mesh.to_str().unwrap(),
+        "--skeleton",
+        bundled().join("rig_game_engine.json").to_str().unwrap(),
+        "-o",
+        first.to_str().unwrap(),
+        "--bvh",
+        bvh.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    // A BVH skeleton: every joint of the rig keeps its name and parent.
+    let from_bvh = d.join("from_bvh.glb");
+    let out = skelfit(&[
+        "skin",
+        mesh.to_str().unwrap(),
+        "--skeleton",
+        bvh.to_str().unwrap(),
+        "-o",
+        from_bvh.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let written = hierarchy(&load_gltf_scene(&from_bvh).unwrap().skeleton.unwrap());
+    for joint in hierarchy(&load_skeleton(&bvh).unwrap().skeleton) {
+        assert!(written.contains(&joint), "{joint:?}");
+    }
+    // The same .glb with two joints called calf_l (the name has the same length, so the GLB
+    // chunk sizes stay right).
+    let mut bytes = std::fs::read(&first).unwrap();
+    let needle = br#""name":"calf_r""#;
+    let at = bytes
+        .windows(needle.len())
+        .position(|w| w == needle)
+        .expect("the joint node's name");
+    bytes[at..at + needle.len()].copy_from_slice(br#""name":"calf_l""#);
+    let duplicate = d.join("duplicate.glb");
+    std::fs::write(&duplicate, &bytes).unwrap();
+    let output = d.join("never.glb");
+    let out = skelfit(&[
+        "skin",
+        mesh.to_str().unwrap(),
+        "--skeleton",
+        duplicate.to_str().unwrap(),
+        "-o",
+        output.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("called calf_l"), "{}", stderr(&out));
+    assert!(!output.exists());
+}
