@@ -42,6 +42,8 @@ struct Row {
 struct OnArtist {
     check: DeformationCheck,
     distance: PoseDistance,
+    /// The same distance for the anchor weights on the artist's skeleton.
+    anchor: PoseDistance,
     size: f64,
     check_vertices: usize,
     warnings: usize,
@@ -148,10 +150,23 @@ fn on_artist(rig: &ArtistRig, kind: SweepKind) -> Result<OnArtist, String> {
         &RandomPoseOptions::default(),
     )
     .map_err(|e| e.to_string())?;
+    // The dissertation's anchor weights on the same skeleton, for scale.
+    let mut options = SkeletonSkinOptions::default();
+    options.skin.method = SkinMethod::Anchor;
+    let anchor = skin_skeleton(&rig.mesh, &rig.skeleton, &options).map_err(|e| e.to_string())?;
+    let anchor = pose_distance(
+        &rig.mesh,
+        &rig.skeleton,
+        &exported(&anchor.skin.engine),
+        &rig.weights,
+        &RandomPoseOptions::default(),
+    )
+    .map_err(|e| e.to_string())?;
     let (low, high) = rig.mesh.bounding_box().ok_or("empty mesh")?;
     Ok(OnArtist {
         check,
         distance,
+        anchor,
         size: (high - low).max_element(),
         check_vertices: rig.mesh.positions.len(),
         warnings: skinned.warnings.len(),
@@ -177,9 +192,11 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
          skinned with skelfit's weights and with the artist's, over {} seeded random poses \
          (every deforming joint turned about a random axis by up to ±{}°, seed {}), in % of the \
          longest side of the bounding box, over the vertices the artist skinned (the stag's \
-         antlers are a rigid part attached to a joint node, not skinned).\n\n\
-         | model | artist sweep >2x (>1.5x) | skelfit on artist sweep >2x (>1.5x) | random poses: mean % | max % | vertices measured | skin warnings |\n\
-         |---|---:|---:|---:|---:|---:|---:|",
+         antlers are a rigid part attached to a joint node, not skinned). \"anchor\" is the \
+         same distance for the dissertation's anchor weights on the artist's skeleton \
+         (`SkinMethod::Anchor`), for scale.\n\n\
+         | model | artist sweep >2x (>1.5x) | skelfit on artist sweep >2x (>1.5x) | random poses: mean % | max % | anchor: mean % | vertices measured | skin warnings |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|",
         options.poses, options.max_degrees, options.seed
     );
     let sweep = |c: &DeformationCheck| {
@@ -189,7 +206,7 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
             format!("{} ({})", c.total_over_2(), c.total_over_1_5())
         }
     };
-    let mut means = Vec::new();
+    let (mut means, mut anchor_means) = (Vec::new(), Vec::new());
     for row in rows {
         let Some(on) = &row.on_artist else {
             continue;
@@ -201,15 +218,18 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
         match on {
             Ok(o) => {
                 let mean = 100.0 * o.distance.mean / o.size;
+                let anchor = 100.0 * o.anchor.mean / o.size;
                 means.push(mean);
+                anchor_means.push(anchor);
                 let _ = writeln!(
                     md,
-                    "| {} | {} | {} | {:.2} | {:.1} | {} / {} | {} |",
+                    "| {} | {} | {} | {:.2} | {:.1} | {:.2} | {} / {} | {} |",
                     row.model,
                     artist,
                     sweep(&o.check),
                     mean,
                     100.0 * o.distance.max / o.size,
+                    anchor,
                     o.distance.vertices,
                     o.check_vertices,
                     o.warnings
@@ -218,7 +238,7 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
             Err(e) => {
                 let _ = writeln!(
                     md,
-                    "| {} | {} | failed: {e} | — | — | — | — |",
+                    "| {} | {} | failed: {e} | — | — | — | — | — |",
                     row.model, artist
                 );
             }
@@ -227,9 +247,10 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
     if !means.is_empty() {
         let _ = writeln!(
             md,
-            "\nMean over {} models: {:.2} % of the longest side.",
+            "\nMean over {} models: {:.2} % of the longest side (anchor weights: {:.2} %).",
             means.len(),
-            means.iter().sum::<f64>() / means.len() as f64
+            means.iter().sum::<f64>() / means.len() as f64,
+            anchor_means.iter().sum::<f64>() / anchor_means.len() as f64
         );
     }
     let _ = writeln!(
@@ -392,6 +413,7 @@ fn run() -> Result<(), String> {
                     Ok(o) => serde_json::json!({
                         "check": o.check,
                         "random_pose_distance": o.distance,
+                        "anchor_random_pose_distance": o.anchor,
                         "figure_size": o.size,
                         "mean_percent": 100.0 * o.distance.mean / o.size,
                         "max_percent": 100.0 * o.distance.max / o.size,
