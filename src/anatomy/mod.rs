@@ -212,16 +212,14 @@ fn guess_forward(l: &Labelling) -> (DVec3, &'static str) {
     )
 }
 
-#[allow(clippy::too_many_arguments)]
-fn label_in_frame(
-    mesh: &Mesh,
+/// The level graph of `surface` in `frame`, with the marks measured over `solid`'s interior
+/// extent along up and forward.
+fn graph_in_frame(
     solid: &Solid,
     surface: &MedialSurface,
     options: &LabelOptions,
-    overrides: Option<&Overrides>,
-    frame: Frame,
-    forward_guessed: bool,
-) -> Result<Labelling, AnatomyError> {
+    frame: &Frame,
+) -> LevelGraph {
     let (mut up, mut fw) = (
         (f64::INFINITY, f64::NEG_INFINITY),
         (f64::INFINITY, f64::NEG_INFINITY),
@@ -234,15 +232,28 @@ fn label_in_frame(
             fw = (fw.0.min(f), fw.1.max(f));
         }
     }
-    let graph = level_graph(
+    level_graph(
         surface,
         Some(solid),
         &options.paths,
         &options.level,
-        &frame,
+        frame,
         up,
         fw,
-    );
+    )
+}
+
+#[allow(clippy::too_many_arguments)]
+fn label_in_frame(
+    mesh: &Mesh,
+    solid: &Solid,
+    surface: &MedialSurface,
+    options: &LabelOptions,
+    overrides: Option<&Overrides>,
+    frame: Frame,
+    forward_guessed: bool,
+) -> Result<Labelling, AnatomyError> {
+    let graph = graph_in_frame(solid, surface, options, &frame);
     let mut draft = label_graph(&graph, surface, &frame, &options.rules);
     if let Some(o) = overrides {
         let centroids: Vec<DVec3> = graph.vertices.iter().map(|v| v.centroid).collect();

@@ -12,7 +12,7 @@
 //! up, legs sprawling from a flat body, has no up to find). When no axis gives a complete
 //! standing figure, +Y stays, with a warning.
 
-use super::{label_graph, level_graph, Draft, FigureClass, Frame, Label, LabelOptions};
+use super::{label_graph, Draft, FigureClass, Frame, Label, LabelOptions};
 use crate::medial::MedialSurface;
 use crate::voxel::Solid;
 use glam::DVec3;
@@ -157,27 +157,7 @@ fn draft_under(
         DVec3::Y
     };
     let frame = Frame::new(up, across).ok()?;
-    let (mut u, mut f) = (
-        (f64::INFINITY, f64::NEG_INFINITY),
-        (f64::INFINITY, f64::NEG_INFINITY),
-    );
-    for (index, &inside) in solid.inside.iter().enumerate() {
-        if inside {
-            let c = solid.grid.centre(solid.grid.coords(index));
-            let (a, b) = (c.dot(frame.up), c.dot(frame.forward));
-            u = (u.0.min(a), u.1.max(a));
-            f = (f.0.min(b), f.1.max(b));
-        }
-    }
-    let graph = level_graph(
-        surface,
-        Some(solid),
-        &options.paths,
-        &options.level,
-        &frame,
-        u,
-        f,
-    );
+    let graph = super::graph_in_frame(solid, surface, options, &frame);
     Some(label_graph(&graph, surface, &frame, &options.rules))
 }
 
