@@ -5,8 +5,8 @@
 //! side's geometry, so noise (a hand shape, a sleeve, a slicing that stops one voxel early) makes
 //! them disagree although the body is symmetric. When the voxelized figure is symmetric (at
 //! least [`SYMMETRIC_SHARE`] of its interior voxels have their mirror image inside), each pair
-//! `X_L`/`X_R` moves to the mean of one and the other's mirror image; the other joints stay
-//! and frames turn with their segments ([`carry`]). The median plane is the one across `left` halfway between the
+//! `X_L`/`X_R` moves to the mean of one and the other's mirror image, the unpaired (axial) joints
+//! move onto the median plane, and frames turn with their segments ([`carry`]). The median plane is the one across `left` halfway between the
 //! figure's extremes along `left` (its mesh vertices in the voxel grid) (where a symmetric figure's extremes mirror each other). A figure that is not symmetric (a pose with one arm raised, a prop in one hand)
 //! keeps its joints.
 
@@ -112,9 +112,12 @@ pub fn symmetrize(skeleton: &Skeleton, mesh: &Mesh, solid: &Solid, left: DVec3) 
         targets.insert(r, mirror(mean, origin, left));
         pairs.push((stem.to_string(), pl.distance(mirrored)));
     }
-    // The joints on the median plane stay where they are.
+    // The unpaired joints (pelvis, spine, neck, head, jaw, tail) lie on the median plane.
     for (j, joint) in skeleton.joints.iter().enumerate() {
-        targets.entry(JointId(j)).or_insert(joint.position);
+        let p = joint.position;
+        targets
+            .entry(JointId(j))
+            .or_insert(p - (p - origin).dot(left) * left);
     }
     Symmetry {
         share,
@@ -181,6 +184,12 @@ mod tests {
         assert_eq!(s.pairs.len(), 1);
         assert!((s.pairs[0].1 - 0.2236).abs() < 0.02, "{:?}", s.pairs);
         assert_eq!(s.skeleton.joints[0].position, DVec3::ZERO);
+        // An axial joint off the plane moves onto it, along `left` only.
+        let mut leaning = skeleton();
+        leaning.joints[0].position = DVec3::new(0.07, 0.2, 0.01);
+        let s = symmetrize(&leaning, &figure(false), &solid, DVec3::X);
+        let p = s.skeleton.joints[0].position;
+        assert!(p.distance(DVec3::new(0.0, 0.2, 0.01)) < 1e-9, "{p}");
 
         let raised = voxelize(&figure(true), &VoxelOptions::default()).unwrap();
         let s = symmetrize(&skeleton(), &figure(true), &raised, DVec3::X);
