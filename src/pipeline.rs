@@ -4,8 +4,8 @@
 mod rig;
 
 pub use rig::{
-    auto_template, label_by_bones, missing_parts, rig, Rig, RigOptions, TemplateChoice,
-    MEDIAL_FALLBACK,
+    auto_template, label_by_bones, missing_parts, no_template_fits, rig, Rig, RigOptions,
+    TemplateChoice, GENERAL, MEDIAL_FALLBACK,
 };
 
 use crate::distance::{edt, DistanceMap};

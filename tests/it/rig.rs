@@ -641,10 +641,71 @@ fn a_one_armed_figure_gets_a_rig_whose_warning_names_the_missing_arm() {
 #[test]
 fn a_sphere_gets_a_best_effort_rig_with_warnings() {
     let mesh = Mesh::uv_sphere(DVec3::ZERO, 1.0, 24, 48);
+    // No limbs: no vertebrate template fits, and the rig says so and gets the general skeleton.
     let r = rig(&mesh, &RigOptions::default()).unwrap();
-    assert!(!r.warnings.is_empty());
-    // Not mistaken for a full figure: the parts it lacks are listed.
+    assert_eq!(r.fit.template, skelfit::pipeline::GENERAL);
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("no template fits") && w.contains("no limbs")),
+        "{:?}",
+        r.warnings
+    );
+    assert!(r.fit.canonical.is_empty());
+    assert!(r.fit.skeleton.validate().is_ok());
+    assert_eq!(r.skin.engine.weights.len(), mesh.positions.len());
+    // A template the user forces is fitted, and not mistaken for a full figure: the parts it
+    // lacks are listed.
+    let forced = RigOptions {
+        template: skelfit::pipeline::TemplateChoice::Builtin("quadruped".into()),
+        ..RigOptions::default()
+    };
+    let r = rig(&mesh, &forced).unwrap();
+    assert_eq!(r.fit.template, "quadruped");
     assert!(r.missing.len() >= 4, "{:?}", r.missing);
+    assert!(r.fit.skeleton.validate().is_ok());
+}
+
+#[test]
+fn a_figure_with_eight_legs_gets_the_general_skeleton_not_a_quadruped() {
+    // A spider-like toy: a flat body with four legs a side, each bent down to the ground.
+    let mut parts = vec![capsule_between(
+        DVec3::new(0.0, 0.6, -0.5),
+        DVec3::new(0.0, 0.6, 0.5),
+        0.22,
+    )];
+    for k in 0..4 {
+        let z = -0.36 + 0.24 * k as f64;
+        for side in [-1.0, 1.0] {
+            let knee = DVec3::new(side * 0.75, 0.85, z * 1.6);
+            parts.push(capsule_between(DVec3::new(side * 0.1, 0.6, z), knee, 0.05));
+            parts.push(capsule_between(
+                knee,
+                DVec3::new(side * 1.1, 0.05, z * 2.0),
+                0.05,
+            ));
+        }
+    }
+    let mesh = merged(&parts);
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let legs = r.labelling.count(skelfit::anatomy::Label::Leg);
+    assert!(legs >= 6, "{legs} legs: {:?}", r.labelling.warnings);
+    assert_eq!(
+        r.fit.template,
+        skelfit::pipeline::GENERAL,
+        "{:?}",
+        r.warnings
+    );
+    assert!(r.warnings.iter().any(|w| w.contains("no template fits")));
+    // The general skeleton reaches every leg: an end effector near each foot.
+    let feet = r
+        .fit
+        .skeleton
+        .joints
+        .iter()
+        .filter(|j| j.name.starts_with("end_") && j.position.y < 0.3)
+        .count();
+    assert!(feet >= 6, "{feet} end effectors near the ground");
     assert!(r.fit.skeleton.validate().is_ok());
 }
 
