@@ -6,9 +6,11 @@
 # `skin_skeleton` gets the same: `deform` is true iff some vertex weighs on the joint), drop the
 # artist's vertex groups, re-parent every mesh object to the armature "With Automatic Weights"
 # (Object > Parent > With Automatic Weights, `parent_set(type="ARMATURE_AUTO")`), and write
-# the weights as JSON: every mesh vertex's rest position in the glTF frame (Y up, the file's
-# units, world space) and its weights by bone name, limited to the four largest and
-# renormalised as Blender's glTF exporter does. Vertices bone heat leaves without weight are
+# the weights as JSON (where bone heat leaves vertices unweighted, "failed to find solution
+# for one or more bones", the usual fix first: Merge by Distance, then again): every mesh
+# vertex's rest position in the glTF frame (Y up, the file's units, world space) and its
+# weights by bone name, limited to the four largest and renormalised as Blender's glTF
+# exporter does, and the bones' rest heads in the same frame. Vertices bone heat leaves without weight are
 # written with none (under an armature modifier they stay where they are).
 #
 # Usage:
@@ -34,7 +36,7 @@ import bpy
 MAX_INFLUENCES = 4
 
 
-def autoweights(path):
+def autoweights(path, merge):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     bpy.ops.import_scene.gltf(filepath=path)
     objects = list(bpy.data.objects)
@@ -64,6 +66,14 @@ def autoweights(path):
         mesh.select_set(True)
         bpy.context.view_layer.objects.active = mesh
         bpy.ops.object.parent_clear(type="CLEAR_KEEP_TRANSFORM")
+        if merge:
+            # Mesh > Clean Up > Merge by Distance: the importer splits vertices along UV and
+            # normal seams, and bone heat often finds no solution on the cut-up surface.
+            bpy.ops.object.mode_set(mode="EDIT")
+            bpy.ops.mesh.select_all(action="SELECT")
+            bpy.ops.mesh.remove_doubles(threshold=1e-6)
+            bpy.ops.object.mode_set(mode="OBJECT")
+        mesh.select_set(False)
     for mesh in meshes:
         mesh.select_set(True)
     armature.select_set(True)
@@ -96,8 +106,15 @@ def autoweights(path):
             else:
                 weights.append([])
                 unweighted += 1
+    # The bones' rest heads in the same frame as the positions: the example maps these onto
+    # the joints of the skeleton skelfit loads to bring both meshes into one frame.
+    heads = {}
+    for bone in armature.data.bones:
+        h = armature.matrix_world @ bone.head_local
+        heads[bone.name] = [round(h.x, 6), round(h.z, 6), round(-h.y, 6)]
     return {
         "source": os.path.basename(path),
+        "heads": heads,
         "blender": bpy.app.version_string,
         "method": "parent_set(type='ARMATURE_AUTO') (bone heat)",
         "seconds": round(seconds, 3),
@@ -119,7 +136,15 @@ def main():
             continue
         model = os.path.normpath(model)
         kind, name = os.path.basename(os.path.dirname(model)), os.path.basename(model)
-        result = autoweights(source)
+        # As a user would: the plain command first; where bone heat leaves vertices
+        # unweighted ("failed to find solution for one or more bones"), the usual fix (merge
+        # the split seams) and again.
+        result = autoweights(source, merge=False)
+        if result["unweighted_vertices"] > 0:
+            first = result["unweighted_vertices"]
+            result = autoweights(source, merge=True)
+            result["unweighted_before_merge"] = first
+            result["merged_by_distance"] = True
         folder = os.path.join(out, kind)
         os.makedirs(folder, exist_ok=True)
         target = os.path.join(folder, name + ".json")
