@@ -79,6 +79,9 @@ struct ArtistRig {
     canonical: BTreeMap<String, JointId>,
 }
 
+/// Per-vertex `(joint, weight)` lists.
+type Weights = Vec<Vec<(JointId, f64)>>;
+
 /// Engine weights (at most four per vertex, as exported) as `(joint, weight)` lists.
 fn exported(engine: &EngineWeights) -> Vec<Vec<(JointId, f64)>> {
     engine
@@ -202,7 +205,7 @@ fn on_artist(rig: &ArtistRig, kind: SweepKind) -> Result<OnArtist, String> {
 fn blender_weights(
     file: &Path,
     rig: &ArtistRig,
-) -> Result<(Vec<Vec<(JointId, f64)>>, usize), String> {
+) -> Result<(Weights, usize), String> {
     let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
     let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
     let bones: Vec<Option<JointId>> = json["bones"]
