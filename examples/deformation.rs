@@ -202,10 +202,7 @@ fn on_artist(rig: &ArtistRig, kind: SweepKind) -> Result<OnArtist, String> {
 /// vertex of Blender's export at the same rest position (within about 1e-4 of the figure's
 /// size, after mapping Blender's bone heads onto the joints),
 /// bone names looked up in the artist's skeleton.
-fn blender_weights(
-    file: &Path,
-    rig: &ArtistRig,
-) -> Result<(Weights, usize), String> {
+fn blender_weights(file: &Path, rig: &ArtistRig) -> Result<(Weights, usize), String> {
     let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
     let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
     let bones: Vec<Option<JointId>> = json["bones"]
