@@ -727,7 +727,9 @@ mod tests {
                 .unwrap()
         };
         assert!(weight(near(1.7), 0) > 0.9, "{:?}", skin.weights[near(1.7)]);
-        assert!(weight(near(0.3), 1) > 0.9, "{:?}", skin.weights[near(0.3)]);
+        // The ankle's blend spreads about 4.6 voxels (0.23) up the shin
+        // (`voxel_smoothing_iterations`): mid-shin follows the knee's bone alone.
+        assert!(weight(near(0.5), 1) > 0.9, "{:?}", skin.weights[near(0.5)]);
         let knee = skin.weights[near(1.0)].clone();
         assert!(
             weight(near(1.0), 0) > 0.2 && weight(near(1.0), 1) > 0.2,
