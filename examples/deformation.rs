@@ -8,6 +8,11 @@
 //! Writes `reports/deformation/deformation.md` (per model and per pose) and
 //! `reports/deformation/deformation.json`.
 //!
+//! Blender's automatic (bone heat) weights on the same artist skeletons are measured the
+//! same way where `tools/blender_autoweights.py` has written them (`OUT_DIR/blender/<kind>/
+//! <model>.json`); the report says "not measured" where they are absent. Blender is not needed
+//! to run this example.
+//!
 //! Run: `cargo run --release --example deformation [-- REFDATA_DIR [OUT_DIR]]`
 //! (defaults `../shared/refdata`, `reports/deformation`).
 
@@ -15,8 +20,12 @@ use skelfit::eval::load_skeleton;
 use skelfit::mesh::{load, load_gltf_scene, Mesh};
 use skelfit::pipeline::{rig, RigOptions};
 use skelfit::skeleton::{JointId, Skeleton};
-use skelfit::skin::check::{check_deformation, sweep, DeformationCheck, PoseStretch, SweepKind};
-use skelfit::skin::compare::{pose_distance, PoseDistance, RandomPoseOptions};
+use skelfit::skin::check::{
+    blend, check_deformation, sweep, DeformationCheck, PoseStretch, SweepKind,
+};
+use skelfit::skin::compare::{
+    pose_distance, random_pose, PoseDistance, RandomPoseOptions, SplitMix64,
+};
 use skelfit::skin::{skin_skeleton, EngineWeights, SkeletonSkinOptions, SkinMethod};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -37,6 +46,18 @@ struct Row {
     /// skelfit's weights on the artist's skeleton: the sweep, the random-pose distance to the
     /// artist's weights (mesh units) and the figure size it is divided by.
     on_artist: Option<Result<OnArtist, String>>,
+    /// Blender's bone heat weights on the artist's skeleton, where exported.
+    blender: Option<Result<Blender, String>>,
+}
+
+/// Blender's automatic weights on the artist's skeleton, through the sweep and against the
+/// artist's weights.
+struct Blender {
+    check: DeformationCheck,
+    distance: PoseDistance,
+    /// Vertices of the artist's mesh Blender left without weight (or that matched no vertex
+    /// of Blender's export).
+    unweighted: usize,
 }
 
 struct OnArtist {
@@ -57,6 +78,9 @@ struct ArtistRig {
     weights: Vec<Vec<(JointId, f64)>>,
     canonical: BTreeMap<String, JointId>,
 }
+
+/// Per-vertex `(joint, weight)` lists.
+type Weights = Vec<Vec<(JointId, f64)>>;
 
 /// Engine weights (at most four per vertex, as exported) as `(joint, weight)` lists.
 fn exported(engine: &EngineWeights) -> Vec<Vec<(JointId, f64)>> {
@@ -173,6 +197,149 @@ fn on_artist(rig: &ArtistRig, kind: SweepKind) -> Result<OnArtist, String> {
     })
 }
 
+/// Blender's bone heat weights for `rig` from `file` (written by
+/// `tools/blender_autoweights.py`): each vertex of the artist's mesh takes the weights of the
+/// vertex of Blender's export at the same rest position (within about 1e-4 of the figure's
+/// size, after mapping Blender's bone heads onto the joints),
+/// bone names looked up in the artist's skeleton.
+fn blender_weights(file: &Path, rig: &ArtistRig) -> Result<(Weights, usize), String> {
+    let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
+    let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    let bones: Vec<Option<JointId>> = json["bones"]
+        .as_array()
+        .ok_or("no bones")?
+        .iter()
+        .map(|b| b.as_str().and_then(|name| rig.skeleton.find(name)))
+        .collect();
+    // Blender's rest frame → the frame of the mesh skelfit loads: the affine map that takes
+    // the bones' rest heads onto the joints (least squares).
+    let point = |v: &serde_json::Value| -> Option<glam::DVec3> {
+        let c = v.as_array()?;
+        Some(glam::DVec3::new(
+            c.first()?.as_f64()?,
+            c.get(1)?.as_f64()?,
+            c.get(2)?.as_f64()?,
+        ))
+    };
+    let (mut ata, mut atb) = (glam::DMat4::ZERO, [glam::DVec4::ZERO; 3]);
+    for (name, head) in json["heads"].as_object().ok_or("no heads")? {
+        let (Some(joint), Some(h)) = (rig.skeleton.find(name), point(head)) else {
+            continue;
+        };
+        let a = h.extend(1.0);
+        let target = rig.skeleton.joint(joint).position;
+        for r in 0..4 {
+            *ata.col_mut(r) += a * a[r];
+        }
+        for (c, t) in atb.iter_mut().zip(target.to_array()) {
+            *c += a * t;
+        }
+    }
+    let inverse = ata.inverse();
+    if !inverse.is_finite() {
+        return Err("too few bones to match Blender's frame".into());
+    }
+    let rows = atb.map(|b| inverse * b);
+    let to_mesh = |p: glam::DVec3| {
+        let a = p.extend(1.0);
+        glam::DVec3::new(rows[0].dot(a), rows[1].dot(a), rows[2].dot(a))
+    };
+    let positions = json["positions"].as_array().ok_or("no positions")?;
+    let weights = json["weights"].as_array().ok_or("no weights")?;
+    let (low, high) = rig.mesh.bounding_box().ok_or("empty mesh")?;
+    let quantum = 1e-4 * (high - low).max_element();
+    let key = |p: glam::DVec3| (p / quantum).round().as_i64vec3();
+    let mut at: std::collections::HashMap<glam::I64Vec3, usize> = Default::default();
+    for (k, p) in positions.iter().enumerate() {
+        let c: Vec<f64> = p
+            .as_array()
+            .ok_or("bad position")?
+            .iter()
+            .filter_map(serde_json::Value::as_f64)
+            .collect();
+        if c.len() == 3 {
+            at.entry(key(to_mesh(glam::DVec3::new(c[0], c[1], c[2]))))
+                .or_insert(k);
+        }
+    }
+    let mut out = Vec::with_capacity(rig.mesh.positions.len());
+    let mut unweighted = 0;
+    for &p in &rig.mesh.positions {
+        let base = key(p);
+        let found = (-1..=1)
+            .flat_map(|x| {
+                (-1..=1).flat_map(move |y| (-1..=1).map(move |z| glam::I64Vec3::new(x, y, z)))
+            })
+            .find_map(|d| at.get(&(base + d)).copied());
+        let mut w: Vec<(JointId, f64)> = found
+            .and_then(|k| weights[k].as_array())
+            .map(|list| {
+                list.iter()
+                    .filter_map(|e| {
+                        let joint = bones.get(e[0].as_u64()? as usize).copied().flatten()?;
+                        let x = e[1].as_f64()?;
+                        (x > 0.0).then_some((joint, x))
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        let sum: f64 = w.iter().map(|e| e.1).sum();
+        if sum > 0.0 {
+            w.iter_mut().for_each(|e| e.1 /= sum);
+        } else {
+            unweighted += 1;
+        }
+        out.push(w);
+    }
+    Ok((out, unweighted))
+}
+
+/// [`pose_distance`] over every vertex the artist skinned, a vertex without weights in
+/// `weights` staying at rest (as under Blender's armature modifier) instead of being left out.
+fn distance_with_unweighted(rig: &ArtistRig, weights: &[Vec<(JointId, f64)>]) -> PoseDistance {
+    let options = RandomPoseOptions::default();
+    let mut random = SplitMix64(options.seed);
+    let (mut sum, mut max, mut count) = (0.0, 0.0f64, 0usize);
+    for _ in 0..options.poses {
+        let pose = random_pose(&rig.skeleton, options.max_degrees, &mut random);
+        let matrices = rig.skeleton.skinning_matrices(&pose);
+        let posed = blend(&rig.mesh.positions, weights, &matrices);
+        let artist = blend(&rig.mesh.positions, &rig.weights, &matrices);
+        for ((p, q), w) in posed.iter().zip(&artist).zip(&rig.weights) {
+            if !w.is_empty() {
+                let d = p.distance(*q);
+                sum += d;
+                max = max.max(d);
+                count += 1;
+            }
+        }
+    }
+    PoseDistance {
+        mean: if count > 0 { sum / count as f64 } else { 0.0 },
+        max,
+        poses: options.poses,
+        vertices: rig.weights.iter().filter(|w| !w.is_empty()).count(),
+    }
+}
+
+/// Blender's bone heat weights on the artist's skeleton through the sweep and against the
+/// artist's weights; `None` where `tools/blender_autoweights.py` wrote no file.
+fn blender(file: &Path, rig: &ArtistRig, kind: SweepKind) -> Option<Result<Blender, String>> {
+    if !file.is_file() {
+        return None;
+    }
+    Some((|| {
+        let (weights, unweighted) = blender_weights(file, rig)?;
+        let check = check(&rig.mesh, &rig.skeleton, &rig.canonical, &weights, kind)?;
+        let distance = distance_with_unweighted(rig, &weights);
+        Ok(Blender {
+            check,
+            distance,
+            unweighted,
+        })
+    })())
+}
+
 /// The stretch of the pose called `pose` in `check`, if it was posed.
 fn pose_in<'a>(check: Option<&'a DeformationCheck>, pose: &str) -> Option<&'a PoseStretch> {
     check.and_then(|c| c.poses.iter().find(|q| q.pose == pose))
@@ -194,9 +361,17 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
          longest side of the bounding box, over the vertices the artist skinned (the stag's \
          antlers are a rigid part attached to a joint node, not skinned). \"anchor\" is the \
          same distance for the dissertation's anchor weights on the artist's skeleton \
-         (`SkinMethod::Anchor`), for scale.\n\n\
-         | model | artist sweep >2x (>1.5x) | skelfit on artist sweep >2x (>1.5x) | random poses: mean % | max % | anchor: mean % | vertices measured | skin warnings |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|",
+         (`SkinMethod::Anchor`), for scale. \"Blender bone heat\" is Blender's automatic \
+         weights (Object > Parent > With Automatic Weights, Baran & Popović 2007) on the same \
+         skeleton, the same mesh and the same deforming joints, at most four per vertex as its \
+         glTF exporter writes, measured the same way; where bone heat left vertices unweighted \
+         on the first try, after Merge by Distance; vertices it still leaves unweighted stay at \
+         rest, as in Blender, and count in the distance. Regenerate them with Blender 3.4 \
+         (not part of `cargo test`): `blender -b --python tools/blender_autoweights.py -- \
+         reports/deformation/blender ../shared/refdata/humanoid/* ../shared/refdata/quadruped/*`, \
+         then this example; \"not measured\" where no export is present.\n\n\
+         | model | artist sweep >2x (>1.5x) | skelfit on artist sweep >2x (>1.5x) | Blender bone heat sweep >2x (>1.5x) | random poses: skelfit mean % | skelfit max % | Blender bone heat mean % | Blender max % | anchor: mean % | vertices measured | Blender unweighted | skin warnings |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
         options.poses, options.max_degrees, options.seed
     );
     let sweep = |c: &DeformationCheck| {
@@ -207,6 +382,8 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
         }
     };
     let (mut means, mut anchor_means) = (Vec::new(), Vec::new());
+    // skelfit's and Blender's means over the models where both were measured.
+    let mut pairs: Vec<(f64, f64)> = Vec::new();
     for row in rows {
         let Some(on) = &row.on_artist else {
             continue;
@@ -221,24 +398,47 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
                 let anchor = 100.0 * o.anchor.mean / o.size;
                 means.push(mean);
                 anchor_means.push(anchor);
+                let (b_sweep, b_mean, b_max, b_unweighted) = match &row.blender {
+                    None => (
+                        "not measured".to_string(),
+                        "not measured".to_string(),
+                        "—".to_string(),
+                        "—".to_string(),
+                    ),
+                    Some(Err(e)) => (format!("failed: {e}"), "—".into(), "—".into(), "—".into()),
+                    Some(Ok(b)) => {
+                        let b_mean = 100.0 * b.distance.mean / o.size;
+                        pairs.push((mean, b_mean));
+                        (
+                            sweep(&b.check),
+                            format!("{b_mean:.2}"),
+                            format!("{:.1}", 100.0 * b.distance.max / o.size),
+                            b.unweighted.to_string(),
+                        )
+                    }
+                };
                 let _ = writeln!(
                     md,
-                    "| {} | {} | {} | {:.2} | {:.1} | {:.2} | {} / {} | {} |",
+                    "| {} | {} | {} | {} | {:.2} | {:.1} | {} | {} | {:.2} | {} / {} | {} | {} |",
                     row.model,
                     artist,
                     sweep(&o.check),
+                    b_sweep,
                     mean,
                     100.0 * o.distance.max / o.size,
+                    b_mean,
+                    b_max,
                     anchor,
                     o.distance.vertices,
                     o.check_vertices,
+                    b_unweighted,
                     o.warnings
                 );
             }
             Err(e) => {
                 let _ = writeln!(
                     md,
-                    "| {} | {} | failed: {e} | — | — | — | — | — |",
+                    "| {} | {} | failed: {e} | — | — | — | — | — | — | — | — | — |",
                     row.model, artist
                 );
             }
@@ -251,6 +451,18 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
             means.len(),
             means.iter().sum::<f64>() / means.len() as f64,
             anchor_means.iter().sum::<f64>() / anchor_means.len() as f64
+        );
+    }
+    if !pairs.is_empty() {
+        let n = pairs.len() as f64;
+        let _ = writeln!(
+            md,
+            "\nOn the {} models with Blender's weights: skelfit {:.2} %, Blender bone heat {:.2} %; \
+             skelfit closer to the artist on {} of them.",
+            pairs.len(),
+            pairs.iter().map(|p| p.0).sum::<f64>() / n,
+            pairs.iter().map(|p| p.1).sum::<f64>() / n,
+            pairs.iter().filter(|p| p.0 < p.1).count()
         );
     }
     let _ = writeln!(
@@ -287,10 +499,8 @@ fn run() -> Result<(), String> {
         let mut dirs: Vec<PathBuf> = entries.filter_map(Result::ok).map(|e| e.path()).collect();
         dirs.sort();
         for dir in dirs {
-            let model = format!(
-                "{folder}/{}",
-                dir.file_name().unwrap_or_default().to_string_lossy()
-            );
+            let name = dir.file_name().unwrap_or_default().to_string_lossy();
+            let model = format!("{folder}/{name}");
             eprintln!("deformation: {model}");
             let rig = artist_rig(&dir);
             rows.push(Row {
@@ -306,6 +516,16 @@ fn run() -> Result<(), String> {
                     r.as_ref()
                         .map_err(Clone::clone)
                         .and_then(|r| on_artist(r, kind))
+                }),
+                blender: rig.as_ref().and_then(|r| {
+                    let file = out
+                        .join("blender")
+                        .join(folder)
+                        .join(format!("{name}.json"));
+                    match r {
+                        Ok(r) => blender(&file, r, kind),
+                        Err(e) => Some(Err(e.clone())),
+                    }
                 }),
             });
         }
@@ -325,8 +545,8 @@ fn run() -> Result<(), String> {
          --skeleton source.glb`: the same skinning as `skelfit rig`, on the artist's joints; \
          same mesh, same poses as \"artist\").\n\n\
          Regenerate: `cargo run --release --example deformation`\n\n\
-         | model | edges | skelfit >2x | skelfit >1.5x | skelfit worst | anchor >2x | artist >2x | artist >1.5x | artist worst | skelfit weights on the artist's skeleton >2x | poses (skelfit / artist) |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+         | model | edges | skelfit >2x | skelfit >1.5x | skelfit worst | anchor >2x | artist >2x | artist >1.5x | artist worst | skelfit weights on the artist's skeleton >2x | Blender bone heat on the artist's skeleton >2x | poses (skelfit / artist) |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
     );
     let cell = |c: &Option<&DeformationCheck>| match c {
         Some(c) if !c.poses.is_empty() => format!(
@@ -342,7 +562,7 @@ fn run() -> Result<(), String> {
         let artist = row.artist.as_ref().and_then(|a| a.as_ref().ok());
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} | {} / {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} / {} |",
             row.model,
             ours.or(artist).map_or(0, |c| c.edges),
             cell(&ours),
@@ -354,6 +574,13 @@ fn run() -> Result<(), String> {
                 Some(Ok(o)) if !o.check.poses.is_empty() => o.check.total_over_2().to_string(),
                 Some(Err(_)) => "failed".into(),
                 _ => "—".into(),
+            },
+            match &row.blender {
+                Some(Ok(b)) if !b.check.poses.is_empty() => b.check.total_over_2().to_string(),
+                Some(Ok(_)) => "—".into(),
+                Some(Err(_)) => "failed".into(),
+                None if row.on_artist.is_some() => "not measured".into(),
+                None => "—".into(),
             },
             ours.map_or(0, |c| c.poses.len()),
             artist.map_or(0, |c| c.poses.len()),
@@ -418,6 +645,14 @@ fn run() -> Result<(), String> {
                         "mean_percent": 100.0 * o.distance.mean / o.size,
                         "max_percent": 100.0 * o.distance.max / o.size,
                         "warnings": o.warnings,
+                    }),
+                    Err(e) => serde_json::json!({"error": e}),
+                }),
+                "blender_bone_heat_on_artist_skeleton": r.blender.as_ref().map(|b| match b {
+                    Ok(b) => serde_json::json!({
+                        "check": b.check,
+                        "random_pose_distance": b.distance,
+                        "unweighted_vertices": b.unweighted,
                     }),
                     Err(e) => serde_json::json!({"error": e}),
                 }),
