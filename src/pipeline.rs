@@ -61,6 +61,28 @@ pub fn general_skeleton(
     general_stages(mesh, options).map(|stages| stages.general)
 }
 
+/// Wall-clock laps of the pipeline stages: each [`Laps::lap`] records the milliseconds since
+/// the previous one (or the start) under the stage's name.
+pub(crate) struct Laps {
+    clock: Instant,
+}
+
+impl Laps {
+    /// Starts the clock.
+    pub(crate) fn start() -> Self {
+        Self {
+            clock: Instant::now(),
+        }
+    }
+
+    /// Pushes `(name, milliseconds since the last lap)` onto `timings` and restarts the clock.
+    pub(crate) fn lap(&mut self, name: &str, timings: &mut Vec<(String, f64)>) {
+        let now = Instant::now();
+        timings.push((name.to_string(), (now - self.clock).as_secs_f64() * 1e3));
+        self.clock = now;
+    }
+}
+
 /// What the general stages produce, with the voxel data later stages (skinning) reuse.
 struct GeneralStages {
     general: GeneralSkeleton,
@@ -73,22 +95,17 @@ fn general_stages(mesh: &Mesh, options: &GeneralSkeletonOptions) -> crate::Resul
     options.paths.validate()?;
     options.general.validate()?;
     let mut timings = Vec::new();
-    let mut clock = Instant::now();
-    let mut lap = |name: &str, timings: &mut Vec<(String, f64)>| {
-        let now = Instant::now();
-        timings.push((name.to_string(), (now - clock).as_secs_f64() * 1e3));
-        clock = now;
-    };
+    let mut lap = Laps::start();
     let solid = voxelize(mesh, &options.voxel)?;
-    lap("voxelize", &mut timings);
+    lap.lap("voxelize", &mut timings);
     let distance = edt(&solid);
-    lap("distance", &mut timings);
+    lap.lap("distance", &mut timings);
     let surface = dms(&distance, &options.medial)?;
-    lap("medial", &mut timings);
+    lap.lap("medial", &mut timings);
     let tree = path_tree(&surface, &options.paths)?;
-    lap("paths", &mut timings);
+    lap.lap("paths", &mut timings);
     let mut general = control_skeleton(tree, &options.general)?;
-    lap("general", &mut timings);
+    lap.lap("general", &mut timings);
     let mut warnings = solid.report.warnings();
     warnings.extend(surface.warnings);
     warnings.append(&mut general.warnings);

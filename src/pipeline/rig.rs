@@ -1,5 +1,6 @@
 //! The anatomical rig: mesh → labelled body parts → template fit → skin (dissertation ch.7-8).
 
+use super::Laps;
 use crate::anatomy::{
     label_pieces, label_vertices_by_bones, label_with_overrides, FigureClass, Label, LabelOptions,
     Labelling, Overrides,
@@ -18,7 +19,6 @@ use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{apply_preset, Preset, RefineKind, Template};
 use crate::voxel::{voxelize, Solid};
-use std::time::Instant;
 
 /// Which template [`rig`] fits.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -161,19 +161,14 @@ impl Rig {
 pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let chosen = checked_template(options)?;
     let mut timings = Vec::new();
-    let mut clock = Instant::now();
-    let mut lap = |name: &str, timings: &mut Vec<(String, f64)>| {
-        let now = Instant::now();
-        timings.push((name.to_string(), (now - clock).as_secs_f64() * 1e3));
-        clock = now;
-    };
+    let mut lap = Laps::start();
 
     let solid = voxelize(mesh, &options.label.voxel)?;
-    lap("voxelize", &mut timings);
+    lap.lap("voxelize", &mut timings);
     let distance = edt(&solid);
-    lap("distance", &mut timings);
+    lap.lap("distance", &mut timings);
     let surface = dms(&distance, &options.label.medial)?;
-    lap("medial", &mut timings);
+    lap.lap("medial", &mut timings);
     let labelling = label_pieces(
         mesh,
         &solid,
@@ -181,10 +176,10 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         &options.label,
         options.overrides.as_ref(),
     )?;
-    lap("label", &mut timings);
+    lap.lap("label", &mut timings);
     let (mut input, mut path_warnings) = fit_input(&labelling, &surface, &options.input);
     reach_the_skin(&mut input, &options.input, &solid, &distance);
-    lap("paths", &mut timings);
+    lap.lap("paths", &mut timings);
     let mut warnings = labelling.warnings.clone();
     warnings.append(&mut path_warnings);
     let template = match chosen {
@@ -216,7 +211,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     };
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().map(ToString::to_string));
-    lap("fit", &mut timings);
+    lap.lap("fit", &mut timings);
     if options.refine.in_rig && template.refinement == Some(RefineKind::HumanSlicing) {
         let up = input.up;
         match refine(
@@ -234,7 +229,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
             }
             Err(e) => warnings.push(format!("refine: {e}; the fitted joints are kept")),
         }
-        lap("refine", &mut timings);
+        lap.lap("refine", &mut timings);
     }
     if options.refine.symmetry {
         let head = fit.canonical.get(Canonical::Head.as_str()).copied();
@@ -243,13 +238,13 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         if symmetry.applied {
             fit.skeleton = symmetry.skeleton;
         }
-        lap("symmetry", &mut timings);
+        lap.lap("symmetry", &mut timings);
     }
     apply_preset(&mut fit.skeleton, &fit.canonical, options.fit.preset)
         .map_err(|e| FitError::Preset(e.to_string()))?;
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().map(ToString::to_string));
-    lap("skin", &mut timings);
+    lap.lap("skin", &mut timings);
     let missing = missing_parts(&template.name, &labelling);
     Ok(Rig {
         missing,
@@ -367,16 +362,11 @@ fn general_fallback(
     mut timings: Vec<(String, f64)>,
     mut warnings: Vec<String>,
 ) -> crate::Result<Rig> {
-    let mut clock = Instant::now();
-    let mut lap = |name: &str, timings: &mut Vec<(String, f64)>| {
-        let now = Instant::now();
-        timings.push((name.to_string(), (now - clock).as_secs_f64() * 1e3));
-        clock = now;
-    };
+    let mut lap = Laps::start();
     let tree = path_tree(surface, &options.label.paths)?;
     let general = control_skeleton(tree, &options.general)?;
     warnings.extend(general.warnings.iter().cloned());
-    lap("fit", &mut timings);
+    lap.lap("fit", &mut timings);
     let fit = Fit {
         skeleton: general.skeleton,
         canonical: Default::default(),
@@ -385,7 +375,7 @@ fn general_fallback(
     };
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().map(ToString::to_string));
-    lap("skin", &mut timings);
+    lap.lap("skin", &mut timings);
     Ok(Rig {
         missing: Vec::new(),
         fit,
