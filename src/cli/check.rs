@@ -9,7 +9,8 @@ use glam::DVec3;
 use skelfit::anatomy::parse_direction;
 use skelfit::eval::{canonical_map, load_skeleton, ReferenceRig};
 use skelfit::mesh::load_gltf_scene;
-use skelfit::skeleton::JointId;
+use skelfit::skeleton::canonical::Tail;
+use skelfit::skeleton::{Canonical, JointId};
 use skelfit::skin::check::{check_deformation, sweep, SweepKind};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -171,8 +172,15 @@ fn guess_sweep(
     up: DVec3,
     forward: DVec3,
 ) -> SweepKind {
-    let at = |k: &str| canonical.get(k).map(|&j| skeleton.joint(j).position);
-    match (at("pelvis"), at("neck").or_else(|| at("head"))) {
+    let at = |k: Canonical| {
+        canonical
+            .get(k.as_str())
+            .map(|&j| skeleton.joint(j).position)
+    };
+    match (
+        at(Canonical::Pelvis),
+        at(Canonical::Neck).or_else(|| at(Canonical::Head)),
+    ) {
         (Some(pelvis), Some(neck)) => {
             let d = neck - pelvis;
             if d.dot(up.normalize()) > d.dot(forward.normalize()).abs() {
@@ -181,7 +189,7 @@ fn guess_sweep(
                 SweepKind::Animal
             }
         }
-        _ if canonical.contains_key("tail_base") => SweepKind::Animal,
+        _ if canonical.contains_key(Canonical::Tail(Tail::Base).as_str()) => SweepKind::Animal,
         _ => SweepKind::Humanoid,
     }
 }
