@@ -58,6 +58,7 @@ mod chamfer;
 mod core;
 mod correspondence;
 mod error;
+mod label_table;
 mod labels;
 mod metrics;
 mod reference;
@@ -89,6 +90,10 @@ pub use correspondence::{
     Correspondence, JointPair, MatchMethod, NamingPreset,
 };
 pub use error::EvalError;
+pub use label_table::{
+    label_table_json, label_table_markdown, label_table_models, label_table_row, LabelTableRow,
+    LABEL_TABLE_KINDS,
+};
 pub use labels::{label_reference_file, label_score, LabelScore};
 pub use metrics::{
     evaluate, figure_size, resolve_measure, ErrorSummary, EvalOptions, Evaluation, FigureMeasure,
