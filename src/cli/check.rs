@@ -11,7 +11,7 @@ use skelfit::eval::{canonical_map, load_skeleton, ReferenceRig};
 use skelfit::mesh::load_gltf_scene;
 use skelfit::skeleton::canonical::Tail;
 use skelfit::skeleton::{Canonical, JointId};
-use skelfit::skin::check::{check_deformation, sweep, SweepKind};
+use skelfit::skin::check::{check_deformation, sweep, DeformationCheck, SweepKind};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -124,6 +124,27 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
         );
     }
     let check = check_deformation(&scene.mesh, &skeleton, &weights, kind, &poses, missing)?;
+    print_check(&check, kind);
+    if unweighted > 0 {
+        eprintln!(
+            "skelfit: warning: {unweighted} vertices carry no weight and stay at rest in every pose"
+        );
+    }
+    if let Some(path) = &args.json {
+        let json = serde_json::json!({
+            "format": "skelfit-check-v1",
+            "rig": args.rig.display().to_string(),
+            "unweighted_vertices": unweighted,
+            "check": check,
+        });
+        write_file(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Prints the table of poses and their stretched edges.
+fn print_check(check: &DeformationCheck, kind: SweepKind) {
     println!(
         "{} edges, {:?} sweep ({} poses)",
         check.edges,
@@ -147,22 +168,6 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     if !check.missing.is_empty() {
         println!("not posed (no joint): {}", check.missing.join(", "));
     }
-    if unweighted > 0 {
-        eprintln!(
-            "skelfit: warning: {unweighted} vertices carry no weight and stay at rest in every pose"
-        );
-    }
-    if let Some(path) = &args.json {
-        let json = serde_json::json!({
-            "format": "skelfit-check-v1",
-            "rig": args.rig.display().to_string(),
-            "unweighted_vertices": unweighted,
-            "check": check,
-        });
-        write_file(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
-        println!("wrote {}", path.display());
-    }
-    Ok(())
 }
 
 /// Humanoid when the neck stands above the pelvis more than it lies ahead of it.
