@@ -77,7 +77,41 @@ pub fn build_parts(
             parts[i].girdle = graph.path(a, b);
         }
     }
-    // Digits: notable branches toward the end of arms and legs.
+    split_digits(
+        draft,
+        graph,
+        surface,
+        options,
+        &mut parts,
+        &mut vertex_parts,
+    );
+    for v in 0..n {
+        parts[vertex_parts[v] as usize].vertices.push(v);
+    }
+    for part in &mut parts {
+        part.vertices.sort_unstable();
+        part.vertices.dedup();
+        part.voxels = part
+            .vertices
+            .iter()
+            .flat_map(|&v| graph.vertices[v].voxels.iter().copied())
+            .collect();
+        part.voxels.sort_unstable();
+    }
+    (parts, vertex_parts)
+}
+
+/// Digit parts: the notable branches toward the end of arms and legs (a level-graph vertex
+/// past `digit_start` of the limb with at least two children holding `digit_fraction` of its
+/// voxels), each child's subtree a digit part taken from its limb.
+fn split_digits(
+    draft: &Draft,
+    graph: &LevelGraph,
+    surface: &MedialSurface,
+    options: &RuleOptions,
+    parts: &mut Vec<Part>,
+    vertex_parts: &mut [u32],
+) {
     let limbs: Vec<usize> = (1..parts.len())
         .filter(|&i| matches!(parts[i].label, Label::Arm | Label::Leg))
         .collect();
@@ -134,18 +168,4 @@ pub fn build_parts(
             });
         }
     }
-    for v in 0..n {
-        parts[vertex_parts[v] as usize].vertices.push(v);
-    }
-    for part in &mut parts {
-        part.vertices.sort_unstable();
-        part.vertices.dedup();
-        part.voxels = part
-            .vertices
-            .iter()
-            .flat_map(|&v| graph.vertices[v].voxels.iter().copied())
-            .collect();
-        part.voxels.sort_unstable();
-    }
-    (parts, vertex_parts)
 }

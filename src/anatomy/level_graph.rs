@@ -144,25 +144,7 @@ pub fn level_graph(
     let n = graph.len();
     let component = graph.largest_component().unwrap_or(0);
     let h = heart(&graph, component, paths);
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for &s in h.sums.iter().filter(|s| s.is_finite()) {
-        lo = lo.min(s);
-        hi = hi.max(s);
-    }
-    let span = hi - lo;
-    let heart_values: Vec<f64> = h
-        .sums
-        .iter()
-        .map(|&s| {
-            if !s.is_finite() {
-                f64::NAN
-            } else if span > 0.0 {
-                (s - lo) / span
-            } else {
-                0.0
-            }
-        })
-        .collect();
+    let heart_values = normalised(&h.sums);
     let bins = options.bins;
     let bin_of = |p: usize| -> Option<usize> {
         let v = heart_values[p];
@@ -174,154 +156,150 @@ pub fn level_graph(
             by_bin[b].push(p);
         }
     }
-    let mut uf = UnionFind::new(n);
-    let mut top = vec![NO_VERTEX; n]; // per union-find root: current top vertex
-    let mut vertex_of = vec![NO_VERTEX; n];
-    let mut processed = vec![false; n];
-    let mut vertices: Vec<LevelVertex> = Vec::new();
+    let mut merging = Merging::new(n);
     let mut piece_of = vec![u32::MAX; n];
     for b in (0..bins).rev() {
-        // Pieces of this bin.
-        let mut pieces: Vec<Vec<usize>> = Vec::new();
-        for &start in &by_bin[b] {
-            if piece_of[start] != u32::MAX {
-                continue;
-            }
-            let id = pieces.len() as u32;
-            piece_of[start] = id;
-            let mut piece = vec![start];
-            let mut i = 0;
-            while i < piece.len() {
-                let p = piece[i];
-                i += 1;
-                for (q, _) in graph.neighbours(p) {
-                    if piece_of[q] == u32::MAX && bin_of(q) == Some(b) {
-                        piece_of[q] = id;
-                        piece.push(q);
-                    }
-                }
-            }
-            piece.sort_unstable();
-            pieces.push(piece);
-        }
-        if let Some(k) = pieces
-            .iter()
-            .position(|pc| pc.binary_search(&h.position).is_ok())
-        {
-            let heart_piece = pieces.remove(k);
-            pieces.push(heart_piece);
-        }
+        let pieces = bin_pieces(
+            &graph,
+            &by_bin[b],
+            |q| bin_of(q) == Some(b),
+            &mut piece_of,
+            h.position,
+        );
         for piece in pieces {
-            let v = vertices.len();
-            let mut children = Vec::new();
-            for &p in &piece {
-                for (q, _) in graph.neighbours(p) {
-                    if processed[q] {
-                        let t = top[uf.find(q)];
-                        if t != NO_VERTEX && !children.contains(&(t as usize)) {
-                            children.push(t as usize);
-                        }
-                    }
-                }
-            }
-            children.sort_unstable();
-            let first = piece[0];
-            for &p in &piece {
-                processed[p] = true;
-                vertex_of[p] = v as u32;
-                uf.union(first, p);
-            }
-            for &c in &children {
-                let r = uf.find(vertices[c].voxels[0]);
-                uf.union(first, r);
-                vertices[c].parent = Some(v);
-            }
-            top[uf.find(first)] = v as u32;
-            let centroid =
-                piece.iter().map(|&p| surface.centre(p)).sum::<DVec3>() / piece.len() as f64;
-            let distal_voxels = piece.len()
-                + children
-                    .iter()
-                    .map(|&c| vertices[c].distal_voxels)
-                    .sum::<usize>();
-            vertices.push(LevelVertex {
-                bin: b,
-                voxels: piece,
-                centroid,
-                parent: None,
-                children,
-                distal_voxels,
-                weight: 0.0,
-                insignificant: false,
-                major_junction: false,
-                marks: Marks::default(),
-                radius: 0.0,
-                reach: [0.0; 4],
-            });
+            merging.add(&graph, surface, piece, b);
         }
     }
+    let Merging {
+        vertex_of,
+        mut vertices,
+        ..
+    } = merging;
     let total = vertices
         .iter()
         .map(|v| v.voxels.len())
         .sum::<usize>()
         .max(1);
     let voxel = surface.grid.voxel_size;
-    let (up_lo, up_hi) = extent_up;
-    let (fw_lo, fw_hi) = extent_forward;
-    let e = options.extreme_fraction;
-    for i in 0..vertices.len() {
-        let weight = vertices[i].distal_voxels as f64 / total as f64;
-        let big = vertices[i]
-            .children
-            .iter()
-            .filter(|&&c| {
-                vertices[c].distal_voxels as f64 / total as f64 >= options.junction_fraction
-            })
-            .count();
-        let v = &mut vertices[i];
-        v.weight = weight;
-        v.insignificant = weight < options.insignificant_fraction;
-        v.major_junction = big >= 2;
-        let mut marks = Marks::default();
-        let (mut nearest, mut nearest_d) = (v.voxels[0], f64::INFINITY);
-        for &p in &v.voxels {
-            let c = surface.centre(p);
-            let u = c.dot(frame.up);
-            let f = c.dot(frame.forward);
-            marks.up |= u >= up_hi - e * (up_hi - up_lo);
-            marks.down |= u <= up_lo + e * (up_hi - up_lo);
-            marks.forward |= f >= fw_hi - e * (fw_hi - fw_lo);
-            marks.backward |= f <= fw_lo + e * (fw_hi - fw_lo);
-            let d = c.distance_squared(v.centroid);
-            if d < nearest_d {
-                (nearest, nearest_d) = (p, d);
+    let extents = Extents {
+        up: extent_up,
+        forward: extent_forward,
+        fraction: options.extreme_fraction,
+    };
+    mark_vertices(&mut vertices, surface, total, frame, &extents, options);
+    add_reaches(
+        &mut vertices,
+        surface,
+        solid,
+        &vertex_of,
+        frame,
+        &extents,
+        options,
+    );
+    let root = vertices.len().saturating_sub(1);
+    LevelGraph {
+        heart: h.position,
+        heart_radius: h.radius * voxel,
+        heart_values,
+        vertex_of,
+        vertices,
+        root,
+        voxels: total,
+    }
+}
+
+/// The merge tree while bins are processed from the highest down: union-find groups of the
+/// processed voxels, each group's current top vertex, and the vertices so far.
+struct Merging {
+    uf: UnionFind,
+    /// Per union-find root: the group's current top vertex.
+    top: Vec<u32>,
+    /// Per DMS position: its vertex ([`NO_VERTEX`] until processed).
+    vertex_of: Vec<u32>,
+    processed: Vec<bool>,
+    vertices: Vec<LevelVertex>,
+}
+
+impl Merging {
+    fn new(n: usize) -> Self {
+        Self {
+            uf: UnionFind::new(n),
+            top: vec![NO_VERTEX; n],
+            vertex_of: vec![NO_VERTEX; n],
+            processed: vec![false; n],
+            vertices: Vec::new(),
+        }
+    }
+
+    /// Adds `piece` (of bin `bin`) as a vertex whose children are the current top vertices of
+    /// the groups it touches, and merges them into one group topped by it.
+    fn add(&mut self, graph: &DmsGraph, surface: &MedialSurface, piece: Vec<usize>, bin: usize) {
+        let v = self.vertices.len();
+        let mut children = Vec::new();
+        for &p in &piece {
+            for (q, _) in graph.neighbours(p) {
+                if self.processed[q] {
+                    let t = self.top[self.uf.find(q)];
+                    if t != NO_VERTEX && !children.contains(&(t as usize)) {
+                        children.push(t as usize);
+                    }
+                }
             }
         }
-        v.radius = surface.distance(nearest) * voxel;
-        // Farthest point from the centroid, then the farthest from that one (ch.7.3.2).
-        let far = |from: DVec3| {
-            v.voxels
+        children.sort_unstable();
+        let first = piece[0];
+        for &p in &piece {
+            self.processed[p] = true;
+            self.vertex_of[p] = v as u32;
+            self.uf.union(first, p);
+        }
+        for &c in &children {
+            let r = self.uf.find(self.vertices[c].voxels[0]);
+            self.uf.union(first, r);
+            self.vertices[c].parent = Some(v);
+        }
+        self.top[self.uf.find(first)] = v as u32;
+        let centroid = piece.iter().map(|&p| surface.centre(p)).sum::<DVec3>() / piece.len() as f64;
+        let distal_voxels = piece.len()
+            + children
                 .iter()
-                .map(|&p| surface.centre(p))
-                .max_by(|a, b| {
-                    a.distance_squared(from)
-                        .total_cmp(&b.distance_squared(from))
-                })
-                .unwrap_or(from)
-        };
-        let a = far(v.centroid);
-        let b = far(a);
-        let reach = a.distance(v.centroid).max(b.distance(v.centroid));
-        marks.linear = reach > options.linear_ratio * v.radius.max(0.5 * voxel);
-        v.marks = marks;
+                .map(|&c| self.vertices[c].distal_voxels)
+                .sum::<usize>();
+        self.vertices.push(LevelVertex {
+            bin,
+            voxels: piece,
+            centroid,
+            parent: None,
+            children,
+            distal_voxels,
+            weight: 0.0,
+            insignificant: false,
+            major_junction: false,
+            marks: Marks::default(),
+            radius: 0.0,
+            reach: [0.0; 4],
+        });
     }
+}
+
+/// Each vertex's reach (highest, lowest, foremost, hindmost projection of its DMS voxels and,
+/// with a `solid`, the interior voxels nearest to them) and the direction marks it adds.
+fn add_reaches(
+    vertices: &mut [LevelVertex],
+    surface: &MedialSurface,
+    solid: Option<&Solid>,
+    vertex_of: &[u32],
+    frame: &Frame,
+    extents: &Extents,
+    options: &LevelOptions,
+) {
     let mut regions: Vec<Vec<DVec3>> = vertices
         .iter()
         .map(|v| v.voxels.iter().map(|&p| surface.centre(p)).collect())
         .collect();
     if let Some(solid) = solid {
         let interior =
-            super::project::interior_parts(solid, surface, &vertex_of, options.radius_weight);
+            super::project::interior_parts(solid, surface, vertex_of, options.radius_weight);
         for (index, &v) in interior.iter().enumerate() {
             if v != NO_VERTEX && surface.position(index).is_none() {
                 regions[v as usize].push(solid.grid.centre(solid.grid.coords(index)));
@@ -345,20 +323,147 @@ pub fn level_graph(
             ];
         }
         v.reach = reach;
-        v.marks.up |= reach[0] >= up_hi - e * (up_hi - up_lo);
-        v.marks.down |= reach[1] <= up_lo + e * (up_hi - up_lo);
-        v.marks.forward |= reach[2] >= fw_hi - e * (fw_hi - fw_lo);
-        v.marks.backward |= reach[3] <= fw_lo + e * (fw_hi - fw_lo);
+        extents.mark(&mut v.marks, reach);
     }
-    let root = vertices.len().saturating_sub(1);
-    LevelGraph {
-        heart: h.position,
-        heart_radius: h.radius * voxel,
-        heart_values,
-        vertex_of,
-        vertices,
-        root,
-        voxels: total,
+}
+
+/// Heart values: the finite depth `sums` scaled to `[0, 1]` (all 0 when they are equal), NaN
+/// for the others.
+fn normalised(sums: &[f64]) -> Vec<f64> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &s in sums.iter().filter(|s| s.is_finite()) {
+        lo = lo.min(s);
+        hi = hi.max(s);
+    }
+    let span = hi - lo;
+    sums.iter()
+        .map(|&s| {
+            if !s.is_finite() {
+                f64::NAN
+            } else if span > 0.0 {
+                (s - lo) / span
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// The 26-connected pieces of one bin's voxels (`members`; `in_bin` says whether a voxel is in
+/// the bin), in order of smallest DMS position with the `heart`'s piece last, each sorted.
+/// `piece_of` marks the voxels already in a piece.
+fn bin_pieces(
+    graph: &DmsGraph,
+    members: &[usize],
+    in_bin: impl Fn(usize) -> bool,
+    piece_of: &mut [u32],
+    heart: usize,
+) -> Vec<Vec<usize>> {
+    let mut pieces: Vec<Vec<usize>> = Vec::new();
+    for &start in members {
+        if piece_of[start] != u32::MAX {
+            continue;
+        }
+        let id = pieces.len() as u32;
+        piece_of[start] = id;
+        let mut piece = vec![start];
+        let mut i = 0;
+        while i < piece.len() {
+            let p = piece[i];
+            i += 1;
+            for (q, _) in graph.neighbours(p) {
+                if piece_of[q] == u32::MAX && in_bin(q) {
+                    piece_of[q] = id;
+                    piece.push(q);
+                }
+            }
+        }
+        piece.sort_unstable();
+        pieces.push(piece);
+    }
+    if let Some(k) = pieces
+        .iter()
+        .position(|pc| pc.binary_search(&heart).is_ok())
+    {
+        let heart_piece = pieces.remove(k);
+        pieces.push(heart_piece);
+    }
+    pieces
+}
+
+/// Each vertex's weight (its distal share of the `total` voxels), insignificance, major
+/// junction, direction and cross-section marks and radius (ch.7.3.2).
+fn mark_vertices(
+    vertices: &mut [LevelVertex],
+    surface: &MedialSurface,
+    total: usize,
+    frame: &Frame,
+    extents: &Extents,
+    options: &LevelOptions,
+) {
+    let voxel = surface.grid.voxel_size;
+    for i in 0..vertices.len() {
+        let weight = vertices[i].distal_voxels as f64 / total as f64;
+        let big = vertices[i]
+            .children
+            .iter()
+            .filter(|&&c| {
+                vertices[c].distal_voxels as f64 / total as f64 >= options.junction_fraction
+            })
+            .count();
+        let v = &mut vertices[i];
+        v.weight = weight;
+        v.insignificant = weight < options.insignificant_fraction;
+        v.major_junction = big >= 2;
+        let mut marks = Marks::default();
+        let (mut nearest, mut nearest_d) = (v.voxels[0], f64::INFINITY);
+        for &p in &v.voxels {
+            let c = surface.centre(p);
+            let u = c.dot(frame.up);
+            let f = c.dot(frame.forward);
+            extents.mark(&mut marks, [u, u, f, f]);
+            let d = c.distance_squared(v.centroid);
+            if d < nearest_d {
+                (nearest, nearest_d) = (p, d);
+            }
+        }
+        v.radius = surface.distance(nearest) * voxel;
+        // Farthest point from the centroid, then the farthest from that one (ch.7.3.2).
+        let far = |from: DVec3| {
+            v.voxels
+                .iter()
+                .map(|&p| surface.centre(p))
+                .max_by(|a, b| {
+                    a.distance_squared(from)
+                        .total_cmp(&b.distance_squared(from))
+                })
+                .unwrap_or(from)
+        };
+        let a = far(v.centroid);
+        let b = far(a);
+        let reach = a.distance(v.centroid).max(b.distance(v.centroid));
+        marks.linear = reach > options.linear_ratio * v.radius.max(0.5 * voxel);
+        v.marks = marks;
+    }
+}
+
+/// The figure's `(min, max)` projections on the up and forward axes and the fraction of
+/// them near each end that marks a direction.
+struct Extents {
+    up: (f64, f64),
+    forward: (f64, f64),
+    fraction: f64,
+}
+
+impl Extents {
+    /// Marks up, down, forward and backward where `[highest, lowest, foremost, hindmost]`
+    /// projections lie within the fraction of the ends.
+    fn mark(&self, marks: &mut Marks, reach: [f64; 4]) {
+        let ((up_lo, up_hi), (fw_lo, fw_hi), e) = (self.up, self.forward, self.fraction);
+        marks.up |= reach[0] >= up_hi - e * (up_hi - up_lo);
+        marks.down |= reach[1] <= up_lo + e * (up_hi - up_lo);
+        marks.forward |= reach[2] >= fw_hi - e * (fw_hi - fw_lo);
+        marks.backward |= reach[3] <= fw_lo + e * (fw_hi - fw_lo);
     }
 }
 

@@ -246,6 +246,16 @@ pub fn labels_svg(mesh: &Mesh, l: &Labelling, width: f64) -> String {
         );
         x0 += width;
     }
+    let (legend, y) = legend(l, &colours, margin, height);
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.0}\" height=\"{:.0}\" viewBox=\"0 0 {:.0} {:.0}\"><rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>{body}{legend}</svg>\n",
+        x0, y, x0, y
+    )
+}
+
+/// The legend of [`labels_svg`] below the views (which are `height` pixels high): a swatch
+/// and a line per part, then the figure class. Returns it and the picture's height with it.
+fn legend(l: &Labelling, colours: &[String], margin: f64, height: f64) -> (String, f64) {
     let mut legend = String::new();
     let mut y = height + 4.0;
     for (i, p) in l.parts.iter().enumerate() {
@@ -278,8 +288,5 @@ pub fn labels_svg(mesh: &Mesh, l: &Labelling, width: f64) -> String {
         l.figure.name()
     );
     y += 18.0;
-    format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.0}\" height=\"{:.0}\" viewBox=\"0 0 {:.0} {:.0}\"><rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>{body}{legend}</svg>\n",
-        x0, y, x0, y
-    )
+    (legend, y)
 }

@@ -129,7 +129,14 @@ fn words(name: &str) -> Vec<String> {
 }
 
 /// Words that make a joint a girdle bone (rule 2's trunk words other than the column's).
-const GIRDLE_WORDS: [&str; 5] = ["shoulder", "clavicle", "scapula", "hips", "pelvis"];
+/// (`pelvis` is also the canonical key's word.)
+const GIRDLE_WORDS: [&str; 5] = [
+    "shoulder",
+    "clavicle",
+    "scapula",
+    "hips",
+    Canonical::Pelvis.as_str(),
+];
 
 fn name_region(name: &str) -> Option<Region> {
     let w = words(name);
@@ -593,6 +600,7 @@ pub fn agreement(labelling: &Labelling, reference: &[Option<Region>]) -> Agreeme
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::skeleton::canonical::Tail;
 
     #[test]
     fn joint_names_map_to_regions() {
@@ -612,10 +620,13 @@ mod tests {
         assert_eq!(name_region("Torso2"), Some(Region::Trunk));
         assert_eq!(name_region("FFB.L"), None);
         assert_eq!(
-            key_region("shoulder_L"),
+            key_region(Canonical::Shoulder(Side::Left).as_str()),
             Some(Region::Fore(Some(Side::Left)))
         );
-        assert_eq!(key_region("tail_mid"), Some(Region::Tail));
+        assert_eq!(
+            key_region(Canonical::Tail(Tail::Mid).as_str()),
+            Some(Region::Tail)
+        );
     }
 
     /// pelvis → spine → {clavicle_l → upperarm_l → forearm_l, Shoulder.R → UpperArm.R,
@@ -623,7 +634,7 @@ mod tests {
     /// right girdle and the central `Hips`.
     fn girdle_rig() -> (Skeleton, BTreeMap<String, JointId>) {
         let names = [
-            ("pelvis", None),
+            (Canonical::Pelvis.as_str(), None),
             ("spine", Some(0)),
             ("clavicle_l", Some(1)),
             ("upperarm_l", Some(2)),
@@ -648,15 +659,15 @@ mod tests {
                 .collect(),
         };
         let canonical = [
-            ("pelvis", 0),
-            ("chest", 1),
-            ("clavicle_L", 2),
-            ("shoulder_L", 3),
-            ("elbow_L", 4),
-            ("hip_L", 7),
+            (Canonical::Pelvis, 0),
+            (Canonical::Chest, 1),
+            (Canonical::Clavicle(Side::Left), 2),
+            (Canonical::Shoulder(Side::Left), 3),
+            (Canonical::Elbow(Side::Left), 4),
+            (Canonical::Hip(Side::Left), 7),
         ]
         .into_iter()
-        .map(|(k, j)| (k.to_string(), JointId(j)))
+        .map(|(k, j)| (k.as_str().to_string(), JointId(j)))
         .collect();
         (skeleton, canonical)
     }

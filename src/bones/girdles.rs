@@ -70,6 +70,36 @@ fn girdle_sphere(ctx: &Context, at: DVec3) -> Option<Sphere> {
     (best.radius > 0.0).then_some(best)
 }
 
+/// Groups of overlapping spheres (union-find by index): each group's sphere indices in
+/// increasing order, groups ordered by their first index.
+fn overlap_groups(spheres: &[Sphere]) -> Vec<Vec<usize>> {
+    let mut group: Vec<usize> = (0..spheres.len()).collect();
+    fn find(g: &mut [usize], mut i: usize) -> usize {
+        while g[i] != i {
+            g[i] = g[g[i]];
+            i = g[i];
+        }
+        i
+    }
+    for a in 0..spheres.len() {
+        for b in a + 1..spheres.len() {
+            let (sa, sb) = (spheres[a], spheres[b]);
+            if sa.centre.distance(sb.centre) < sa.radius + sb.radius {
+                let (ra, rb) = (find(&mut group, a), find(&mut group, b));
+                group[ra.max(rb)] = ra.min(rb);
+            }
+        }
+    }
+    (0..spheres.len())
+        .map(|g| {
+            (0..spheres.len())
+                .filter(|&k| find(&mut group, k) == g)
+                .collect::<Vec<usize>>()
+        })
+        .filter(|members| !members.is_empty())
+        .collect()
+}
+
 /// Rib cages; returns, per limb of `ctx.body.limbs`, the index in `ctx.bones` of its cage.
 pub(crate) fn rib_cages(ctx: &mut Context) -> Vec<Option<usize>> {
     let limbs = ctx.body.limbs.clone();
@@ -89,33 +119,10 @@ pub(crate) fn rib_cages(ctx: &mut Context) -> Vec<Option<usize>> {
             .push("no pectoral girdle (arms, wings or fore legs): no rib cage".into());
         return cage_of;
     }
-    // Groups of overlapping spheres (union-find by index).
-    let mut group: Vec<usize> = (0..spheres.len()).collect();
-    fn find(g: &mut [usize], mut i: usize) -> usize {
-        while g[i] != i {
-            g[i] = g[g[i]];
-            i = g[i];
-        }
-        i
-    }
-    for a in 0..spheres.len() {
-        for b in a + 1..spheres.len() {
-            let (sa, sb) = (spheres[a].1, spheres[b].1);
-            if sa.centre.distance(sb.centre) < sa.radius + sb.radius {
-                let (ra, rb) = (find(&mut group, a), find(&mut group, b));
-                group[ra.max(rb)] = ra.min(rb);
-            }
-        }
-    }
+    let groups = overlap_groups(&spheres.iter().map(|&(_, s)| s).collect::<Vec<_>>());
     let o = ctx.options;
     let mut cage_count = 0;
-    for g in 0..spheres.len() {
-        let members: Vec<usize> = (0..spheres.len())
-            .filter(|&k| find(&mut group, k) == g)
-            .collect();
-        if members.is_empty() {
-            continue;
-        }
+    for members in groups {
         let centre =
             members.iter().map(|&k| spheres[k].1.centre).sum::<DVec3>() / members.len() as f64;
         let radius = members

@@ -1,5 +1,6 @@
 //! Bone kinds.
 
+use crate::skeleton::Canonical;
 use serde::Serialize;
 
 /// What a bone is (dissertation 9.1's axial and appendicular components).
@@ -58,7 +59,7 @@ impl BoneKind {
             Self::RadiusUlna => "radius_ulna",
             Self::Carpals => "carpals",
             Self::Metacarpal => "metacarpal",
-            Self::Pelvis => "pelvis",
+            Self::Pelvis => Canonical::Pelvis.as_str(),
             Self::Femur => "femur",
             Self::Patella => "patella",
             Self::TibiaFibula => "tibia_fibula",

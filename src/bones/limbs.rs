@@ -136,8 +136,13 @@ fn limb_bones(ctx: &mut Context, limb: &Limb) {
         }
         return;
     }
-    // Separated digits hang from the chain's last joint (the wrist/ankle): carpals there, then
-    // per digit a metacarpal/metatarsal and phalanges.
+    digit_bones(ctx, limb, pelvic);
+}
+
+/// The bones of a limb's separated digits, which hang from the chain's last joint (the
+/// wrist/ankle): carpals/tarsals there, then per digit a metacarpal/metatarsal and phalanges.
+fn digit_bones(ctx: &mut Context, limb: &Limb, pelvic: bool) {
+    let chain = &limb.chain;
     let wrist = *chain.last().unwrap_or(&chain[0]);
     let w = ctx.pos(wrist);
     let firsts: Vec<DVec3> = limb

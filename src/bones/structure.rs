@@ -65,22 +65,14 @@ fn single_chain(s: &Skeleton, from: JointId) -> (Vec<JointId>, Vec<JointId>) {
     }
 }
 
-/// Reads the body of `fit`. `warnings` receives what is missing.
-pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
-    let s = &fit.skeleton;
-    let key_of: BTreeMap<JointId, Option<Canonical>> = fit
-        .canonical
-        .iter()
-        .map(|(k, id)| (*id, k.parse::<Canonical>().ok()))
-        .collect();
-    let root = fit
-        .canonical
-        .get(Canonical::Pelvis.as_str())
-        .copied()
-        .filter(|id| s.joint(*id).parent.is_none())
-        .unwrap_or(JointId(0));
-    let head = fit.canonical.get(Canonical::Head.as_str()).copied();
-    // Spine: the ancestors of the head down to the root.
+/// The spine: the ancestors of the head down to the root, else (with a warning) the root's
+/// longest chain.
+fn spine(
+    s: &Skeleton,
+    root: JointId,
+    head: Option<JointId>,
+    warnings: &mut Vec<String>,
+) -> Vec<JointId> {
     let mut spine = Vec::new();
     if let Some(h) = head {
         let mut cur = s.joint(h).parent;
@@ -100,6 +92,75 @@ pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
         warnings.push("no head joint on a chain from the root: no cranium; the vertebral column follows the root's longest chain".into());
         spine = longest_chain(s, root);
     }
+    spine
+}
+
+/// The limb whose chain starts at `first`, a child of spine joint `parent`: pelvic when it
+/// hangs from the root, its side by where it lies (`left`), and a girdle joint split off a
+/// pectoral chain when `first` is a clavicle (by `key`, its canonical key) or the chain is long.
+fn limb(
+    s: &Skeleton,
+    parent: JointId,
+    first: JointId,
+    key: Option<Canonical>,
+    root: JointId,
+    left: DVec3,
+) -> Limb {
+    let centre = s.joint(root).position;
+    let girdle = if parent == root {
+        GirdleKind::Pelvic
+    } else {
+        GirdleKind::Pectoral
+    };
+    let (mut chain, branch) = single_chain(s, first);
+    let side = if (s.joint(first).position - centre).dot(left)
+        + (s.joint(*chain.last().unwrap_or(&first)).position - centre).dot(left)
+        >= 0.0
+    {
+        Side::Left
+    } else {
+        Side::Right
+    };
+    let girdle_joint = if girdle == GirdleKind::Pectoral
+        && chain.len() >= 2
+        && (matches!(key, Some(Canonical::Clavicle(_)))
+            || (!matches!(key, Some(Canonical::Shoulder(_)))
+                && ((branch.is_empty() && chain.len() >= 9)
+                    || (!branch.is_empty() && chain.len() >= 4))))
+    {
+        Some(chain.remove(0))
+    } else {
+        None
+    };
+    let digits = branch.into_iter().map(|b| single_chain(s, b).0).collect();
+    let origin = s.joint(chain[0]).position;
+    Limb {
+        girdle,
+        side,
+        parent,
+        girdle_joint,
+        chain,
+        digits,
+        origin,
+    }
+}
+
+/// Reads the body of `fit`. `warnings` receives what is missing.
+pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
+    let s = &fit.skeleton;
+    let key_of: BTreeMap<JointId, Option<Canonical>> = fit
+        .canonical
+        .iter()
+        .map(|(k, id)| (*id, k.parse::<Canonical>().ok()))
+        .collect();
+    let root = fit
+        .canonical
+        .get(Canonical::Pelvis.as_str())
+        .copied()
+        .filter(|id| s.joint(*id).parent.is_none())
+        .unwrap_or(JointId(0));
+    let head = fit.canonical.get(Canonical::Head.as_str()).copied();
+    let spine = spine(s, root, head, warnings);
     let (mut head_end, mut jaw) = (None, None);
     if let Some(h) = head {
         for c in s.children(h) {
@@ -154,46 +215,10 @@ pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
         .unwrap_or_else(|| up.any_orthonormal_vector());
     let left = up.cross(forward);
     let upright = head_dir.dot(up) > 0.7;
-    let centre = s.joint(root).position;
     let mut limbs = Vec::new();
     for (parent, first) in raw {
-        let girdle = if parent == root {
-            GirdleKind::Pelvic
-        } else {
-            GirdleKind::Pectoral
-        };
-        let (mut chain, branch) = single_chain(s, first);
-        let side = if (s.joint(first).position - centre).dot(left)
-            + (s.joint(*chain.last().unwrap_or(&first)).position - centre).dot(left)
-            >= 0.0
-        {
-            Side::Left
-        } else {
-            Side::Right
-        };
         let key = key_of.get(&first).copied().flatten();
-        let girdle_joint = if girdle == GirdleKind::Pectoral
-            && chain.len() >= 2
-            && (matches!(key, Some(Canonical::Clavicle(_)))
-                || (!matches!(key, Some(Canonical::Shoulder(_)))
-                    && ((branch.is_empty() && chain.len() >= 9)
-                        || (!branch.is_empty() && chain.len() >= 4))))
-        {
-            Some(chain.remove(0))
-        } else {
-            None
-        };
-        let digits = branch.into_iter().map(|b| single_chain(s, b).0).collect();
-        let origin = s.joint(chain[0]).position;
-        limbs.push(Limb {
-            girdle,
-            side,
-            parent,
-            girdle_joint,
-            chain,
-            digits,
-            origin,
-        });
+        limbs.push(limb(s, parent, first, key, root, left));
     }
     separate_hips(s, &mut limbs, left);
     Body {

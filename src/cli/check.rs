@@ -9,8 +9,9 @@ use glam::DVec3;
 use skelfit::anatomy::parse_direction;
 use skelfit::eval::{canonical_map, load_skeleton, ReferenceRig};
 use skelfit::mesh::load_gltf_scene;
-use skelfit::skeleton::JointId;
-use skelfit::skin::check::{check_deformation, sweep, SweepKind};
+use skelfit::skeleton::canonical::Tail;
+use skelfit::skeleton::{Canonical, JointId};
+use skelfit::skin::check::{check_deformation, sweep, DeformationCheck, SweepKind};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -123,6 +124,27 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
         );
     }
     let check = check_deformation(&scene.mesh, &skeleton, &weights, kind, &poses, missing)?;
+    print_check(&check, kind);
+    if unweighted > 0 {
+        eprintln!(
+            "skelfit: warning: {unweighted} vertices carry no weight and stay at rest in every pose"
+        );
+    }
+    if let Some(path) = &args.json {
+        let json = serde_json::json!({
+            "format": "skelfit-check-v1",
+            "rig": args.rig.display().to_string(),
+            "unweighted_vertices": unweighted,
+            "check": check,
+        });
+        write_file(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Prints the table of poses and their stretched edges.
+fn print_check(check: &DeformationCheck, kind: SweepKind) {
     println!(
         "{} edges, {:?} sweep ({} poses)",
         check.edges,
@@ -146,22 +168,6 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     if !check.missing.is_empty() {
         println!("not posed (no joint): {}", check.missing.join(", "));
     }
-    if unweighted > 0 {
-        eprintln!(
-            "skelfit: warning: {unweighted} vertices carry no weight and stay at rest in every pose"
-        );
-    }
-    if let Some(path) = &args.json {
-        let json = serde_json::json!({
-            "format": "skelfit-check-v1",
-            "rig": args.rig.display().to_string(),
-            "unweighted_vertices": unweighted,
-            "check": check,
-        });
-        write_file(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
-        println!("wrote {}", path.display());
-    }
-    Ok(())
 }
 
 /// Humanoid when the neck stands above the pelvis more than it lies ahead of it.
@@ -171,8 +177,15 @@ fn guess_sweep(
     up: DVec3,
     forward: DVec3,
 ) -> SweepKind {
-    let at = |k: &str| canonical.get(k).map(|&j| skeleton.joint(j).position);
-    match (at("pelvis"), at("neck").or_else(|| at("head"))) {
+    let at = |k: Canonical| {
+        canonical
+            .get(k.as_str())
+            .map(|&j| skeleton.joint(j).position)
+    };
+    match (
+        at(Canonical::Pelvis),
+        at(Canonical::Neck).or_else(|| at(Canonical::Head)),
+    ) {
         (Some(pelvis), Some(neck)) => {
             let d = neck - pelvis;
             if d.dot(up.normalize()) > d.dot(forward.normalize()).abs() {
@@ -181,7 +194,7 @@ fn guess_sweep(
                 SweepKind::Animal
             }
         }
-        _ if canonical.contains_key("tail_base") => SweepKind::Animal,
+        _ if canonical.contains_key(Canonical::Tail(Tail::Base).as_str()) => SweepKind::Animal,
         _ => SweepKind::Humanoid,
     }
 }

@@ -11,10 +11,12 @@ use serde_json::json;
 use skelfit::distance::edt;
 use skelfit::export::{glb_bytes, skeleton_json, GltfOptions, JsonOptions};
 use skelfit::lod::level_of_detail;
+use skelfit::mesh::Mesh;
 use skelfit::outline::{
     assemble, outline_part, outline_svg, read_outline, OutlineOptions, PartPlacement,
 };
-use skelfit::skin::{skin_from_bones, SkinOptions};
+use skelfit::skeleton::Skeleton;
+use skelfit::skin::{skin_from_bones, Skin, SkinOptions};
 use skelfit::voxel::{voxelize, VoxelOptions, VoxelSize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -108,6 +110,19 @@ fn placements(values: &[String], count: usize) -> anyhow::Result<Vec<PartPlaceme
     Ok(out)
 }
 
+/// Skins the inflated `mesh` to `skeleton` by voxel distance, with voxels of 1/`resolution`
+/// of the longest side (at most 1/8).
+fn skin_inflated(mesh: &Mesh, skeleton: &Skeleton, resolution: u32) -> anyhow::Result<Skin> {
+    let voxel = VoxelOptions {
+        size: VoxelSize::Fraction(1.0 / f64::from(resolution.max(8))),
+        ..Default::default()
+    };
+    let solid = voxelize(mesh, &voxel).context("voxelizing the inflated mesh")?;
+    let distance = edt(&solid);
+    skin_from_bones(mesh, skeleton, &solid, &distance, &SkinOptions::default())
+        .context("skinning the inflated mesh")
+}
+
 /// Runs the command.
 pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
     let mut options = OutlineOptions::default();
@@ -156,20 +171,7 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
         level_of_detail(&assembly.skeleton, &lod).context("applying level of detail")?
     };
     let clock = Instant::now();
-    let voxel = VoxelOptions {
-        size: VoxelSize::Fraction(1.0 / f64::from(args.resolution.max(8))),
-        ..Default::default()
-    };
-    let solid = voxelize(&assembly.mesh, &voxel).context("voxelizing the inflated mesh")?;
-    let distance = edt(&solid);
-    let skin = skin_from_bones(
-        &assembly.mesh,
-        &skeleton,
-        &solid,
-        &distance,
-        &SkinOptions::default(),
-    )
-    .context("skinning the inflated mesh")?;
+    let skin = skin_inflated(&assembly.mesh, &skeleton, args.resolution)?;
     let skin_ms = millis(clock);
     outputs.add(
         &args.output,

@@ -325,6 +325,102 @@ fn pairing_name(e: &Evaluation) -> &'static str {
     }
 }
 
+/// The CSV columns before the per-stage timings.
+const CSV_HEADERS: [&str; 37] = [
+    "category",
+    "model",
+    "reference",
+    "method",
+    "status",
+    "pairing",
+    "triangles",
+    "predicted_joints",
+    "paired_joints",
+    "figure_size",
+    "mean",
+    "median",
+    "max",
+    "rms",
+    "mean_percent",
+    "median_percent",
+    "max_percent",
+    "rms_percent",
+    "worst_joint",
+    "cd_j2j",
+    "cd_j2b",
+    "cd_b2b",
+    "cd_j2j_percent",
+    "cd_j2b_percent",
+    "cd_b2b_percent",
+    "core_mean",
+    "core_mean_percent",
+    "core_max_percent",
+    "core_paired",
+    "core_mapped",
+    "core_missing",
+    "real",
+    "figure",
+    "template",
+    "parts",
+    "missing_parts",
+    "warnings",
+];
+
+/// One model's CSV row ([`bench_csv`]), with a timing cell per stage of `stages`.
+fn csv_row(r: &BenchResult, stages: &[String]) -> Vec<String> {
+    let e = r.evaluation.as_ref();
+    let num = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
+    let joint_stat = |f: fn(&Evaluation) -> f64| num(e.filter(|e| e.has_joint_errors()).map(f));
+    let mut row: Vec<String> = vec![
+        r.category.clone(),
+        r.model.clone(),
+        r.reference.clone(),
+        r.method.name().to_owned(),
+        status(r).to_owned(),
+        e.map(pairing_name).unwrap_or_default().to_owned(),
+        r.triangles.to_string(),
+        r.predicted_joints.to_string(),
+        e.map(|e| e.joints.len().to_string()).unwrap_or_default(),
+        num(e.map(|e| e.figure.size)),
+        joint_stat(|e| e.summary.mean),
+        joint_stat(|e| e.summary.median),
+        joint_stat(|e| e.summary.max),
+        joint_stat(|e| e.summary.rms),
+        joint_stat(|e| e.summary_percent.mean),
+        joint_stat(|e| e.summary_percent.median),
+        joint_stat(|e| e.summary_percent.max),
+        joint_stat(|e| e.summary_percent.rms),
+        e.map(|e| e.worst_joint.clone()).unwrap_or_default(),
+        num(e.map(|e| e.chamfer.j2j)),
+        num(e.map(|e| e.chamfer.j2b)),
+        num(e.map(|e| e.chamfer.b2b)),
+        num(e.map(|e| e.chamfer_percent.j2j)),
+        num(e.map(|e| e.chamfer_percent.j2b)),
+        num(e.map(|e| e.chamfer_percent.b2b)),
+    ];
+    let c = r.core.as_ref();
+    let a = r.anatomy.as_ref();
+    row.extend([
+        num(c.map(|c| c.mean)),
+        num(c.map(|c| c.mean_percent)),
+        num(c.map(|c| c.max_percent)),
+        c.map(|c| c.paired.to_string()).unwrap_or_default(),
+        c.map(|c| c.mapped.len().to_string()).unwrap_or_default(),
+        c.map(|c| c.missing.join(" ")).unwrap_or_default(),
+        r.real.to_string(),
+        a.map(|a| a.figure.clone()).unwrap_or_default(),
+        a.map(|a| a.template.clone()).unwrap_or_default(),
+        a.map(|a| a.parts.clone()).unwrap_or_default(),
+        a.map(|a| a.missing_parts.join(", ")).unwrap_or_default(),
+        r.warnings.len().to_string(),
+    ]);
+    row.extend(stages.iter().map(|s| num(r.stage_ms(s))));
+    row.push(r.total_ms().to_string());
+    row.push(r.failure.clone().unwrap_or_default());
+    row.push(r.notes.join("; "));
+    row
+}
+
 /// The results as CSV: one row per model with accuracy in mesh units and % of figure size,
 /// chamfer distances, one `<stage>_ms` column per stage ([`stage_names`]) and `total_ms`.
 /// Missing values are empty cells.
@@ -333,47 +429,7 @@ fn pairing_name(e: &Evaluation) -> &'static str {
 /// [`EvalError::Table`] when writing fails.
 pub fn bench_csv(results: &[BenchResult]) -> Result<String, EvalError> {
     let stages = stage_names(results);
-    let mut headers: Vec<String> = [
-        "category",
-        "model",
-        "reference",
-        "method",
-        "status",
-        "pairing",
-        "triangles",
-        "predicted_joints",
-        "paired_joints",
-        "figure_size",
-        "mean",
-        "median",
-        "max",
-        "rms",
-        "mean_percent",
-        "median_percent",
-        "max_percent",
-        "rms_percent",
-        "worst_joint",
-        "cd_j2j",
-        "cd_j2b",
-        "cd_b2b",
-        "cd_j2j_percent",
-        "cd_j2b_percent",
-        "cd_b2b_percent",
-        "core_mean",
-        "core_mean_percent",
-        "core_max_percent",
-        "core_paired",
-        "core_mapped",
-        "core_missing",
-        "real",
-        "figure",
-        "template",
-        "parts",
-        "missing_parts",
-        "warnings",
-    ]
-    .map(String::from)
-    .to_vec();
+    let mut headers: Vec<String> = CSV_HEADERS.map(String::from).to_vec();
     headers.extend(stages.iter().map(|s| format!("{s}_ms")));
     headers.extend(["total_ms", "failure", "notes"].map(String::from));
     let table_error = |e: csv::Error| EvalError::Table {
@@ -383,56 +439,7 @@ pub fn bench_csv(results: &[BenchResult]) -> Result<String, EvalError> {
     let mut csv = csv::Writer::from_writer(Vec::new());
     csv.write_record(&headers).map_err(table_error)?;
     for r in results {
-        let e = r.evaluation.as_ref();
-        let num = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
-        let joint_stat = |f: fn(&Evaluation) -> f64| num(e.filter(|e| e.has_joint_errors()).map(f));
-        let mut row: Vec<String> = vec![
-            r.category.clone(),
-            r.model.clone(),
-            r.reference.clone(),
-            r.method.name().to_owned(),
-            status(r).to_owned(),
-            e.map(pairing_name).unwrap_or_default().to_owned(),
-            r.triangles.to_string(),
-            r.predicted_joints.to_string(),
-            e.map(|e| e.joints.len().to_string()).unwrap_or_default(),
-            num(e.map(|e| e.figure.size)),
-            joint_stat(|e| e.summary.mean),
-            joint_stat(|e| e.summary.median),
-            joint_stat(|e| e.summary.max),
-            joint_stat(|e| e.summary.rms),
-            joint_stat(|e| e.summary_percent.mean),
-            joint_stat(|e| e.summary_percent.median),
-            joint_stat(|e| e.summary_percent.max),
-            joint_stat(|e| e.summary_percent.rms),
-            e.map(|e| e.worst_joint.clone()).unwrap_or_default(),
-            num(e.map(|e| e.chamfer.j2j)),
-            num(e.map(|e| e.chamfer.j2b)),
-            num(e.map(|e| e.chamfer.b2b)),
-            num(e.map(|e| e.chamfer_percent.j2j)),
-            num(e.map(|e| e.chamfer_percent.j2b)),
-            num(e.map(|e| e.chamfer_percent.b2b)),
-        ];
-        let c = r.core.as_ref();
-        let a = r.anatomy.as_ref();
-        row.extend([
-            num(c.map(|c| c.mean)),
-            num(c.map(|c| c.mean_percent)),
-            num(c.map(|c| c.max_percent)),
-            c.map(|c| c.paired.to_string()).unwrap_or_default(),
-            c.map(|c| c.mapped.len().to_string()).unwrap_or_default(),
-            c.map(|c| c.missing.join(" ")).unwrap_or_default(),
-            r.real.to_string(),
-            a.map(|a| a.figure.clone()).unwrap_or_default(),
-            a.map(|a| a.template.clone()).unwrap_or_default(),
-            a.map(|a| a.parts.clone()).unwrap_or_default(),
-            a.map(|a| a.missing_parts.join(", ")).unwrap_or_default(),
-            r.warnings.len().to_string(),
-        ]);
-        row.extend(stages.iter().map(|s| num(r.stage_ms(s))));
-        row.push(r.total_ms().to_string());
-        row.push(r.failure.clone().unwrap_or_default());
-        row.push(r.notes.join("; "));
+        let row = csv_row(r, &stages);
         csv.write_record(&row).map_err(table_error)?;
     }
     let bytes = csv.into_inner().map_err(|e| EvalError::Table {

@@ -4,25 +4,27 @@
 //! listed, so a dropped limb shows instead of leaving the mean.
 
 use super::{Evaluation, FigureMeasure, MatchMethod};
+use crate::skeleton::Canonical;
+use crate::skeleton::Side::{Left, Right};
 use serde::{Deserialize, Serialize};
 
 /// The core joints, canonical keys (the joints `refine::REFINED` places on humanoids).
 pub const CORE_KEYS: [&str; 15] = [
-    "pelvis",
-    "neck",
-    "head",
-    "shoulder_L",
-    "shoulder_R",
-    "elbow_L",
-    "elbow_R",
-    "wrist_L",
-    "wrist_R",
-    "hip_L",
-    "hip_R",
-    "knee_L",
-    "knee_R",
-    "ankle_L",
-    "ankle_R",
+    Canonical::Pelvis.as_str(),
+    Canonical::Neck.as_str(),
+    Canonical::Head.as_str(),
+    Canonical::Shoulder(Left).as_str(),
+    Canonical::Shoulder(Right).as_str(),
+    Canonical::Elbow(Left).as_str(),
+    Canonical::Elbow(Right).as_str(),
+    Canonical::Wrist(Left).as_str(),
+    Canonical::Wrist(Right).as_str(),
+    Canonical::Hip(Left).as_str(),
+    Canonical::Hip(Right).as_str(),
+    Canonical::Knee(Left).as_str(),
+    Canonical::Knee(Right).as_str(),
+    Canonical::Ankle(Left).as_str(),
+    Canonical::Ankle(Right).as_str(),
 ];
 
 /// The core joint error of one evaluation ([`core_error`]).
@@ -118,14 +120,18 @@ mod tests {
     }
 
     const BODY: [(&str, Option<usize>, [f64; 3]); 8] = [
-        ("pelvis", None, [0.0, 1.0, 0.0]),
-        ("chest", Some(0), [0.0, 1.3, 0.0]),
-        ("neck", Some(1), [0.0, 1.5, 0.0]),
-        ("head", Some(2), [0.0, 1.7, 0.0]),
-        ("shoulder_L", Some(1), [0.2, 1.45, 0.0]),
-        ("elbow_L", Some(4), [0.45, 1.45, 0.0]),
-        ("hip_L", Some(0), [0.1, 0.95, 0.0]),
-        ("knee_L", Some(6), [0.1, 0.5, 0.0]),
+        (Canonical::Pelvis.as_str(), None, [0.0, 1.0, 0.0]),
+        (Canonical::Chest.as_str(), Some(0), [0.0, 1.3, 0.0]),
+        (Canonical::Neck.as_str(), Some(1), [0.0, 1.5, 0.0]),
+        (Canonical::Head.as_str(), Some(2), [0.0, 1.7, 0.0]),
+        (
+            Canonical::Shoulder(Left).as_str(),
+            Some(1),
+            [0.2, 1.45, 0.0],
+        ),
+        (Canonical::Elbow(Left).as_str(), Some(4), [0.45, 1.45, 0.0]),
+        (Canonical::Hip(Left).as_str(), Some(0), [0.1, 0.95, 0.0]),
+        (Canonical::Knee(Left).as_str(), Some(6), [0.1, 0.5, 0.0]),
     ];
 
     #[test]
@@ -142,20 +148,20 @@ mod tests {
         assert_eq!(
             core.mapped,
             [
-                "pelvis",
-                "neck",
-                "head",
-                "shoulder_L",
-                "elbow_L",
-                "hip_L",
-                "knee_L"
+                Canonical::Pelvis.as_str(),
+                Canonical::Neck.as_str(),
+                Canonical::Head.as_str(),
+                Canonical::Shoulder(Left).as_str(),
+                Canonical::Elbow(Left).as_str(),
+                Canonical::Hip(Left).as_str(),
+                Canonical::Knee(Left).as_str()
             ]
         );
         assert_eq!(core.paired, 6);
-        assert_eq!(core.missing, ["knee_L"]);
+        assert_eq!(core.missing, [Canonical::Knee(Left).as_str()]);
         assert!((core.mean - 0.06 / 6.0).abs() < 1e-12, "{}", core.mean);
         assert!((core.mean_percent - 100.0 * core.mean / e.figure.size).abs() < 1e-9);
-        assert_eq!(core.worst, "elbow_L");
+        assert_eq!(core.worst, Canonical::Elbow(Left).as_str());
     }
 
     #[test]

@@ -301,61 +301,9 @@ pub fn evaluate(
         }
     }
     let mut warnings = Vec::new();
-    let correspondence = match options.pairing {
-        JointPairing::Required => correspond(&predicted, &reference)?,
-        JointPairing::IfShared => match correspond(&predicted, &reference) {
-            Ok(c)
-                if c.method == MatchMethod::Name
-                    && (c.pairs.len() as f64)
-                        < options.min_name_fraction * reference.skeleton.len() as f64 =>
-            {
-                let names: Vec<&str> = c.pairs.iter().map(|p| p.key.as_str()).collect();
-                warnings.push(format!(
-                    "per-joint errors are unavailable: no canonical keys are shared and only {} of the reference's {} joint names coincide ({}); only the chamfer distances are reported",
-                    names.len(),
-                    reference.skeleton.len(),
-                    names.join(", ")
-                ));
-                chamfer_only(&predicted, &reference)
-            }
-            Ok(c) => c,
-            Err(EvalError::NoSharedJoints {
-                predicted: p,
-                reference: r,
-            }) => {
-                warnings.push(format!(
-                    "per-joint errors are unavailable: the skeletons share no joints (predicted has {} joints without canonical names, reference has {}); only the chamfer distances are reported",
-                    p.len(),
-                    r.len()
-                ));
-                chamfer_only(&predicted, &reference)
-            }
-            Err(e) => return Err(e),
-        },
-        JointPairing::Skip => chamfer_only(&predicted, &reference),
-    };
+    let correspondence = pairing(&predicted, &reference, options, &mut warnings)?;
     let figure = figure_size(&reference, mesh, options.measure);
-    let predicted_size = extent(predicted.bounding_box(), figure.measure);
-    let reference_size = extent(reference.bounding_box(), figure.measure);
-    warnings.extend(size_warning(
-        "the predicted and reference figure sizes",
-        predicted_size,
-        reference_size,
-        options.unit_mismatch_ratio,
-    ));
-    if figure.source == SizeSource::Mesh {
-        warnings.extend(size_warning(
-            "the mesh and reference skeleton sizes",
-            figure.size,
-            reference_size,
-            options.unit_mismatch_ratio,
-        ));
-    }
-    if figure.size <= 0.0 {
-        warnings.push(
-            "the figure size is zero, so percentages are reported as 0: pass the mesh".into(),
-        );
-    }
+    size_warnings(&predicted, &reference, &figure, options, &mut warnings);
     let percent = |e: f64| {
         if figure.size > 0.0 {
             100.0 * e / figure.size
@@ -407,35 +355,7 @@ pub fn evaluate(
     } else {
         Vec::new()
     };
-    let spacing = if figure.size > 0.0 {
-        options.bone_sample_fraction * figure.size
-    } else {
-        ChamferOptions::default().bone_sample_spacing
-    };
-    let chamfer = chamfer(
-        &predicted.skeleton,
-        &reference.skeleton,
-        &ChamferOptions {
-            bone_sample_spacing: spacing,
-        },
-    );
-    if ![chamfer.j2j, chamfer.j2b, chamfer.b2b]
-        .iter()
-        .all(|d| d.is_finite())
-    {
-        let far = [(&predicted, "predicted"), (&reference, "reference")]
-            .into_iter()
-            .flat_map(|(rig, role)| {
-                rig.skeleton
-                    .joints
-                    .iter()
-                    .map(move |j| (role, &j.name, j.position))
-            })
-            .max_by(|a, b| a.2.abs().max_element().total_cmp(&b.2.abs().max_element()));
-        if let Some(far) = far {
-            return Err(non_finite(far));
-        }
-    }
+    let chamfer = checked_chamfer(&predicted, &reference, figure.size, options)?;
     Ok(Evaluation {
         model: reference.model.clone(),
         rig: reference.rig.clone(),
@@ -454,6 +374,127 @@ pub fn evaluate(
         joints,
         warnings,
     })
+}
+
+/// Pairs the joints as `options.pairing` asks: by [`correspond`], or none (chamfer only) when
+/// nothing is shared or too few names coincide, with a warning saying so.
+///
+/// # Errors
+/// [`EvalError::NoSharedJoints`] when nothing pairs and pairing is required.
+fn pairing(
+    predicted: &ReferenceRig,
+    reference: &ReferenceRig,
+    options: &EvalOptions,
+    warnings: &mut Vec<String>,
+) -> Result<Correspondence, EvalError> {
+    Ok(match options.pairing {
+        JointPairing::Required => correspond(predicted, reference)?,
+        JointPairing::IfShared => match correspond(predicted, reference) {
+            Ok(c)
+                if c.method == MatchMethod::Name
+                    && (c.pairs.len() as f64)
+                        < options.min_name_fraction * reference.skeleton.len() as f64 =>
+            {
+                let names: Vec<&str> = c.pairs.iter().map(|p| p.key.as_str()).collect();
+                warnings.push(format!(
+                    "per-joint errors are unavailable: no canonical keys are shared and only {} of the reference's {} joint names coincide ({}); only the chamfer distances are reported",
+                    names.len(),
+                    reference.skeleton.len(),
+                    names.join(", ")
+                ));
+                chamfer_only(predicted, reference)
+            }
+            Ok(c) => c,
+            Err(EvalError::NoSharedJoints {
+                predicted: p,
+                reference: r,
+            }) => {
+                warnings.push(format!(
+                    "per-joint errors are unavailable: the skeletons share no joints (predicted has {} joints without canonical names, reference has {}); only the chamfer distances are reported",
+                    p.len(),
+                    r.len()
+                ));
+                chamfer_only(predicted, reference)
+            }
+            Err(e) => return Err(e),
+        },
+        JointPairing::Skip => chamfer_only(predicted, reference),
+    })
+}
+
+/// Warnings about sizes: predicted and reference (and mesh and reference) differing beyond
+/// `options.unit_mismatch_ratio`, and a zero figure size.
+fn size_warnings(
+    predicted: &ReferenceRig,
+    reference: &ReferenceRig,
+    figure: &FigureSize,
+    options: &EvalOptions,
+    warnings: &mut Vec<String>,
+) {
+    let predicted_size = extent(predicted.bounding_box(), figure.measure);
+    let reference_size = extent(reference.bounding_box(), figure.measure);
+    warnings.extend(size_warning(
+        "the predicted and reference figure sizes",
+        predicted_size,
+        reference_size,
+        options.unit_mismatch_ratio,
+    ));
+    if figure.source == SizeSource::Mesh {
+        warnings.extend(size_warning(
+            "the mesh and reference skeleton sizes",
+            figure.size,
+            reference_size,
+            options.unit_mismatch_ratio,
+        ));
+    }
+    if figure.size <= 0.0 {
+        warnings.push(
+            "the figure size is zero, so percentages are reported as 0: pass the mesh".into(),
+        );
+    }
+}
+
+/// The RigNet chamfer distances, bones sampled every `bone_sample_fraction` of the figure
+/// `size`.
+///
+/// # Errors
+/// [`EvalError::NonFinite`] naming the joint furthest out when a distance overflows.
+fn checked_chamfer(
+    predicted: &ReferenceRig,
+    reference: &ReferenceRig,
+    size: f64,
+    options: &EvalOptions,
+) -> Result<ChamferDistances, EvalError> {
+    let spacing = if size > 0.0 {
+        options.bone_sample_fraction * size
+    } else {
+        ChamferOptions::default().bone_sample_spacing
+    };
+    let chamfer = chamfer(
+        &predicted.skeleton,
+        &reference.skeleton,
+        &ChamferOptions {
+            bone_sample_spacing: spacing,
+        },
+    );
+    if ![chamfer.j2j, chamfer.j2b, chamfer.b2b]
+        .iter()
+        .all(|d| d.is_finite())
+    {
+        let far = [(predicted, "predicted"), (reference, "reference")]
+            .into_iter()
+            .flat_map(|(rig, role)| {
+                rig.skeleton
+                    .joints
+                    .iter()
+                    .map(move |j| (role, &j.name, j.position))
+            })
+            .max_by(|a, b| a.2.abs().max_element().total_cmp(&b.2.abs().max_element()));
+        if let Some(far) = far {
+            return Err(non_finite(far));
+        }
+    }
+    Ok(chamfer)
 }
 
 /// [`EvalError::NonFinite`] for the joint `(role, name, position)` furthest out.

@@ -37,7 +37,7 @@
 //!     deform: true,
 //!     ..Default::default()
 //! };
-//! let reference = Skeleton { joints: vec![joint("pelvis", None, 1.0), joint("neck", Some(0), 1.5), joint("head", Some(1), 1.7)] };
+//! let reference = Skeleton { joints: vec![joint("root", None, 1.0), joint("neck", Some(0), 1.5), joint("head", Some(1), 1.7)] };
 //! let mut predicted = reference.clone();
 //! predicted.joints[2].position.z += 0.01;
 //! let result = evaluate(
@@ -58,6 +58,7 @@ mod chamfer;
 mod core;
 mod correspondence;
 mod error;
+mod label_table;
 mod labels;
 mod metrics;
 mod reference;
@@ -89,6 +90,10 @@ pub use correspondence::{
     Correspondence, JointPair, MatchMethod, NamingPreset,
 };
 pub use error::EvalError;
+pub use label_table::{
+    label_table_json, label_table_markdown, label_table_models, label_table_row, LabelTableRow,
+    LABEL_TABLE_KINDS,
+};
 pub use labels::{label_reference_file, label_score, LabelScore};
 pub use metrics::{
     evaluate, figure_size, resolve_measure, ErrorSummary, EvalOptions, Evaluation, FigureMeasure,

@@ -148,16 +148,13 @@ fn millis(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3
 }
 
-/// Runs every variant (in parallel; results in input order), the first being the base.
-fn run_study(
-    kind: StudyKind,
-    model: &str,
-    base_mesh: &Mesh,
-    reference: Option<&ReferenceRig>,
-    inputs: Vec<VariantInput>,
-    options: &StudyOptions,
-) -> Result<Study, crate::Error> {
-    let mut rigged: Vec<(VariantInput, Result<super::Rigged, String>)> = inputs
+/// A variant and its rig (or why it did not rig).
+type RiggedVariant = (VariantInput, Result<super::Rigged, String>);
+
+/// Rigs every variant (in parallel; results in input order), its joints moved back into the
+/// base frame and its total time appended to its timings.
+fn rig_variants(inputs: Vec<VariantInput>, options: &StudyOptions) -> Vec<RiggedVariant> {
+    inputs
         .into_par_iter()
         .map(|input| {
             let mut rigger = options.rigger.clone();
@@ -174,7 +171,39 @@ fn run_study(
             });
             (input, result.map_err(|e| e.to_string()))
         })
-        .collect();
+        .collect()
+}
+
+/// A variant of `input` with nothing measured yet (`base`: the study's base variant).
+fn blank_variant(input: VariantInput, base: bool) -> StudyVariant {
+    StudyVariant {
+        label: input.label,
+        level: input.level,
+        base,
+        triangles: input.mesh.triangles.len(),
+        joints: 0,
+        pairing: None,
+        displacement: Vec::new(),
+        displacement_percent: None,
+        chamfer_to_base_percent: None,
+        to_reference: None,
+        timings: Vec::new(),
+        warnings: Vec::new(),
+        failure: None,
+        skeleton: None,
+    }
+}
+
+/// Runs every variant (in parallel; results in input order), the first being the base.
+fn run_study(
+    kind: StudyKind,
+    model: &str,
+    base_mesh: &Mesh,
+    reference: Option<&ReferenceRig>,
+    inputs: Vec<VariantInput>,
+    options: &StudyOptions,
+) -> Result<Study, crate::Error> {
+    let mut rigged = rig_variants(inputs, options);
     let (base_skeleton, base_canonical) = match &rigged[0].1 {
         Ok(r) => (r.skeleton.clone(), r.canonical.clone()),
         Err(message) => {
@@ -208,22 +237,7 @@ fn run_study(
     };
     let mut variants = Vec::with_capacity(rigged.len());
     for (index, (input, result)) in rigged.drain(..).enumerate() {
-        let mut variant = StudyVariant {
-            label: input.label,
-            level: input.level,
-            base: index == 0,
-            triangles: input.mesh.triangles.len(),
-            joints: 0,
-            pairing: None,
-            displacement: Vec::new(),
-            displacement_percent: None,
-            chamfer_to_base_percent: None,
-            to_reference: None,
-            timings: Vec::new(),
-            warnings: Vec::new(),
-            failure: None,
-            skeleton: None,
-        };
+        let mut variant = blank_variant(input, index == 0);
         let rig = match result {
             Ok(rig) => rig,
             Err(message) => {

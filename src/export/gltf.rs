@@ -109,78 +109,13 @@ pub fn glb_bytes_with(
 ) -> Result<Vec<u8>, ExportError> {
     check_skeleton(skeleton)?;
     let joint_count = skeleton.len();
-    if joint_count > usize::from(u16::MAX) {
-        return Err(ExportError::TooLarge {
-            what: "the skeleton",
-            format: "glTF",
-            detail: format!("{joint_count} joints, JOINTS_0 holds at most 65535"),
-        });
-    }
-    if let Some((mesh, skin)) = skinned {
-        check_skinned(mesh, skin, joint_count)?;
-    }
-    for a in attachments {
-        if a.joint.0 >= joint_count {
-            return Err(ExportError::SizeMismatch {
-                what: "an attachment's joint index",
-                expected: joint_count,
-                found: a.joint.0 + 1,
-            });
-        }
-        if a.mesh.triangles.is_empty() || a.mesh.positions.is_empty() {
-            return Err(ExportError::EmptyMesh);
-        }
-        if let Some(index) = a.mesh.positions.iter().position(|p| !p.is_finite()) {
-            return Err(ExportError::NonFinite {
-                what: "attachment vertex",
-                index,
-            });
-        }
-    }
+    check_inputs(skinned, joint_count, attachments)?;
 
     let mut bin = Binary::default();
     let mut accessors = Vec::new();
     let mut meshes = Vec::new();
     if let Some((mesh, skin)) = skinned {
-        let vertices = mesh.positions.len();
-        let (index_view, position_view, normal_view, min, max) = push_geometry(&mut bin, mesh);
-        let joints_view = bin.push(
-            skin.engine
-                .joints
-                .iter()
-                .flatten()
-                .flat_map(|j| j.to_le_bytes()),
-            Some(ARRAY_BUFFER),
-        );
-        let weights_view = bin.push(
-            skin.engine
-                .weights
-                .iter()
-                .flatten()
-                .flat_map(|w| w.to_le_bytes()),
-            Some(ARRAY_BUFFER),
-        );
-        let ibm_view = bin.push(
-            skeleton.joints.iter().flat_map(|j| {
-                let m = DMat4::from(j.rest_transform().inverse());
-                m.as_mat4()
-                    .to_cols_array()
-                    .into_iter()
-                    .flat_map(f32::to_le_bytes)
-            }),
-            None,
-        );
-        let mut position_accessor = accessor(position_view, FLOAT, vertices, "VEC3");
-        position_accessor["min"] = json!(min.map(f64::from));
-        position_accessor["max"] = json!(max.map(f64::from));
-        accessors.extend([
-            accessor(index_view, UNSIGNED_INT, mesh.triangles.len() * 3, "SCALAR"),
-            position_accessor,
-            accessor(normal_view, FLOAT, vertices, "VEC3"),
-            accessor(joints_view, UNSIGNED_SHORT, vertices, "VEC4"),
-            accessor(weights_view, FLOAT, vertices, "VEC4"),
-            accessor(ibm_view, FLOAT, joint_count, "MAT4"),
-        ]);
+        push_skinned(&mut bin, mesh, skin, skeleton, &mut accessors);
         meshes.push(json!({
             "name": options.mesh_name,
             "primitives": [{
@@ -193,22 +128,7 @@ pub fn glb_bytes_with(
 
     // Attachment node indices per joint, in attachment order.
     let mut attached: Vec<Vec<usize>> = vec![Vec::new(); joint_count];
-    let mut nodes: Vec<Value> = skeleton
-        .joints
-        .iter()
-        .map(|joint| {
-            let local = match joint.parent {
-                Some(p) => skeleton.joint(p).rest_transform().inverse() * joint.rest_transform(),
-                None => joint.rest_transform(),
-            };
-            let (translation, rotation) = trs(
-                &local,
-                joint.frame,
-                joint.parent.map(|p| skeleton.joint(p).frame),
-            );
-            json!({"name": joint.name, "translation": translation, "rotation": rotation})
-        })
-        .collect();
+    let mut nodes = joint_nodes(skeleton);
     let mut scene_nodes = Vec::new();
     let mesh_node = skinned.map(|_| {
         nodes.push(json!({"name": options.mesh_name, "mesh": 0, "skin": 0}));
@@ -229,44 +149,11 @@ pub fn glb_bytes_with(
     scene_nodes.push(skeleton_root);
     scene_nodes.extend(mesh_node);
     for a in attachments {
-        let vertices = a.mesh.positions.len();
-        let (index_view, position_view, normal_view, min, max) = push_geometry(&mut bin, &a.mesh);
-        let first = accessors.len();
-        let mut position_accessor = accessor(position_view, FLOAT, vertices, "VEC3");
-        position_accessor["min"] = json!(min.map(f64::from));
-        position_accessor["max"] = json!(max.map(f64::from));
-        accessors.extend([
-            accessor(
-                index_view,
-                UNSIGNED_INT,
-                a.mesh.triangles.len() * 3,
-                "SCALAR",
-            ),
-            position_accessor,
-            accessor(normal_view, FLOAT, vertices, "VEC3"),
-        ]);
-        meshes.push(json!({
-            "name": a.name,
-            "primitives": [{
-                "attributes": {"POSITION": first + 1, "NORMAL": first + 2},
-                "indices": first,
-                "mode": 4,
-            }],
-        }));
+        push_attachment(&mut bin, a, &mut accessors, &mut meshes);
         nodes.push(json!({"name": a.name, "mesh": meshes.len() - 1}));
         attached[a.joint.0].push(nodes.len() - 1);
     }
-    for (k, extra) in attached.iter().enumerate() {
-        let mut children: Vec<usize> = skeleton
-            .children(crate::skeleton::JointId(k))
-            .iter()
-            .map(|c| c.0)
-            .collect();
-        children.extend(extra);
-        if !children.is_empty() {
-            nodes[k]["children"] = json!(children);
-        }
-    }
+    link_children(&mut nodes, skeleton, &attached);
 
     let bin_len = bin.bytes.len();
     if u32::try_from(bin_len).is_err() {
@@ -309,6 +196,163 @@ pub fn glb_bytes_with(
         detail: e.to_string(),
     })?;
     pack_glb(json_bytes, bin.bytes)
+}
+
+/// The checks of [`glb_bytes_with`] beyond the skeleton's: joint count, skinned mesh,
+/// attachments.
+fn check_inputs(
+    skinned: Option<(&Mesh, &Skin)>,
+    joint_count: usize,
+    attachments: &[Attachment],
+) -> Result<(), ExportError> {
+    if joint_count > usize::from(u16::MAX) {
+        return Err(ExportError::TooLarge {
+            what: "the skeleton",
+            format: "glTF",
+            detail: format!("{joint_count} joints, JOINTS_0 holds at most 65535"),
+        });
+    }
+    if let Some((mesh, skin)) = skinned {
+        check_skinned(mesh, skin, joint_count)?;
+    }
+    for a in attachments {
+        if a.joint.0 >= joint_count {
+            return Err(ExportError::SizeMismatch {
+                what: "an attachment's joint index",
+                expected: joint_count,
+                found: a.joint.0 + 1,
+            });
+        }
+        if a.mesh.triangles.is_empty() || a.mesh.positions.is_empty() {
+            return Err(ExportError::EmptyMesh);
+        }
+        if let Some(index) = a.mesh.positions.iter().position(|p| !p.is_finite()) {
+            return Err(ExportError::NonFinite {
+                what: "attachment vertex",
+                index,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The skinned mesh's buffers (indices, positions, normals, joints, weights, inverse bind
+/// matrices) into `bin` and their accessors (0 to 5) into `accessors`.
+fn push_skinned(
+    bin: &mut Binary,
+    mesh: &Mesh,
+    skin: &Skin,
+    skeleton: &Skeleton,
+    accessors: &mut Vec<Value>,
+) {
+    let vertices = mesh.positions.len();
+    let (index_view, position_view, normal_view, min, max) = push_geometry(bin, mesh);
+    let joints_view = bin.push(
+        skin.engine
+            .joints
+            .iter()
+            .flatten()
+            .flat_map(|j| j.to_le_bytes()),
+        Some(ARRAY_BUFFER),
+    );
+    let weights_view = bin.push(
+        skin.engine
+            .weights
+            .iter()
+            .flatten()
+            .flat_map(|w| w.to_le_bytes()),
+        Some(ARRAY_BUFFER),
+    );
+    let ibm_view = bin.push(
+        skeleton.joints.iter().flat_map(|j| {
+            let m = DMat4::from(j.rest_transform().inverse());
+            m.as_mat4()
+                .to_cols_array()
+                .into_iter()
+                .flat_map(f32::to_le_bytes)
+        }),
+        None,
+    );
+    let mut position_accessor = accessor(position_view, FLOAT, vertices, "VEC3");
+    position_accessor["min"] = json!(min.map(f64::from));
+    position_accessor["max"] = json!(max.map(f64::from));
+    accessors.extend([
+        accessor(index_view, UNSIGNED_INT, mesh.triangles.len() * 3, "SCALAR"),
+        position_accessor,
+        accessor(normal_view, FLOAT, vertices, "VEC3"),
+        accessor(joints_view, UNSIGNED_SHORT, vertices, "VEC4"),
+        accessor(weights_view, FLOAT, vertices, "VEC4"),
+        accessor(ibm_view, FLOAT, skeleton.len(), "MAT4"),
+    ]);
+}
+
+/// A node per joint: its name and its rest transform relative to its parent's.
+fn joint_nodes(skeleton: &Skeleton) -> Vec<Value> {
+    skeleton
+        .joints
+        .iter()
+        .map(|joint| {
+            let local = match joint.parent {
+                Some(p) => skeleton.joint(p).rest_transform().inverse() * joint.rest_transform(),
+                None => joint.rest_transform(),
+            };
+            let (translation, rotation) = trs(
+                &local,
+                joint.frame,
+                joint.parent.map(|p| skeleton.joint(p).frame),
+            );
+            json!({"name": joint.name, "translation": translation, "rotation": rotation})
+        })
+        .collect()
+}
+
+/// An attachment's buffers into `bin`, its accessors (indices, positions, normals) into
+/// `accessors` and its mesh into `meshes`.
+fn push_attachment(
+    bin: &mut Binary,
+    a: &Attachment,
+    accessors: &mut Vec<Value>,
+    meshes: &mut Vec<Value>,
+) {
+    let vertices = a.mesh.positions.len();
+    let (index_view, position_view, normal_view, min, max) = push_geometry(bin, &a.mesh);
+    let first = accessors.len();
+    let mut position_accessor = accessor(position_view, FLOAT, vertices, "VEC3");
+    position_accessor["min"] = json!(min.map(f64::from));
+    position_accessor["max"] = json!(max.map(f64::from));
+    accessors.extend([
+        accessor(
+            index_view,
+            UNSIGNED_INT,
+            a.mesh.triangles.len() * 3,
+            "SCALAR",
+        ),
+        position_accessor,
+        accessor(normal_view, FLOAT, vertices, "VEC3"),
+    ]);
+    meshes.push(json!({
+        "name": a.name,
+        "primitives": [{
+            "attributes": {"POSITION": first + 1, "NORMAL": first + 2},
+            "indices": first,
+            "mode": 4,
+        }],
+    }));
+}
+
+/// Each joint node's `children`: its child joints, then its attachment nodes (`attached`).
+fn link_children(nodes: &mut [Value], skeleton: &Skeleton, attached: &[Vec<usize>]) {
+    for (k, extra) in attached.iter().enumerate() {
+        let mut children: Vec<usize> = skeleton
+            .children(crate::skeleton::JointId(k))
+            .iter()
+            .map(|c| c.0)
+            .collect();
+        children.extend(extra);
+        if !children.is_empty() {
+            nodes[k]["children"] = json!(children);
+        }
+    }
 }
 
 /// Whether the document has no accessors (an armature without meshes).

@@ -64,34 +64,38 @@ pub(crate) fn perpendicular(v: DVec3, t: DVec3) -> DVec3 {
     }
 }
 
+/// Vertebral segment length: `ratio` times the head's length `head` along a path `length`
+/// long, or a twelfth of the path when that is (nearly) zero.
+fn vertebra_length(ratio: f64, head: f64, length: f64) -> f64 {
+    let seg = ratio * head;
+    if seg <= 1e-12 * length.max(1.0) {
+        length / 12.0
+    } else {
+        seg
+    }
+}
+
+/// The axial path moved dorsally at `samples_t` (arc lengths on `original`): the trunk by
+/// `dorsal_offset` of the sphere radius, fading out over `offset_blend` segments (`seg` long)
+/// beyond it, and an S-shaped neck on animal-like figures.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn axial(
+fn dorsal_path(
     original: &Polyline,
     radii: &[f64],
+    samples_t: &[f64],
     bounds: Bounds,
-    root_t: f64,
     pectoral_t: Option<f64>,
+    seg: f64,
     template: &Template,
     options: &FitOptions,
     frame: &BodyFrame,
     probe: Option<&dyn DorsalProbe>,
-    warnings: &mut Vec<FitWarning>,
-) -> AxialFit {
-    let length = original.length();
-    let n = options.axial_samples;
-    let step = length / (n - 1) as f64;
+) -> Vec<DVec3> {
     let rules = &template.axial;
-    // Vertebral segment length from the head on the original path (8.1: about a third).
-    let head_len = bounds.head.max(0.0);
-    let mut seg = rules.vertebra_to_head * head_len;
-    if seg <= 1e-12 * length.max(1.0) {
-        seg = length / 12.0;
-    }
-    let samples_t: Vec<f64> = (0..n).map(|k| length * k as f64 / (n - 1) as f64).collect();
     let blend = options.offset_blend * seg;
     let neck_len = (bounds.neck - bounds.head).max(0.0);
     let window = options.cervical_window * neck_len;
-    let adjusted: Vec<DVec3> = samples_t
+    samples_t
         .iter()
         .map(|&t| {
             let o = original.at(t);
@@ -126,7 +130,33 @@ pub(crate) fn axial(
             }
             o + dorsal * offset
         })
-        .collect();
+        .collect()
+}
+
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn axial(
+    original: &Polyline,
+    radii: &[f64],
+    bounds: Bounds,
+    root_t: f64,
+    pectoral_t: Option<f64>,
+    template: &Template,
+    options: &FitOptions,
+    frame: &BodyFrame,
+    probe: Option<&dyn DorsalProbe>,
+    warnings: &mut Vec<FitWarning>,
+) -> AxialFit {
+    let length = original.length();
+    let n = options.axial_samples;
+    let step = length / (n - 1) as f64;
+    let rules = &template.axial;
+    // Vertebral segment length from the head on the original path (8.1: about a third).
+    let head_len = bounds.head.max(0.0);
+    let seg = vertebra_length(rules.vertebra_to_head, head_len, length);
+    let samples_t: Vec<f64> = (0..n).map(|k| length * k as f64 / (n - 1) as f64).collect();
+    let adjusted = dorsal_path(
+        original, radii, &samples_t, bounds, pectoral_t, seg, template, options, frame, probe,
+    );
     let half = if step > 0.0 {
         (options.axial_smoothing * seg / step).round() as usize
     } else {
@@ -146,10 +176,7 @@ pub(crate) fn axial(
     let nk = arc(bounds.neck);
     let te = arc(bounds.trunk);
     let end = spine.length();
-    let mut seg_s = rules.vertebra_to_head * h;
-    if seg_s <= 1e-12 * end.max(1.0) {
-        seg_s = end / 12.0;
-    }
+    let seg_s = vertebra_length(rules.vertebra_to_head, h, end);
     let count = |len: f64| (len / seg_s).round().max(0.0) as usize;
 
     // Neck: n equal segments between the head joint and the neck base.

@@ -16,7 +16,7 @@
 //! A head without such a pair (humans, most birds, a fox with ears laid back) gets none.
 
 use super::{AxialPath, EarInput, Side};
-use crate::anatomy::{Label, Labelling};
+use crate::anatomy::{Frame, Label, Labelling};
 use crate::distance::DistanceMap;
 use crate::options::{Checks, OptionProblems};
 use crate::voxel::NEIGHBOURS_26;
@@ -154,11 +154,85 @@ pub fn ears(
     }
     let h = grid.voxel_size;
 
-    // The window: the head's medial voxels' box, grown by `reach` head radii.
+    let window = head_window(labelling, &head.voxels, distance, options.reach);
+    let n = window.len();
+    let index = |i: usize| grid.index(window.coords(i));
+    let inside: Vec<bool> = (0..n).map(|i| distance.squared[index(i)] > 0).collect();
+    let centre = |i: usize| grid.centre(window.coords(i));
+
+    let covered = cover(distance, &window, &inside, axial);
+
+    let Some((g, parent)) = geodesic(&window, &inside, &covered) else {
+        return Vec::new();
+    };
+
+    let tips = persistent_maxima(&window, &g);
+
+    // Candidates: long, prominent tips rising from the head's part of the path.
+    let head_end = nearest_point(&axial.points, head.attachment);
+    let frame = &labelling.frame;
+    let mut candidates = Vec::new();
+    for (tip, persistence) in tips {
+        let mut chain = vec![tip];
+        while let Some(&last) = chain.last() {
+            match parent[last] {
+                usize::MAX => break,
+                p => chain.push(p),
+            }
+        }
+        let (t, b) = (centre(tip), centre(*chain.last().unwrap_or(&tip)));
+        let k = nearest_point(&axial.points, b);
+        let skull = axial.radii[k] / h;
+        let rises = (t - b)
+            .try_normalize()
+            .is_some_and(|d| d.dot(frame.up) >= options.min_rise);
+        if k <= head_end
+            && skull > 0.0
+            && g[tip] >= options.min_length * skull
+            && persistence >= options.min_prominence * skull
+            && rises
+        {
+            candidates.push(Candidate {
+                chain,
+                tip: t,
+                base: b,
+                length: g[tip] * h,
+            });
+        }
+    }
+
+    let best = mirrored_pair(&candidates, &axial.points[..=head_end], frame, options);
+    let Some((_, _, a, b)) = best else {
+        return Vec::new();
+    };
+    [(a, Side::Left), (b, Side::Right)]
+        .into_iter()
+        .map(|(c, side)| {
+            let mut path: Vec<DVec3> = candidates[c]
+                .chain
+                .iter()
+                .rev()
+                .map(|&i| centre(i))
+                .collect();
+            smooth(&mut path, options.smoothing);
+            EarInput { side, path }
+        })
+        .collect()
+}
+
+/// The window: the box of the head's medial voxels (`head_voxels`, indices into the
+/// labelling's DMS voxels), grown by `reach` head radii and clipped to the grid.
+fn head_window(
+    labelling: &Labelling,
+    head_voxels: &[usize],
+    distance: &DistanceMap,
+    reach: f64,
+) -> Window {
+    let grid = &distance.grid;
     let mut lo = [usize::MAX; 3];
     let mut hi = [0usize; 3];
     let mut radius: f64 = 0.0;
-    for &p in &head.voxels {
+    for &p in head_voxels {
         let index = labelling.dms_voxels[p];
         let c = grid.coords(index);
         for a in 0..3 {
@@ -167,21 +241,25 @@ pub fn ears(
         }
         radius = radius.max(distance.distance(index));
     }
-    let grow = (options.reach * radius).ceil() as usize;
+    let grow = (reach * radius).ceil() as usize;
     for a in 0..3 {
         lo[a] = lo[a].saturating_sub(grow);
         hi[a] = (hi[a] + grow).min(grid.dims[a] - 1);
     }
-    let window = Window {
+    Window {
         lo,
         dims: [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1],
-    };
-    let n = window.len();
-    let index = |i: usize| grid.index(window.coords(i));
-    let inside: Vec<bool> = (0..n).map(|i| distance.squared[index(i)] > 0).collect();
-    let centre = |i: usize| grid.centre(window.coords(i));
+    }
+}
 
-    // The cover: interior voxels inside the path's inscribed balls.
+/// The cover: the window's interior voxels inside the axial path's inscribed balls.
+fn cover(distance: &DistanceMap, window: &Window, inside: &[bool], axial: &AxialPath) -> Vec<bool> {
+    let grid = &distance.grid;
+    let h = grid.voxel_size;
+    let n = window.len();
+    let lo = window.lo;
+    let hi: [usize; 3] = std::array::from_fn(|a| window.lo[a] + window.dims[a] - 1);
+    let centre = |i: usize| grid.centre(window.coords(i));
     let mut covered = vec![false; n];
     for (c, &r) in axial.points.iter().zip(&axial.radii) {
         if r <= 0.0 {
@@ -206,8 +284,13 @@ pub fn ears(
             }
         }
     }
+    covered
+}
 
-    // Geodesic distance (voxel units) from the cover through the interior.
+/// Geodesic distance (voxel units) from the cover through the window's interior, and each
+/// voxel's parent towards the cover (`usize::MAX` for none); `None` without a cover.
+fn geodesic(window: &Window, inside: &[bool], covered: &[bool]) -> Option<(Vec<f64>, Vec<usize>)> {
+    let n = window.len();
     let mut g = vec![f64::INFINITY; n];
     let mut parent = vec![usize::MAX; n];
     let mut heap = BinaryHeap::new();
@@ -216,7 +299,7 @@ pub fn ears(
         heap.push(Reverse((0u64, i)));
     }
     if heap.is_empty() {
-        return Vec::new();
+        return None;
     }
     while let Some(Reverse((bits, i))) = heap.pop() {
         let gi = f64::from_bits(bits);
@@ -232,9 +315,14 @@ pub fn ears(
             }
         }
     }
+    Some((g, parent))
+}
 
-    // Maxima and their persistence: voxels from the highest down, joined by union-find; when
-    // two regions meet, the one with the lower peak ends there.
+/// Maxima of `g` and their persistence (voxel units): voxels from the highest down, joined by
+/// union-find; when two regions meet, the one with the lower peak ends there. `(peak voxel,
+/// persistence)` pairs.
+fn persistent_maxima(window: &Window, g: &[f64]) -> Vec<(usize, f64)> {
+    let n = window.len();
     let mut order: Vec<usize> = (0..n).filter(|&i| g[i].is_finite() && g[i] > 0.0).collect();
     order.sort_by(|&a, &b| g[b].total_cmp(&g[a]).then(a.cmp(&b)));
     let mut set = vec![usize::MAX; n];
@@ -276,47 +364,19 @@ pub fn ears(
             tips.push((peak[v], g[peak[v]]));
         }
     }
+    tips
+}
 
-    // Candidates: long, prominent tips rising from the head's part of the path.
-    let head_end = nearest_point(&axial.points, head.attachment);
-    let frame = &labelling.frame;
-    let mut candidates = Vec::new();
-    for (tip, persistence) in tips {
-        let mut chain = vec![tip];
-        while let Some(&last) = chain.last() {
-            match parent[last] {
-                usize::MAX => break,
-                p => chain.push(p),
-            }
-        }
-        let (t, b) = (centre(tip), centre(*chain.last().unwrap_or(&tip)));
-        let k = nearest_point(&axial.points, b);
-        let skull = axial.radii[k] / h;
-        let rises = (t - b)
-            .try_normalize()
-            .is_some_and(|d| d.dot(frame.up) >= options.min_rise);
-        if k <= head_end
-            && skull > 0.0
-            && g[tip] >= options.min_length * skull
-            && persistence >= options.min_prominence * skull
-            && rises
-        {
-            candidates.push(Candidate {
-                chain,
-                tip: t,
-                base: b,
-                length: g[tip] * h,
-            });
-        }
-    }
-
-    // The most prominent mirrored pair.
-    let count = head_end + 1;
-    let median = axial.points[..count]
-        .iter()
-        .map(|p| p.dot(frame.left))
-        .sum::<f64>()
-        / count as f64;
+/// The most prominent mirrored pair of `candidates` about the median plane of the head's part
+/// of the path (`points`): `(shorter length, -mismatch, left, right)`.
+fn mirrored_pair(
+    candidates: &[Candidate],
+    points: &[DVec3],
+    frame: &Frame,
+    options: &EarOptions,
+) -> Option<(f64, f64, usize, usize)> {
+    let count = points.len();
+    let median = points.iter().map(|p| p.dot(frame.left)).sum::<f64>() / count as f64;
     let lateral = |p: DVec3| p.dot(frame.left) - median;
     let mirror = |p: DVec3| p - frame.left * (2.0 * lateral(p));
     let mut best: Option<(f64, f64, usize, usize)> = None;
@@ -336,22 +396,7 @@ pub fn ears(
             }
         }
     }
-    let Some((_, _, a, b)) = best else {
-        return Vec::new();
-    };
-    [(a, Side::Left), (b, Side::Right)]
-        .into_iter()
-        .map(|(c, side)| {
-            let mut path: Vec<DVec3> = candidates[c]
-                .chain
-                .iter()
-                .rev()
-                .map(|&i| centre(i))
-                .collect();
-            smooth(&mut path, options.smoothing);
-            EarInput { side, path }
-        })
-        .collect()
+    best
 }
 
 /// Index of the point of `points` nearest `p` (the first on ties).

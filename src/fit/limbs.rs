@@ -68,64 +68,16 @@ pub(crate) fn limb(
         .get(&group.ratios)
         .cloned()
         .unwrap_or_default();
-    let rows = ratios.len();
     let mut chain: Vec<Option<DVec3>> = vec![None; group.chain.len()];
     let mut chain_s: Vec<Option<f64>> = vec![None; group.chain.len()];
-    let from_label = input
-        .root
-        .filter(|_| options.root_from_labels)
-        .map(|r| path.project(r));
-    let s0 = from_label
-        .or_else(|| path.sphere_exit(sphere.centre, sphere.radius))
-        .unwrap_or_else(|| {
-            warnings.push(FitWarning::InsideGirdle {
-                group: group.name.clone(),
-                side,
-            });
-            0.0
-        });
-    let folded = match (
-        group.placement,
-        group.girdle,
-        group.wing,
-        options.limb_fold,
-        probe,
-    ) {
-        (Placement::Animal, Girdle::Pelvic, false, Some(k), Some(probe)) => {
-            let towards = perpendicular(sphere.anterior, frame.up);
-            fold(&path, &input.radii, s0, towards, k, probe)
-        }
-        // The elbow stays on the limb's axis: its surface point (the olecranon) is the
-        // fold's corner, but the forearm must run inside the leg.
-        (Placement::Animal, Girdle::Pectoral, false, Some(k), Some(probe)) => {
-            let towards = perpendicular(-sphere.anterior, frame.up);
-            fold(&path, &input.radii, s0, towards, k, probe).map(|(s, _)| (s, path.at(s)))
-        }
-        _ => None,
-    };
+    let (from_label, s0) = limb_start(input, group, &path, sphere, options, warnings);
+    let folded = fold_point(&path, input, group, sphere, frame, options, probe, s0);
     let girdle = group
         .girdle_joint
         .as_ref()
         .map(|_| sphere.spine + lateral * options.girdle_lateral * sphere.radius);
-    // Rows segmented along the path outside the sphere (8.2): all rows for human-like
-    // placement, all but the humerus/femur for animal-like (that segment comes from the girdle).
-    let first_row = match group.placement {
-        Placement::Human => 0,
-        Placement::Animal => 1,
-    };
     let has_digits = !input.digits.is_empty();
-    let mut weights: Vec<f64> = match (has_digits, group.manus) {
-        (true, _) => ratios[first_row..group.digit_row.min(rows)].to_vec(),
-        (false, Manus::Digit) => ratios[first_row..].to_vec(),
-        (false, Manus::Segment) => {
-            let mut w = ratios[first_row..group.digit_row.min(rows)].to_vec();
-            w.push(ratios[group.digit_row.min(rows)..].iter().sum());
-            w
-        }
-    };
-    if weights.is_empty() {
-        weights.push(1.0);
-    }
+    let (first_row, weights) = row_weights(group, &ratios, has_digits);
     let cuts = boundaries(&weights);
     let span = (length - s0).max(0.0);
     for (k, c) in cuts.iter().enumerate() {
@@ -181,13 +133,7 @@ pub(crate) fn limb(
         }
     }
     if group.wing {
-        for (k, p) in chain.iter_mut().enumerate() {
-            if let (Some(p), Some(s)) = (p.as_mut(), chain_s[k]) {
-                let forward = perpendicular(sphere.anterior, path.tangent(s));
-                let r = path.value_at(&input.radii, s);
-                *p += forward * options.wing_shift * r;
-            }
-        }
+        wing_shift(&path, &input.radii, sphere, options, &mut chain, &chain_s);
     }
     let digits = digits(input, group, template, options, centre_distance, warnings);
     LimbFit {
@@ -195,6 +141,110 @@ pub(crate) fn limb(
         girdle,
         chain,
         digits,
+    }
+}
+
+/// Where the limb leaves the trunk, as arc length on its `path`: at the labelled root when
+/// the options take it from the labels (also returned on its own), else where the path
+/// leaves the girdle sphere, else (with a warning) at the path's start.
+fn limb_start(
+    input: &LimbInput,
+    group: &LimbGroup,
+    path: &Polyline,
+    sphere: &GirdleSphere,
+    options: &FitOptions,
+    warnings: &mut Vec<FitWarning>,
+) -> (Option<f64>, f64) {
+    let side = input.side;
+    let from_label = input
+        .root
+        .filter(|_| options.root_from_labels)
+        .map(|r| path.project(r));
+    let s0 = from_label
+        .or_else(|| path.sphere_exit(sphere.centre, sphere.radius))
+        .unwrap_or_else(|| {
+            warnings.push(FitWarning::InsideGirdle {
+                group: group.name.clone(),
+                side,
+            });
+            0.0
+        });
+    (from_label, s0)
+}
+
+/// The elbow or knee at the fold of an animal-like limb's path (`fold`), when the options
+/// ask for it and a probe measures the depths; `(arc length, position)`.
+#[allow(clippy::too_many_arguments)]
+fn fold_point(
+    path: &Polyline,
+    input: &LimbInput,
+    group: &LimbGroup,
+    sphere: &GirdleSphere,
+    frame: &BodyFrame,
+    options: &FitOptions,
+    probe: Option<&dyn DorsalProbe>,
+    s0: f64,
+) -> Option<(f64, DVec3)> {
+    match (
+        group.placement,
+        group.girdle,
+        group.wing,
+        options.limb_fold,
+        probe,
+    ) {
+        (Placement::Animal, Girdle::Pelvic, false, Some(k), Some(probe)) => {
+            let towards = perpendicular(sphere.anterior, frame.up);
+            fold(path, &input.radii, s0, towards, k, probe)
+        }
+        // The elbow stays on the limb's axis: its surface point (the olecranon) is the
+        // fold's corner, but the forearm must run inside the leg.
+        (Placement::Animal, Girdle::Pectoral, false, Some(k), Some(probe)) => {
+            let towards = perpendicular(-sphere.anterior, frame.up);
+            fold(path, &input.radii, s0, towards, k, probe).map(|(s, _)| (s, path.at(s)))
+        }
+        _ => None,
+    }
+}
+
+/// The first Table 8.1 row segmented along the path and the rows' length weights.
+fn row_weights(group: &LimbGroup, ratios: &[f64], has_digits: bool) -> (usize, Vec<f64>) {
+    let rows = ratios.len();
+    // Rows segmented along the path outside the sphere (8.2): all rows for human-like
+    // placement, all but the humerus/femur for animal-like (that segment comes from the girdle).
+    let first_row = match group.placement {
+        Placement::Human => 0,
+        Placement::Animal => 1,
+    };
+    let mut weights: Vec<f64> = match (has_digits, group.manus) {
+        (true, _) => ratios[first_row..group.digit_row.min(rows)].to_vec(),
+        (false, Manus::Digit) => ratios[first_row..].to_vec(),
+        (false, Manus::Segment) => {
+            let mut w = ratios[first_row..group.digit_row.min(rows)].to_vec();
+            w.push(ratios[group.digit_row.min(rows)..].iter().sum());
+            w
+        }
+    };
+    if weights.is_empty() {
+        weights.push(1.0);
+    }
+    (first_row, weights)
+}
+
+/// Wings: every placed joint moves forward by `wing_shift` of the path's radius there.
+fn wing_shift(
+    path: &Polyline,
+    radii: &[f64],
+    sphere: &GirdleSphere,
+    options: &FitOptions,
+    chain: &mut [Option<DVec3>],
+    chain_s: &[Option<f64>],
+) {
+    for (k, p) in chain.iter_mut().enumerate() {
+        if let (Some(p), Some(s)) = (p.as_mut(), chain_s[k]) {
+            let forward = perpendicular(sphere.anterior, path.tangent(s));
+            let r = path.value_at(radii, s);
+            *p += forward * options.wing_shift * r;
+        }
     }
 }
 

@@ -119,44 +119,7 @@ pub fn fit_with_probe(
     let pairs = pairs(input, template, options, &original, &mut warnings);
 
     // Sections (8.1).
-    let length = original.length();
-    let bounds = match input.axial.sections {
-        Some(s) => Bounds {
-            head: original.cum[s.head_end],
-            neck: original.cum[s.neck_end],
-            trunk: original.cum[s.trunk_end],
-        },
-        None => {
-            let front = pairs
-                .iter()
-                .filter(|p| template.limbs[p.group].girdle == Girdle::Pectoral)
-                .map(|p| p.t)
-                .reduce(f64::min)
-                .map(|t| {
-                    let r = original.value_at(radii, t);
-                    (t - options.neck_at_girdle_edge * r).max(0.0)
-                });
-            let hind = pairs.iter().map(|p| p.t).reduce(f64::max);
-            let (neck, trunk) = match (front, hind) {
-                (Some(f), Some(h)) if h > f => (f, h),
-                (Some(f), _) => (f, length),
-                (None, Some(h)) => {
-                    warnings.push(FitWarning::NoFrontPair);
-                    (options.fallback_trunk_start * h, h)
-                }
-                (None, None) => {
-                    warnings.push(FitWarning::NoLimbs);
-                    (options.fallback_trunk_start * length, length)
-                }
-            };
-            let head = match options.head_at_narrowing {
-                Some([lo, hi]) => narrowest(&original, radii, lo * neck, hi * neck)
-                    .unwrap_or(template.sections.head * neck),
-                None => template.sections.head * neck,
-            };
-            Bounds { head, neck, trunk }
-        }
-    };
+    let bounds = section_bounds(input, template, options, &original, &pairs, &mut warnings);
     let root_t = pairs
         .iter()
         .map(|p| p.t)
@@ -236,6 +199,58 @@ pub fn fit_with_probe(
         warnings,
         template: template.name.clone(),
     })
+}
+
+/// The head, neck and trunk ends along the axial path (8.1): the input's sections when given,
+/// else from the limb pairs (the neck ends at the front pair's girdle, the trunk at the hind
+/// pair's) and the head at the narrowing or the template's fraction of the neck.
+fn section_bounds(
+    input: &FitInput,
+    template: &Template,
+    options: &FitOptions,
+    original: &Polyline,
+    pairs: &[Pair<'_>],
+    warnings: &mut Vec<FitWarning>,
+) -> Bounds {
+    let radii = &input.axial.radii;
+    let length = original.length();
+    match input.axial.sections {
+        Some(s) => Bounds {
+            head: original.cum[s.head_end],
+            neck: original.cum[s.neck_end],
+            trunk: original.cum[s.trunk_end],
+        },
+        None => {
+            let front = pairs
+                .iter()
+                .filter(|p| template.limbs[p.group].girdle == Girdle::Pectoral)
+                .map(|p| p.t)
+                .reduce(f64::min)
+                .map(|t| {
+                    let r = original.value_at(radii, t);
+                    (t - options.neck_at_girdle_edge * r).max(0.0)
+                });
+            let hind = pairs.iter().map(|p| p.t).reduce(f64::max);
+            let (neck, trunk) = match (front, hind) {
+                (Some(f), Some(h)) if h > f => (f, h),
+                (Some(f), _) => (f, length),
+                (None, Some(h)) => {
+                    warnings.push(FitWarning::NoFrontPair);
+                    (options.fallback_trunk_start * h, h)
+                }
+                (None, None) => {
+                    warnings.push(FitWarning::NoLimbs);
+                    (options.fallback_trunk_start * length, length)
+                }
+            };
+            let head = match options.head_at_narrowing {
+                Some([lo, hi]) => narrowest(original, radii, lo * neck, hi * neck)
+                    .unwrap_or(template.sections.head * neck),
+                None => template.sections.head * neck,
+            };
+            Bounds { head, neck, trunk }
+        }
+    }
 }
 
 /// Arc length in `[lo, hi]` where the path's radius (moving average over a few points) is

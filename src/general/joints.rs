@@ -107,60 +107,7 @@ pub(crate) fn assemble(
             incident.entry(v).or_default().push(e);
         }
     }
-    let mut queue = VecDeque::new();
-    if options.root_at_lowest {
-        let lowest = incident
-            .iter()
-            .filter(|(_, edges)| edges.len() == 1)
-            .map(|(&v, edges)| {
-                let e = edges[0];
-                let [a, z] = b.ends(e);
-                let (here, there, forward) = if a.0 == v {
-                    (a, z, true)
-                } else {
-                    (z, a, false)
-                };
-                (here.1.dot(options.up), v, e, here.1, there, forward)
-            })
-            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-        if let Some((_, _, e, at, there, forward)) = lowest {
-            let root = b.add(Joint::new("root", None, at), None, Some(there.1 - at));
-            let edge = graph.edges[e];
-            let len = edge.end - edge.start;
-            let mut voxels = b.voxels(e, 0, len);
-            if !forward {
-                voxels.reverse();
-            }
-            queue.push_back(Pending {
-                vertex: there.0,
-                position: there.1,
-                edge: e,
-                from: at,
-                parent: root,
-                voxels,
-            });
-        }
-    } else {
-        let e = deep_edge(tree, graph);
-        let [u, v] = b.ends(e);
-        let middle = (u.1 + v.1) / 2.0;
-        let root = b.add(Joint::new("root", None, middle), None, Some(v.1 - middle));
-        let edge = graph.edges[e];
-        let mid = (edge.end - edge.start) / 2;
-        let mut towards_u = b.voxels(e, 0, mid);
-        towards_u.reverse();
-        let towards_v = b.voxels(e, mid, edge.end - edge.start);
-        for (end, voxels) in [(u, towards_u), (v, towards_v)] {
-            queue.push_back(Pending {
-                vertex: end.0,
-                position: end.1,
-                edge: e,
-                from: middle,
-                parent: root,
-                voxels,
-            });
-        }
-    }
+    let mut queue = root(&mut b, &incident, options);
     while let Some(p) = queue.pop_front() {
         let incoming = p.position - p.from;
         let distal: Vec<usize> = incident[&p.vertex]
@@ -217,6 +164,71 @@ pub(crate) fn assemble(
         });
     }
     b.out
+}
+
+/// Places the root joint (at the lowest end vertex or the middle of the deep edge, see
+/// [`assemble`]) and returns the edges to walk from it. `incident`: the edges at each vertex.
+fn root(
+    b: &mut Builder<'_>,
+    incident: &BTreeMap<usize, Vec<usize>>,
+    options: &GeneralOptions,
+) -> VecDeque<Pending> {
+    let (tree, graph) = (b.tree, b.graph);
+    let mut queue = VecDeque::new();
+    if options.root_at_lowest {
+        let lowest = incident
+            .iter()
+            .filter(|(_, edges)| edges.len() == 1)
+            .map(|(&v, edges)| {
+                let e = edges[0];
+                let [a, z] = b.ends(e);
+                let (here, there, forward) = if a.0 == v {
+                    (a, z, true)
+                } else {
+                    (z, a, false)
+                };
+                (here.1.dot(options.up), v, e, here.1, there, forward)
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        if let Some((_, _, e, at, there, forward)) = lowest {
+            let root = b.add(Joint::new("root", None, at), None, Some(there.1 - at));
+            let edge = graph.edges[e];
+            let len = edge.end - edge.start;
+            let mut voxels = b.voxels(e, 0, len);
+            if !forward {
+                voxels.reverse();
+            }
+            queue.push_back(Pending {
+                vertex: there.0,
+                position: there.1,
+                edge: e,
+                from: at,
+                parent: root,
+                voxels,
+            });
+        }
+    } else {
+        let e = deep_edge(tree, graph);
+        let [u, v] = b.ends(e);
+        let middle = (u.1 + v.1) / 2.0;
+        let root = b.add(Joint::new("root", None, middle), None, Some(v.1 - middle));
+        let edge = graph.edges[e];
+        let mid = (edge.end - edge.start) / 2;
+        let mut towards_u = b.voxels(e, 0, mid);
+        towards_u.reverse();
+        let towards_v = b.voxels(e, mid, edge.end - edge.start);
+        for (end, voxels) in [(u, towards_u), (v, towards_v)] {
+            queue.push_back(Pending {
+                vertex: end.0,
+                position: end.1,
+                edge: e,
+                from: middle,
+                parent: root,
+                voxels,
+            });
+        }
+    }
+    queue
 }
 
 /// The deep edge: the first edge whose chain section contains the path-tree voxel nearest the

@@ -20,17 +20,15 @@ pub(crate) fn flatten(d: &str, segments: usize) -> Result<Vec<DVec2>, OutlineErr
         location: format!("path command {}", index + 1),
         message,
     };
-    let segments = segments.max(1);
     let mut tokens = Tokens::new(d);
-    let mut points: Vec<DVec2> = Vec::new();
-    let mut current = DVec2::ZERO;
-    let mut start = DVec2::ZERO;
-    let mut last_control: Option<(char, DVec2)> = None;
+    let mut pen = Pen {
+        segments: segments.max(1),
+        ..Pen::default()
+    };
     let mut command: Option<char> = None;
     let mut index = 0usize;
-    let mut closed = false;
     while tokens.skip_separators() {
-        if closed {
+        if pen.closed {
             return Err(err(
                 index,
                 "a second subpath after 'Z': give one closed outline per file".into(),
@@ -49,63 +47,101 @@ pub(crate) fn flatten(d: &str, segments: usize) -> Result<Vec<DVec2>, OutlineErr
                 None => return Err(err(index, "path data must start with a moveto 'M'".into())),
             },
         };
-        if points.is_empty() && !c.eq_ignore_ascii_case(&'M') {
+        if pen.points.is_empty() && !c.eq_ignore_ascii_case(&'M') {
             return Err(err(index, "path data must start with a moveto 'M'".into()));
         }
         command = Some(c);
-        let relative = c.is_ascii_lowercase();
-        let base = if relative { current } else { DVec2::ZERO };
-        let mut read = |n: usize| -> Result<Vec<f64>, OutlineError> {
-            (0..n)
-                .map(|_| {
-                    tokens.skip_separators();
-                    tokens.number().map_err(|m| err(index, m))
-                })
-                .collect()
+        let count = match c.to_ascii_uppercase() {
+            'M' if !pen.points.is_empty() => {
+                return Err(err(
+                    index,
+                    "a second subpath: give one closed outline per file".into(),
+                ))
+            }
+            'M' | 'L' | 'T' => 2,
+            'H' | 'V' => 1,
+            'C' => 6,
+            'S' | 'Q' => 4,
+            'Z' => 0,
+            'A' => {
+                return Err(err(
+                    index,
+                    "elliptical arcs ('A') are not supported: convert arcs to curves".into(),
+                ))
+            }
+            other => return Err(err(index, format!("unknown path command '{other}'"))),
         };
+        let v = (0..count)
+            .map(|_| {
+                tokens.skip_separators();
+                tokens.number().map_err(|m| err(index, m))
+            })
+            .collect::<Result<Vec<f64>, OutlineError>>()?;
+        pen.draw(c, &v);
+        if c.eq_ignore_ascii_case(&'Z') {
+            command = None;
+        }
+    }
+    if pen.points.is_empty() {
+        return Err(err(0, "the path is empty".into()));
+    }
+    Ok(pen.points)
+}
+
+/// The state of [`flatten`] between path commands.
+#[derive(Default)]
+struct Pen {
+    /// Lines per curve.
+    segments: usize,
+    /// The points so far.
+    points: Vec<DVec2>,
+    /// The current point.
+    current: DVec2,
+    /// The subpath's start.
+    start: DVec2,
+    /// The last curve's kind (`C` or `Q`) and second control point, for `S` and `T`.
+    last_control: Option<(char, DVec2)>,
+    /// Whether `Z` closed the subpath.
+    closed: bool,
+}
+
+impl Pen {
+    /// Applies command `c` (any case; not `A`) with its numbers `v`.
+    fn draw(&mut self, c: char, v: &[f64]) {
+        let relative = c.is_ascii_lowercase();
+        let base = if relative { self.current } else { DVec2::ZERO };
+        let current = self.current;
         match c.to_ascii_uppercase() {
             'M' => {
-                if !points.is_empty() {
-                    return Err(err(
-                        index,
-                        "a second subpath: give one closed outline per file".into(),
-                    ));
-                }
-                let v = read(2)?;
-                current = base + DVec2::new(v[0], v[1]);
-                start = current;
-                points.push(current);
-                last_control = None;
+                self.current = base + DVec2::new(v[0], v[1]);
+                self.start = self.current;
+                self.points.push(self.current);
+                self.last_control = None;
             }
             'L' => {
-                let v = read(2)?;
-                current = base + DVec2::new(v[0], v[1]);
-                points.push(current);
-                last_control = None;
+                self.current = base + DVec2::new(v[0], v[1]);
+                self.points.push(self.current);
+                self.last_control = None;
             }
             'H' => {
-                let v = read(1)?;
-                current.x = if relative { current.x + v[0] } else { v[0] };
-                points.push(current);
-                last_control = None;
+                self.current.x = if relative { current.x + v[0] } else { v[0] };
+                self.points.push(self.current);
+                self.last_control = None;
             }
             'V' => {
-                let v = read(1)?;
-                current.y = if relative { current.y + v[0] } else { v[0] };
-                points.push(current);
-                last_control = None;
+                self.current.y = if relative { current.y + v[0] } else { v[0] };
+                self.points.push(self.current);
+                self.last_control = None;
             }
             'C' | 'S' => {
                 let (c1, c2, end) = if c.eq_ignore_ascii_case(&'C') {
-                    let v = read(6)?;
                     (
                         base + DVec2::new(v[0], v[1]),
                         base + DVec2::new(v[2], v[3]),
                         base + DVec2::new(v[4], v[5]),
                     )
                 } else {
-                    let v = read(4)?;
-                    let c1 = match last_control {
+                    let c1 = match self.last_control {
                         Some(('C', p)) => 2.0 * current - p,
                         _ => current,
                     };
@@ -116,61 +152,49 @@ pub(crate) fn flatten(d: &str, segments: usize) -> Result<Vec<DVec2>, OutlineErr
                     )
                 };
                 let p0 = current;
-                for k in 1..=segments {
-                    let t = k as f64 / segments as f64;
+                for k in 1..=self.segments {
+                    let t = k as f64 / self.segments as f64;
                     let u = 1.0 - t;
-                    points.push(
+                    self.points.push(
                         u * u * u * p0
                             + 3.0 * u * u * t * c1
                             + 3.0 * u * t * t * c2
                             + t * t * t * end,
                     );
                 }
-                current = end;
-                last_control = Some(('C', c2));
+                self.current = end;
+                self.last_control = Some(('C', c2));
             }
             'Q' | 'T' => {
                 let (c1, end) = if c.eq_ignore_ascii_case(&'Q') {
-                    let v = read(4)?;
                     (base + DVec2::new(v[0], v[1]), base + DVec2::new(v[2], v[3]))
                 } else {
-                    let v = read(2)?;
-                    let c1 = match last_control {
+                    let c1 = match self.last_control {
                         Some(('Q', p)) => 2.0 * current - p,
                         _ => current,
                     };
                     (c1, base + DVec2::new(v[0], v[1]))
                 };
                 let p0 = current;
-                for k in 1..=segments {
-                    let t = k as f64 / segments as f64;
+                for k in 1..=self.segments {
+                    let t = k as f64 / self.segments as f64;
                     let u = 1.0 - t;
-                    points.push(u * u * p0 + 2.0 * u * t * c1 + t * t * end);
+                    self.points
+                        .push(u * u * p0 + 2.0 * u * t * c1 + t * t * end);
                 }
-                current = end;
-                last_control = Some(('Q', c1));
+                self.current = end;
+                self.last_control = Some(('Q', c1));
             }
-            'Z' => {
-                if points.last() != Some(&start) {
-                    points.push(start);
+            _ => {
+                // 'Z'
+                if self.points.last() != Some(&self.start) {
+                    self.points.push(self.start);
                 }
-                current = start;
-                closed = true;
-                command = None;
+                self.current = self.start;
+                self.closed = true;
             }
-            'A' => {
-                return Err(err(
-                    index,
-                    "elliptical arcs ('A') are not supported: convert arcs to curves".into(),
-                ))
-            }
-            other => return Err(err(index, format!("unknown path command '{other}'"))),
         }
     }
-    if points.is_empty() {
-        return Err(err(0, "the path is empty".into()));
-    }
-    Ok(points)
 }
 
 struct Tokens<'a> {

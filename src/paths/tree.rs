@@ -55,6 +55,80 @@ impl PathTree {
     }
 }
 
+/// The path tree while it grows: its voxels and parents, the coverage of the DMS by their
+/// spheres, and the searches from the covered region and from the tree.
+struct Growth<'a> {
+    surface: &'a MedialSurface,
+    graph: &'a DmsGraph,
+    /// Per DMS position, its node in the tree ([`NOT_IN_TREE`] if none).
+    node_of: Vec<u32>,
+    /// DMS position of each tree node, in order of addition.
+    positions: Vec<usize>,
+    /// Parent node of each tree node.
+    parents: Vec<Option<usize>>,
+    coverage: Coverage,
+    /// Path length from the covered region.
+    to_covered: Search,
+    /// Minimum path weight (`sum 1/d^3`) to the tree.
+    to_tree: Search,
+    /// Scratch: the voxels the last step covered.
+    newly: Vec<usize>,
+}
+
+impl<'a> Growth<'a> {
+    fn new(surface: &'a MedialSurface, graph: &'a DmsGraph) -> Self {
+        let n = graph.len();
+        Self {
+            surface,
+            graph,
+            node_of: vec![NOT_IN_TREE; n],
+            positions: Vec::new(),
+            parents: Vec::new(),
+            coverage: Coverage::new(surface),
+            to_covered: Search::new(n),
+            to_tree: Search::new(n),
+            newly: Vec::new(),
+        }
+    }
+
+    /// Appends `path` (DMS positions, from the tree outward) below node `attach`, covers
+    /// its spheres and extends both searches; returns the covered voxel count.
+    fn grow(&mut self, path: &[usize], attach: Option<usize>) -> usize {
+        let surface = self.surface;
+        let weight = |q: usize, _step: f64| (surface.squared[q] as f64).powi(3).recip();
+        let mut parent = attach;
+        self.newly.clear();
+        for &p in path {
+            self.node_of[p] = self.positions.len() as u32;
+            self.parents.push(parent);
+            parent = Some(self.positions.len());
+            self.positions.push(p);
+            self.coverage.cover(surface, p, &mut self.newly);
+        }
+        self.to_tree
+            .add_sources(self.graph, path.iter().copied(), weight);
+        self.to_covered
+            .add_sources(self.graph, self.newly.iter().copied(), |_, step| step);
+        self.coverage.count()
+    }
+}
+
+/// Step 2: the uncovered extreme point of an unreached group farthest (`cost`: path length)
+/// from the covered region; `None` when every group is reached or out of reach.
+fn farthest_unreached(extremes: &[ExtremePoint], reached: &[bool], cost: &[f64]) -> Option<usize> {
+    let mut best: Option<usize> = None;
+    for (i, e) in extremes.iter().enumerate() {
+        let d = cost[e.position];
+        if reached[e.group] || !d.is_finite() || d == 0.0 {
+            continue;
+        }
+        if best.is_none_or(|b| d > cost[extremes[b].position]) {
+            best = Some(i);
+        }
+    }
+    best
+}
+
 /// Grows the path tree of `surface` (ch.5.2.4).
 ///
 /// Phases: the heart and heart radius ([`heart`]); the extreme points and their groups
@@ -103,82 +177,30 @@ pub fn path_tree(surface: &MedialSurface, options: &PathOptions) -> Result<PathT
         branch_ends.push(i);
     }
 
-    let n = graph.len();
-    let mut node_of = vec![NOT_IN_TREE; n];
-    let mut positions = Vec::new();
-    let mut parents: Vec<Option<usize>> = Vec::new();
-    let mut coverage = Coverage::new(surface);
-    let mut to_covered = Search::new(n);
-    let mut to_tree = Search::new(n);
-    let weight = |q: usize, _step: f64| (surface.squared[q] as f64).powi(3).recip();
-    let mut newly = Vec::new();
-    let mut grow = |path: &[usize],
-                    attach: Option<usize>,
-                    node_of: &mut Vec<u32>,
-                    positions: &mut Vec<usize>,
-                    parents: &mut Vec<Option<usize>>,
-                    to_covered: &mut Search,
-                    to_tree: &mut Search| {
-        let mut parent = attach;
-        newly.clear();
-        for &p in path {
-            node_of[p] = positions.len() as u32;
-            parents.push(parent);
-            parent = Some(positions.len());
-            positions.push(p);
-            coverage.cover(surface, p, &mut newly);
-        }
-        to_tree.add_sources(&graph, path.iter().copied(), weight);
-        to_covered.add_sources(&graph, newly.iter().copied(), |_, step| step);
-        coverage.count()
-    };
-    let mut covered_voxels = grow(
-        &[root],
-        None,
-        &mut node_of,
-        &mut positions,
-        &mut parents,
-        &mut to_covered,
-        &mut to_tree,
-    );
+    let mut tree = Growth::new(surface, &graph);
+    let mut covered_voxels = tree.grow(&[root], None);
 
     let threshold = options.closeness * heart.radius;
-    loop {
-        // Step 2: the uncovered extreme point of an unreached group farthest from coverage.
-        let mut best: Option<usize> = None;
-        for (i, e) in extremes.iter().enumerate() {
-            let d = to_covered.cost[e.position];
-            if reached[e.group] || !d.is_finite() || d == 0.0 {
-                continue;
-            }
-            if best.is_none_or(|b| d > to_covered.cost[extremes[b].position]) {
-                best = Some(i);
-            }
-        }
-        let Some(best) = best else { break };
+    // Step 2: the uncovered extreme point of an unreached group farthest from coverage.
+    while let Some(best) = farthest_unreached(&extremes, &reached, &tree.to_covered.cost) {
         let target = extremes[best].position;
-        if to_covered.cost[target] < threshold {
+        if tree.to_covered.cost[target] < threshold {
             break;
         }
         // Steps 3 and 4: the minimum-weight path to the tree, appended from the tree outward.
-        let mut path = to_tree.path_to_source(target);
-        let Some(attach) = path.pop().map(|p| node_of[p] as usize) else {
+        let mut path = tree.to_tree.path_to_source(target);
+        let Some(attach) = path.pop().map(|p| tree.node_of[p] as usize) else {
             break;
         };
         path.reverse();
         reached[extremes[best].group] = true;
         branch_ends.push(best);
-        covered_voxels = grow(
-            &path,
-            Some(attach),
-            &mut node_of,
-            &mut positions,
-            &mut parents,
-            &mut to_covered,
-            &mut to_tree,
-        );
+        covered_voxels = tree.grow(&path, Some(attach));
     }
 
+    let Growth {
+        positions, parents, ..
+    } = tree;
     let chains = chains(surface, &positions, &parents, options.smoothing_radius);
     if chains.is_empty() {
         warnings.push(

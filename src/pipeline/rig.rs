@@ -481,12 +481,16 @@ mod tests {
         };
         let skeleton = crate::skeleton::Skeleton {
             joints: vec![crate::skeleton::Joint::new(
-                "pelvis",
+                crate::skeleton::Canonical::Pelvis.as_str(),
                 None,
                 glam::DVec3::ZERO,
             )],
         };
-        let canonical = [("pelvis".to_string(), crate::skeleton::JointId(0))].into();
+        let canonical = [(
+            crate::skeleton::Canonical::Pelvis.to_string(),
+            crate::skeleton::JointId(0),
+        )]
+        .into();
         let refined = refine(
             &mesh,
             &skeleton,

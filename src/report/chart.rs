@@ -243,44 +243,59 @@ pub fn line_chart(series: &[Series], options: &LineChartOptions) -> String {
         escape(&options.y_label)
     );
     for (i, s) in series.iter().enumerate() {
-        let mut drawn: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .copied()
-            .filter(|(x, y)| x.is_finite() && y.is_finite() && (!options.log_x || *x > 0.0))
-            .collect();
-        drawn.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let path: Vec<String> = drawn
-            .iter()
-            .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
-            .collect();
-        let _ = write!(
-            svg,
-            r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#,
-            path.join(" "),
-            c = s.colour
-        );
-        for p in &path {
-            let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
-            let _ = write!(
-                svg,
-                r#"<circle cx="{x}" cy="{y}" r="3" fill="{}"/>"#,
-                s.colour
-            );
-        }
-        let ly = top + plot_h + 52.0 + 16.0 * i as f64;
-        let _ = write!(
-            svg,
-            r#"<line x1="{l:.1}" y1="{a:.1}" x2="{m:.1}" y2="{a:.1}" stroke="{c}" stroke-width="2"/><text x="{t:.1}" y="{b:.1}">{}</text>"#,
-            escape(&s.name),
-            l = left,
-            m = left + 20.0,
-            a = ly - 4.0,
-            t = left + 26.0,
-            b = ly,
-            c = s.colour
-        );
+        let legend_y = top + plot_h + 52.0 + 16.0 * i as f64;
+        series_svg(&mut svg, s, options.log_x, (&sx, &sy), left, legend_y);
     }
     svg.push_str("</svg>");
     svg
+}
+
+/// Draws one series of [`line_chart`] into `svg`: its polyline, a dot per point and its legend
+/// entry at height `legend_y`. `scale` maps data x and y to picture coordinates.
+fn series_svg(
+    svg: &mut String,
+    s: &Series,
+    log_x: bool,
+    scale: (&dyn Fn(f64) -> f64, &dyn Fn(f64) -> f64),
+    left: f64,
+    legend_y: f64,
+) {
+    let (sx, sy) = scale;
+    let mut drawn: Vec<(f64, f64)> = s
+        .points
+        .iter()
+        .copied()
+        .filter(|(x, y)| x.is_finite() && y.is_finite() && (!log_x || *x > 0.0))
+        .collect();
+    drawn.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let path: Vec<String> = drawn
+        .iter()
+        .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
+        .collect();
+    let _ = write!(
+        svg,
+        r#"<polyline points="{}" fill="none" stroke="{c}" stroke-width="2"/>"#,
+        path.join(" "),
+        c = s.colour
+    );
+    for p in &path {
+        let (x, y) = p.split_once(',').unwrap_or(("0", "0"));
+        let _ = write!(
+            svg,
+            r#"<circle cx="{x}" cy="{y}" r="3" fill="{}"/>"#,
+            s.colour
+        );
+    }
+    let ly = legend_y;
+    let _ = write!(
+        svg,
+        r#"<line x1="{l:.1}" y1="{a:.1}" x2="{m:.1}" y2="{a:.1}" stroke="{c}" stroke-width="2"/><text x="{t:.1}" y="{b:.1}">{}</text>"#,
+        escape(&s.name),
+        l = left,
+        m = left + 20.0,
+        a = ly - 4.0,
+        t = left + 26.0,
+        b = ly,
+        c = s.colour
+    );
 }

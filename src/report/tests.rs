@@ -3,7 +3,7 @@
 use super::*;
 use crate::eval::{evaluate, EvalOptions, ReferenceRig};
 use crate::mesh::Mesh;
-use crate::skeleton::{Joint, JointId, Skeleton};
+use crate::skeleton::{Canonical, Joint, JointId, Skeleton};
 use glam::DVec3;
 
 fn rigs() -> (ReferenceRig, ReferenceRig) {
@@ -16,9 +16,9 @@ fn rigs() -> (ReferenceRig, ReferenceRig) {
     };
     let reference = Skeleton {
         joints: vec![
-            joint("pelvis", None, [0.0, 1.0, 0.0]),
-            joint("neck", Some(0), [0.0, 1.5, 0.0]),
-            joint("head", Some(1), [0.0, 1.7, 0.0]),
+            joint(Canonical::Pelvis.as_str(), None, [0.0, 1.0, 0.0]),
+            joint(Canonical::Neck.as_str(), Some(0), [0.0, 1.5, 0.0]),
+            joint(Canonical::Head.as_str(), Some(1), [0.0, 1.7, 0.0]),
             joint("shoulder_<L>", Some(1), [0.2, 1.45, 0.0]),
         ],
     };

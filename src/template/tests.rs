@@ -1,6 +1,6 @@
 use super::*;
 use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
-use crate::skeleton::{Joint, JointId, LocalAxis, Skeleton};
+use crate::skeleton::{Canonical, Joint, JointId, LocalAxis, Side, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
 
@@ -233,10 +233,10 @@ fn template_files_on_disk_load() {
 fn little() -> (Skeleton, BTreeMap<String, JointId>) {
     let mut s = Skeleton::default();
     for (k, n) in [
-        "pelvis",
+        Canonical::Pelvis.as_str(),
         "spine_01",
         "spine_02",
-        "shoulder_L",
+        Canonical::Shoulder(Side::Left).as_str(),
         "thumb_01_L",
         "index_02_L",
     ]
@@ -250,9 +250,9 @@ fn little() -> (Skeleton, BTreeMap<String, JointId>) {
         ));
     }
     let canonical = BTreeMap::from([
-        ("pelvis".to_string(), JointId(0)),
-        ("spine".to_string(), JointId(2)),
-        ("shoulder_L".to_string(), JointId(3)),
+        (Canonical::Pelvis.to_string(), JointId(0)),
+        (Canonical::Spine.to_string(), JointId(2)),
+        (Canonical::Shoulder(Side::Left).to_string(), JointId(3)),
     ]);
     (s, canonical)
 }
@@ -285,7 +285,7 @@ fn presets_rename_canonical_and_listed_joints() {
     assert!(s.validate().is_ok());
     let (mut s, c) = little();
     apply_preset(&mut s, &c, Preset::Anatomical).unwrap();
-    assert_eq!(s.joints[3].name, "shoulder_L");
+    assert_eq!(s.joints[3].name, Canonical::Shoulder(Side::Left).as_str());
     assert!(matches!(
         Preset::parse("blender"),
         Err(TemplateError::UnknownPreset { .. })

@@ -100,6 +100,63 @@ fn spread(
     }
 }
 
+/// Voxels of every component but the `main` one (by component), and the main one's boundary
+/// voxels; `label` is each voxel's component (`u32::MAX` outside).
+fn piece_voxels(
+    grid: &Grid,
+    inside: &[bool],
+    label: &[u32],
+    main: usize,
+    components: usize,
+) -> (Vec<Vec<usize>>, Vec<usize>) {
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); components];
+    let mut figure_boundary = Vec::new();
+    for (i, &c) in label.iter().enumerate() {
+        if c == u32::MAX {
+            continue;
+        }
+        if c as usize == main {
+            if face_neighbours(grid, i).any(|w| !inside[w]) {
+                figure_boundary.push(i);
+            }
+        } else {
+            members[c as usize].push(i);
+        }
+    }
+    (members, figure_boundary)
+}
+
+/// Drops the pieces not joined to the figure (`in_figure`) from `inside` and records them in
+/// `out`, largest first.
+fn drop_pieces(
+    grid: &Grid,
+    inside: &mut [bool],
+    members: &[Vec<usize>],
+    in_figure: &[bool],
+    out: &mut Joining,
+) {
+    for (c, voxels) in members.iter().enumerate() {
+        if in_figure[c] || voxels.is_empty() {
+            continue;
+        }
+        let mut centre = DVec3::ZERO;
+        for &i in voxels {
+            inside[i] = false;
+            centre += grid.centre(grid.coords(i));
+        }
+        out.dropped_voxels += voxels.len();
+        out.dropped.push(DroppedPiece {
+            voxels: voxels.len(),
+            centre: (centre / voxels.len() as f64).to_array(),
+        });
+    }
+    out.dropped.sort_by(|a, b| {
+        b.voxels
+            .cmp(&a.voxels)
+            .then(a.centre[0].total_cmp(&b.centre[0]))
+    });
+}
+
 /// Joins the interior components of `inside` lying within `max_gap` voxels of the figure (see
 /// the module docs) and drops the rest (`max_gap` 0: keeps the largest component only).
 pub(crate) fn join_pieces(grid: &Grid, inside: &mut [bool], max_gap: usize) -> Joining {
@@ -115,21 +172,7 @@ pub(crate) fn join_pieces(grid: &Grid, inside: &mut [bool], max_gap: usize) -> J
     let main = (0..sizes.len())
         .max_by(|&a, &b| sizes[a].cmp(&sizes[b]).then(b.cmp(&a)))
         .unwrap_or(0);
-    // Voxels of every component but the main one, and the main one's boundary voxels.
-    let mut members: Vec<Vec<usize>> = vec![Vec::new(); sizes.len()];
-    let mut figure_boundary = Vec::new();
-    for (i, &c) in label.iter().enumerate() {
-        if c == u32::MAX {
-            continue;
-        }
-        if c as usize == main {
-            if face_neighbours(grid, i).any(|w| !inside[w]) {
-                figure_boundary.push(i);
-            }
-        } else {
-            members[c as usize].push(i);
-        }
-    }
+    let (members, figure_boundary) = piece_voxels(grid, inside, &label, main, sizes.len());
     let mut in_figure = vec![false; sizes.len()];
     in_figure[main] = true;
     let mut from_figure = vec![UNSEEN; inside.len()];
@@ -204,26 +247,7 @@ pub(crate) fn join_pieces(grid: &Grid, inside: &mut [bool], max_gap: usize) -> J
         new_sources.extend(bridges);
         sources = new_sources;
     }
-    for (c, voxels) in members.iter().enumerate() {
-        if in_figure[c] || voxels.is_empty() {
-            continue;
-        }
-        let mut centre = DVec3::ZERO;
-        for &i in voxels {
-            inside[i] = false;
-            centre += grid.centre(grid.coords(i));
-        }
-        out.dropped_voxels += voxels.len();
-        out.dropped.push(DroppedPiece {
-            voxels: voxels.len(),
-            centre: (centre / voxels.len() as f64).to_array(),
-        });
-    }
-    out.dropped.sort_by(|a, b| {
-        b.voxels
-            .cmp(&a.voxels)
-            .then(a.centre[0].total_cmp(&b.centre[0]))
-    });
+    drop_pieces(grid, inside, &members, &in_figure, &mut out);
     out
 }
 
