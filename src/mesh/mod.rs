@@ -40,7 +40,7 @@ pub use obj::load_obj;
 pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION, FLAT_VOLUME_FRACTION};
 pub use ply::load_ply;
 pub use slice::{PrincipalAxes, SliceLoop};
-pub use slice_plane::slice_plane;
+pub use slice_plane::{slice_plane, slice_plane_outer};
 pub use slice_sphere::slice_sphere;
 pub use stats::MeshStats;
 pub use stl::load_stl;

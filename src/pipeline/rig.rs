@@ -18,7 +18,7 @@ use crate::refine::{refine, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{apply_preset, Preset, RefineKind, Template};
-use crate::voxel::{voxelize, Solid};
+use crate::voxel::{boundary_mesh, voxelize, Solid};
 
 /// Which template [`rig`] fits.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -214,8 +214,9 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     lap.lap("fit", &mut timings);
     if options.refine.in_rig && template.refinement == Some(RefineKind::HumanSlicing) {
         let up = input.up;
+        let joined = refine_surface(mesh, &solid, &options.refine);
         match refine(
-            mesh,
+            joined.as_ref().unwrap_or(mesh),
             &fit.skeleton,
             &fit.canonical,
             up,
@@ -257,6 +258,17 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         timings,
         warnings,
     })
+}
+
+/// The surface the slicing refinement cuts: the input itself when it is one closed shell, else
+/// the smoothed boundary of the joined voxel solid ([`boundary_mesh`]). Slices through a figure
+/// of many shells (head, hands, eyes, clothes over a body) are many loops per plane, and the
+/// refinement's loop for a body part would be one piece of clothing; the joined solid has one
+/// loop per part.
+fn refine_surface(mesh: &Mesh, solid: &Solid, options: &RefineOptions) -> Option<Mesh> {
+    let stats = mesh.stats();
+    let one_shell = stats.closed && stats.manifold_components == 1;
+    (!one_shell).then(|| boundary_mesh(solid, options.joined_smoothing))
 }
 
 /// The body parts a built-in template expects that `labelling` lacks: the humanoid's head,

@@ -10,7 +10,7 @@ use super::limb_joints::centre_in_depth;
 use super::spine::{spine, Spine};
 use super::torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
 use super::{RefineError, RefineOptions, RefineWarning};
-use crate::mesh::{slice_plane, Mesh};
+use crate::mesh::{slice_plane_outer, Mesh};
 use crate::skeleton::{Canonical, JointId, Side, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -196,7 +196,7 @@ pub fn refine(
     // 3.2 Spine and neck.
     let spine_result = spine_and_neck(&scene, torso.as_ref(), &mut found, &mut warnings);
 
-    let (mut targets, moved) = accepted(&rough, &found, height, options, &mut warnings);
+    let (mut targets, moved) = accepted(&rough, &found, &scene.frame, options, &mut warnings);
     let spine_ends_moved = moved.contains_key(Canonical::Pelvis.as_str())
         && moved.contains_key(Canonical::Neck.as_str());
     if let (Some(s), true) = (&spine_result, spine_ends_moved) {
@@ -232,7 +232,8 @@ fn head(
             if let Some(f) = frame_from_head(frame, &slices, frame.forward) {
                 *frame = f;
             }
-            match head_joint(frame, &slices, options) {
+            let shoulders = rough.pair_height(frame, Canonical::Shoulder);
+            match head_joint(mesh, frame, &slices, shoulders, options) {
                 Some(h) => {
                     found.insert(Canonical::Head, h.joint);
                 }
@@ -369,7 +370,7 @@ fn median_centre(scene: &Scene, rough: &Rough, head_point: Option<DVec3>) -> DVe
     ) {
         (Some(hips_h), Some(shoulders_h)) => {
             let origin = frame.at_height(centre, 0.5 * (hips_h + shoulders_h));
-            slice_plane(mesh, origin, frame.up)
+            slice_plane_outer(mesh, origin, frame.up)
                 .iter()
                 .filter(|l| l.closed)
                 .filter_map(|l| l.centroid())
@@ -446,10 +447,11 @@ fn hips_and_pelvis(
 fn accepted(
     rough: &Rough,
     found: &Found,
-    height: f64,
+    frame: &BodyFrame,
     options: &RefineOptions,
     warnings: &mut Vec<RefineWarning>,
 ) -> (BTreeMap<JointId, DVec3>, BTreeMap<String, (DVec3, DVec3)>) {
+    let height = frame.height();
     let mut targets: BTreeMap<JointId, DVec3> = REFINED
         .iter()
         .filter_map(|key| rough.id(*key))
@@ -467,7 +469,7 @@ fn accepted(
             continue;
         };
         let from = rough.skeleton.joint(id).position;
-        if !to.is_finite() || from.distance(to) > options.max_shift * height {
+        if !to.is_finite() || shift(rough, frame, key, from, to) > options.max_shift * height {
             warnings.push(RefineWarning::TooFar {
                 key,
                 distance: from.distance(to),
@@ -478,6 +480,21 @@ fn accepted(
         moved.insert(key.to_string(), (from, to));
     }
     (targets, moved)
+}
+
+/// How far a refined joint moved from its rough position, for the [`RefineOptions::max_shift`]
+/// test. The head counts only its move across the body while it stays on the axial chain
+/// between the rough neck and the top of the figure: the fit places it by template ratios along
+/// the head part, the slices at the neck's top, and a big or hatted head puts the two far apart
+/// along the same axis.
+fn shift(rough: &Rough, frame: &BodyFrame, key: Canonical, from: DVec3, to: DVec3) -> f64 {
+    let across = |d: DVec3| (d - frame.up * d.dot(frame.up)).length();
+    match (key, rough.at(Canonical::Neck)) {
+        (Canonical::Head, Some(neck)) if (frame.h(neck)..=frame.top).contains(&frame.h(to)) => {
+            across(to - from)
+        }
+        _ => from.distance(to),
+    }
 }
 
 /// `mesh` split at edge midpoints until its mean edge is at most `max_edge` (at most three

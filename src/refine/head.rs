@@ -1,9 +1,14 @@
-//! The head joint (seed 004, 3.1, fig. 2): the perimeter-weighted head centroid projected to the
-//! nose-level slice, averaged with the centre of the circle fitted to the back of the head.
+//! The head joint. Two conventions ([`HeadLevel`]): at the top of the neck, where the neck's
+//! section widens into the head (game and engine rigs: Mixamo, Unreal, Unity, Quaternius,
+//! GDQuest), or at nose level (seed 004, 3.1, fig. 2: the perimeter-weighted head centroid
+//! projected to the nose-level slice, averaged with the centre of the circle fitted to the back
+//! of the head; MakeHuman's rigs).
 
 use super::frame::{BodyFrame, HeadSlices};
 use super::geometry::fit_circle;
-use super::RefineOptions;
+use super::geometry::nearest_loop;
+use super::{HeadLevel, RefineOptions};
+use crate::mesh::{slice_plane_outer, Mesh, SliceLoop};
 use glam::DVec3;
 
 /// The head joint and the cranial roof above it.
@@ -18,13 +23,124 @@ pub struct HeadJoint {
     pub centroid: DVec3,
 }
 
-/// Computes the head joint from the head slices in the body frame. `None` when the slices have
-/// no length or the back of the head gives no circle.
+/// Computes the head joint from the head slices in the body frame, at the level
+/// `options.head_level` asks for; `shoulders` is the rough shoulder joints' height, below which
+/// no neck is searched. `None` when the slices have no length, the back of the head
+/// gives no circle (nose level) and no neck is found below the head (neck top).
 pub fn head_joint(
+    mesh: &Mesh,
     frame: &BodyFrame,
     head: &HeadSlices,
+    shoulders: Option<f64>,
     options: &RefineOptions,
 ) -> Option<HeadJoint> {
+    match options.head_level {
+        HeadLevel::NoseLevel => nose_level(frame, head, options),
+        HeadLevel::NeckTop => neck_top(mesh, frame, head, shoulders, options),
+        HeadLevel::Auto if has_face(frame, head, options) => nose_level(frame, head, options)
+            .or_else(|| neck_top(mesh, frame, head, shoulders, options)),
+        HeadLevel::Auto => neck_top(mesh, frame, head, shoulders, options)
+            .or_else(|| nose_level(frame, head, options)),
+    }
+}
+
+/// Whether the head's forward-most slice is a nose: above the head's lowest slice (there it is
+/// a chin or a collar) and in the lower part of the head, at most `head_nose_max` of the
+/// sliced length up (a nose tip is about a third of the way up from the chin; higher, the
+/// forward-most part is a visor, a hat brim or hair).
+fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bool {
+    let (Some(nose), Some(top), Some(bottom)) = (
+        forward_most(frame, head),
+        head.slices.first().and_then(|s| s.points.first()),
+        head.slices.last().and_then(|s| s.points.first()),
+    ) else {
+        return false;
+    };
+    let (top, bottom) = (frame.h(*top), frame.h(*bottom));
+    let Some(nose) = nose.points.first() else {
+        return false;
+    };
+    let t = (frame.h(*nose) - bottom) / (top - bottom).max(f64::MIN_POSITIVE);
+    t >= options.head_nose_min && t <= options.head_nose_max
+}
+
+/// The head slice reaching farthest forward.
+fn forward_most<'a>(frame: &BodyFrame, head: &'a HeadSlices) -> Option<&'a SliceLoop> {
+    let reach = |s: &SliceLoop| {
+        s.points
+            .iter()
+            .map(|p| p.dot(frame.forward))
+            .fold(f64::MIN, f64::max)
+    };
+    head.slices
+        .iter()
+        .max_by(|a, b| reach(a).total_cmp(&reach(b)))
+}
+
+/// The head joint at the top of the neck. Slicing down from the head's first slice for
+/// `head_max_depth + head_neck_search` of the height, the neck is the slice narrowest against
+/// the widest slice above it (the deepest valley of the diameter profile, so that the small
+/// slices at the crown do not count; the search stops at the height of the rough shoulder
+/// joints, `shoulders`, below which the torso and arms are no neck); going up from it, the
+/// first slice whose diameter reaches `head_neck_widening` times the neck's is where the head
+/// begins. The joint is at that height on the neck's axis (the slice's own centroid takes in
+/// the jaw, in front of the spine).
+fn neck_top(
+    mesh: &Mesh,
+    frame: &BodyFrame,
+    head: &HeadSlices,
+    shoulders: Option<f64>,
+    options: &RefineOptions,
+) -> Option<HeadJoint> {
+    let centroid = perimeter_centroid(head)?;
+    let step = options.head_slice_step * frame.height();
+    let first = head.slices.first()?;
+    let mut previous = first.centroid()?;
+    let mut h = frame.h(*first.points.first()?);
+    let lowest = h - (options.head_max_depth + options.head_neck_search) * frame.height();
+    // (height, major diameter, centroid), top down.
+    let mut column: Vec<(f64, f64, DVec3)> = Vec::new();
+    while h > lowest {
+        let origin = frame.at_height(previous, h);
+        h -= step;
+        let loops = slice_plane_outer(mesh, origin, frame.up);
+        let Some(slice) = nearest_loop(&loops, origin).filter(|l| l.closed) else {
+            continue;
+        };
+        let (Some(axes), Some(c)) = (slice.principal_axes(), slice.centroid()) else {
+            continue;
+        };
+        column.push((frame.h(origin), axes.major_diameter, c));
+        previous = c;
+    }
+    let mut widest_above = 0.0_f64;
+    let mut neck: Option<(usize, f64)> = None; // index, valley ratio
+    for (i, &(h, d, _)) in column.iter().enumerate() {
+        if shoulders.is_some_and(|s| h < s) {
+            break;
+        }
+        let ratio = widest_above / d.max(f64::MIN_POSITIVE);
+        if neck.is_none_or(|(_, r)| ratio > r) {
+            neck = Some((i, ratio));
+        }
+        widest_above = widest_above.max(d);
+    }
+    let (neck, _) = neck?;
+    let (_, narrowest, axis) = column[neck];
+    let &(h, _, _) = column[..neck]
+        .iter()
+        .rev()
+        .find(|&&(_, d, _)| d >= options.head_neck_widening * narrowest)?;
+    let joint = frame.at_height(axis, h);
+    Some(HeadJoint {
+        joint,
+        roof: frame.at_height(joint, frame.top),
+        centroid,
+    })
+}
+
+/// The perimeter-weighted centroid of the head slices.
+fn perimeter_centroid(head: &HeadSlices) -> Option<DVec3> {
     let (sum, weight) = head
         .slices
         .iter()
@@ -32,20 +148,13 @@ pub fn head_joint(
             let p = slice.perimeter();
             (s + slice.centroid().unwrap_or(DVec3::ZERO) * p, w + p)
         });
-    if weight <= 0.0 {
-        return None;
-    }
-    let centroid = sum / weight;
-    // The slice reaching farthest forward: the nose.
-    let nose = head.slices.iter().max_by(|a, b| {
-        let reach = |s: &crate::mesh::SliceLoop| {
-            s.points
-                .iter()
-                .map(|p| p.dot(frame.forward))
-                .fold(f64::MIN, f64::max)
-        };
-        reach(a).total_cmp(&reach(b))
-    })?;
+    (weight > 0.0).then(|| sum / weight)
+}
+
+/// The head joint at nose level (seed 004, 3.1, fig. 2).
+fn nose_level(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> Option<HeadJoint> {
+    let centroid = perimeter_centroid(head)?;
+    let nose = forward_most(frame, head)?;
     let height = frame.h(*nose.points.first()?);
     let projected = frame.at_height(centroid, height);
     let (front, back) = nose.points.iter().fold((f64::MIN, f64::MAX), |(f, b), p| {

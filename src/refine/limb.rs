@@ -3,7 +3,7 @@
 //! diameters per slice, interpolated by cubic B-splines.
 
 use super::RefineOptions;
-use crate::mesh::{slice_plane, slice_sphere, Mesh, SliceLoop};
+use crate::mesh::{slice_plane_outer, slice_sphere, Mesh, SliceLoop};
 use bspline::BSpline;
 use glam::DVec3;
 use std::f64::consts::TAU;
@@ -110,7 +110,7 @@ pub fn trace_limb(
     let seed = chain[0].lerp(chain[1], 0.5);
     let axis = (chain[1] - chain[0]).try_normalize()?;
     // Initial radius: the plane slice across the limb at the seed.
-    let loops = slice_plane(mesh, seed, axis);
+    let loops = slice_plane_outer(mesh, seed, axis);
     let first = super::geometry::nearest_loop(&loops, seed)?;
     let radius = first.perimeter() / TAU;
     // March from the slice's barycentre: a seed off the limb's axis would cut one side only.

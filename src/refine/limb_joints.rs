@@ -4,7 +4,7 @@ use super::frame::BodyFrame;
 use super::geometry::{angle_at, fit_line, nearest_loop};
 use super::limb::{LimbProfile, LimbSlice};
 use super::RefineOptions;
-use crate::mesh::{slice_plane, Mesh};
+use crate::mesh::{slice_plane_outer, Mesh};
 use glam::DVec3;
 
 /// Arc length on `profile` of the slice nearest `p`.
@@ -165,7 +165,7 @@ pub fn transverse_point(
     depth: f64,
 ) -> Option<DVec3> {
     let origin = frame.at_height(near, h);
-    let loops = slice_plane(mesh, origin, frame.up);
+    let loops = slice_plane_outer(mesh, origin, frame.up);
     let l = nearest_loop(&loops, origin).filter(|l| l.closed)?;
     let c = l.centroid()?;
     let (back, front) = l
@@ -212,7 +212,7 @@ pub fn surface_above(mesh: &Mesh, frame: &BodyFrame, p: DVec3) -> Option<f64> {
 fn line_crossings(mesh: &Mesh, p: DVec3, normal: DVec3, along: DVec3) -> Vec<f64> {
     let across = normal.cross(along);
     let side = |q: DVec3| (q - p).dot(across);
-    let mut crossings: Vec<f64> = slice_plane(mesh, p, normal)
+    let mut crossings: Vec<f64> = slice_plane_outer(mesh, p, normal)
         .iter()
         .flat_map(|l| l.segments())
         .filter(|(a, b)| (side(*a) < 0.0) != (side(*b) < 0.0))

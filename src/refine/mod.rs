@@ -47,7 +47,7 @@ pub use frame::{frame_from_head, head_slices, BodyFrame, HeadSlices};
 pub use head::{head_joint, HeadJoint};
 pub use limb::{trace_limb, LimbProfile, LimbSlice};
 pub use limb_joints::{ankle, arc_near, bend, on_axis, wrist, BendRule};
-pub use options::RefineOptions;
+pub use options::{HeadLevel, RefineOptions};
 pub use shoulder::{armpit, shoulder, upper_arm_line};
 pub use spine::{spine, Spine, SPINE_JOINTS};
 pub use symmetry::{symmetrize, Symmetry, SYMMETRIC_SHARE};

@@ -1,6 +1,7 @@
 //! Tunable numbers of the refinement, with their sources.
 
 use crate::options::{Checks, OptionProblems};
+use serde::{Deserialize, Serialize};
 
 /// Options of [`super::refine`]. Lengths given as fractions of the figure's height (measured
 /// along the body's transverse normal) so that one set of defaults serves children and adults
@@ -13,6 +14,10 @@ pub struct RefineOptions {
     /// Whether [`crate::pipeline::rig`] makes the paired joints of a bilaterally symmetric
     /// figure mirror each other ([`super::symmetrize`]), for every template. Default true.
     pub symmetry: bool,
+    /// Taubin smoothing passes of the joined voxel solid's boundary, which
+    /// [`crate::pipeline::rig`] slices instead of an input made of several shells or not closed.
+    /// Default 10 (rounds the voxel staircase; the volume stays within a few percent).
+    pub joined_smoothing: usize,
     /// Canonical keys (e.g. `knee_L`) left at their rough positions even when refinement
     /// finds them. Default empty (refine every joint it can).
     pub keep: Vec<String>,
@@ -41,6 +46,24 @@ pub struct RefineOptions {
     /// points whose forward coordinate is behind the slice centroid by at least this fraction
     /// of the slice's forward extent. Default 0.1 (seed 004, 3.1, fig. 2).
     pub head_back_fraction: f64,
+    /// Where the head joint goes. Default [`HeadLevel::Auto`]: nose level on a head with a
+    /// face, else the top of the neck.
+    pub head_level: HeadLevel,
+    /// Automatic head level: the head's forward-most slice is a nose, and the joint goes to
+    /// nose level, when it lies between these fractions of the head's sliced length above its
+    /// lowest slice. Defaults 0.1 and 0.45 (a nose tip is about a third of the way up from the
+    /// chin; at the bottom the forward-most slice is a chin or collar, higher a visor, brim or
+    /// hair).
+    pub head_nose_min: f64,
+    /// See [`Self::head_nose_min`].
+    pub head_nose_max: f64,
+    /// Neck top: how much further than `head_max_depth` the neck is searched, fraction of
+    /// height. Default 0.1 (the neck below a head that fills the whole head search).
+    pub head_neck_search: f64,
+    /// Neck top: the head begins at the first slice above the narrowest neck slice whose
+    /// diameter is this many times the neck's. Default 1.5 (a head is about twice as wide as
+    /// its neck; hair, helmets and stylised heads more).
+    pub head_neck_widening: f64,
     /// Step between Plumber sphere centres along a limb, fraction of height. Default 0.008
     /// (14 mm on 1.75 m: about a third of a wrist's diameter).
     pub limb_step: f64,
@@ -192,12 +215,22 @@ impl RefineOptions {
     pub fn validate(&self) -> Result<(), OptionProblems> {
         let mut c = Checks::default();
         c.positive("head_slice_step", self.head_slice_step, 0.1);
+        c.range(
+            "joined_smoothing",
+            self.joined_smoothing as f64,
+            0.0,
+            1000.0,
+        );
         c.positive("head_shrink_ratio", self.head_shrink_ratio, 1.0);
         c.range("head_turn_degrees", self.head_turn_degrees, 0.0, 180.0);
         c.range("head_min_elongation", self.head_min_elongation, 1.0, 100.0);
         c.range("head_min_depth", self.head_min_depth, 0.0, 1.0);
         c.range("head_max_depth", self.head_max_depth, 0.0, 1.0);
         c.range("head_back_fraction", self.head_back_fraction, 0.0, 1.0);
+        c.range("head_neck_search", self.head_neck_search, 0.0, 1.0);
+        c.range("head_nose_min", self.head_nose_min, 0.0, 1.0);
+        c.range("head_nose_max", self.head_nose_max, self.head_nose_min, 1.0);
+        c.range("head_neck_widening", self.head_neck_widening, 1.0, 100.0);
         c.positive("limb_step", self.limb_step, 0.1);
         c.positive("sphere_radius_factor", self.sphere_radius_factor, 10.0);
         c.positive("merge_ratio", self.merge_ratio, 100.0);
@@ -238,17 +271,39 @@ impl RefineOptions {
     }
 }
 
+/// Where the head joint sits: two conventions of rigging.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HeadLevel {
+    /// At nose level when the head has a face (its forward-most slice is a nose, see
+    /// [`RefineOptions::head_nose_min`]), else at the top of the neck.
+    #[default]
+    Auto,
+    /// At the top of the neck, where its section widens into the head: game and engine rigs
+    /// (Mixamo, Unreal, Unity humanoids, Quaternius, GDQuest) and the glTF sample characters.
+    NeckTop,
+    /// At nose level, between the head's centroid and the centre of the back of the skull
+    /// (seed 004, 3.1, fig. 2): MakeHuman's rigs.
+    NoseLevel,
+}
+
 impl Default for RefineOptions {
     fn default() -> Self {
         Self {
             in_rig: true,
             symmetry: true,
+            joined_smoothing: 10,
             head_slice_step: 0.004,
             head_shrink_ratio: 0.75,
             head_turn_degrees: 60.0,
             head_min_elongation: 1.1,
             head_min_depth: 0.05,
             head_max_depth: 0.2,
+            head_level: HeadLevel::Auto,
+            head_nose_min: 0.1,
+            head_nose_max: 0.45,
+            head_neck_search: 0.1,
+            head_neck_widening: 1.5,
             head_back_fraction: 0.1,
             limb_step: 0.008,
             sphere_radius_factor: 1.5,

@@ -5,7 +5,7 @@
 use super::frame::BodyFrame;
 use super::geometry::fit_line;
 use super::limb::LimbProfile;
-use crate::mesh::{slice_plane, Mesh};
+use crate::mesh::{slice_plane_outer, Mesh};
 use glam::DVec3;
 
 /// The armpit of the side `sign` (+1 left, −1 right) on the frontal slice through `centre`:
@@ -24,7 +24,7 @@ pub fn armpit(
     waist: f64,
     samples: usize,
 ) -> Option<DVec3> {
-    let loops = slice_plane(mesh, centre, frame.forward);
+    let loops = slice_plane_outer(mesh, centre, frame.forward);
     let lateral = |p: DVec3| (p - centre).dot(frame.left) * sign;
     let segments: Vec<((f64, f64), (f64, f64))> = loops
         .iter()

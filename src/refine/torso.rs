@@ -4,7 +4,7 @@
 use super::frame::BodyFrame;
 use super::geometry::resample;
 use super::RefineOptions;
-use crate::mesh::{slice_plane, Mesh, SliceLoop};
+use crate::mesh::{slice_plane_outer, Mesh, SliceLoop};
 use bspline::BSpline;
 use glam::DVec3;
 
@@ -49,7 +49,7 @@ pub fn torso_points(
     bounds: &TorsoBounds,
     options: &RefineOptions,
 ) -> Option<TorsoPoints> {
-    let loops = slice_plane(mesh, centre, frame.left);
+    let loops = slice_plane_outer(mesh, centre, frame.left);
     let torso = loops
         .iter()
         .filter(|l| l.closed)
@@ -241,7 +241,7 @@ pub fn leg_split_height(
 /// The pieces of the transverse slice through `origin` whose centroid lies within `reach` of
 /// it across the body (the torso and legs, not hands hanging beside them).
 fn loops_near(mesh: &Mesh, frame: &BodyFrame, origin: DVec3, reach: f64) -> Vec<SliceLoop> {
-    slice_plane(mesh, origin, frame.up)
+    slice_plane_outer(mesh, origin, frame.up)
         .into_iter()
         .filter(|l| {
             l.centroid().is_some_and(|g| {

@@ -1,6 +1,7 @@
 //! Voxelization: the [`Grid`], triangle rasterisation into surface voxels and the robust
 //! inside/outside classification that turns a [`Mesh`](crate::mesh::Mesh) into a [`Solid`].
 
+mod boundary;
 mod components;
 mod error;
 mod figure;
@@ -14,6 +15,7 @@ mod surface;
 mod voxelize;
 mod winding;
 
+pub use boundary::boundary_mesh;
 pub use error::VoxelError;
 pub use grid::{Connectivity, Grid, Neighbour, NEIGHBOURS_26};
 pub use join::DroppedPiece;
