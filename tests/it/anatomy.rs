@@ -571,8 +571,7 @@ fn bone_following_labels_on_refdata() {
     use skelfit::pipeline::{label_by_bones, RigOptions};
     let floors: &[(&str, f64)] = &[
         // 93.1 since the head joint sits at the top of the neck (head error 2.9 -> 0.8 % of
-        // height): the vertices between the chin and the old joint now follow the head bone,
-        // the artist weighted them to the neck.
+        // height); why the better joint agrees less with the artist's weights is not analysed.
         ("humanoid/gltf_cesium_man", 93.0),
         ("humanoid/mh_child_10y", 98.0),
         ("humanoid/mh_female_thin_short", 98.0),
