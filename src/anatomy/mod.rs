@@ -48,6 +48,7 @@ mod parts;
 mod project;
 mod reference;
 mod rules;
+mod warning;
 
 pub use bone_labels::label_vertices_by_bones;
 pub use error::AnatomyError;
@@ -65,11 +66,13 @@ pub use reference::{
     WeightRegions, WeightShare,
 };
 pub use rules::{label_graph, Assignment, Draft};
+pub use warning::AnatomyWarning;
 
 use crate::distance::edt;
 use crate::medial::{dms, MedialSurface};
 use crate::mesh::Mesh;
 use crate::voxel::{voxelize, Solid};
+use crate::warning::Warning;
 use glam::DVec3;
 
 /// Labels the body parts of `mesh` (dissertation ch.7): voxelize, distance map, medial
@@ -153,19 +156,30 @@ pub fn label_pieces(
             let frame = Frame::new(up, guess).unwrap_or(first.frame);
             let mut second = label_in_frame(mesh, solid, surface, options, overrides, frame, true)?;
             let f = second.frame.forward;
-            second.warnings.push(format!(
-                "forward guessed as ({:.3}, {:.3}, {:.3}) {note}",
-                f.x, f.y, f.z
-            ));
+            second.warnings.push(
+                AnatomyWarning::ForwardGuessed {
+                    forward: f,
+                    reason: note,
+                }
+                .into(),
+            );
             second
         }
     };
     // What the voxelization left out comes first, then how up was found.
     if let Some(choice) = up_found.as_ref().filter(|c| c.up != DVec3::Y) {
-        labelling.warnings.insert(0, choice.note.clone());
+        let found = AnatomyWarning::UpFound {
+            up: choice.up,
+            confidence: choice.confidence,
+            note: choice.note.clone(),
+        };
+        labelling.warnings.insert(0, found.into());
     }
     labelling.up_found = up_found;
-    labelling.warnings.splice(0..0, solid.report.warnings());
+    labelling.warnings.splice(
+        0..0,
+        solid.report.warnings().into_iter().map(Warning::Voxel),
+    );
     Ok(labelling)
 }
 
@@ -259,15 +273,18 @@ fn label_in_frame(
         let centroids: Vec<DVec3> = graph.vertices.iter().map(|v| v.centroid).collect();
         o.apply(&mut draft, &centroids)?;
     }
-    let mut warnings = surface.warnings.clone();
+    let mut warnings: Vec<Warning> = surface.warnings.iter().cloned().map(Into::into).collect();
     let graph_voxels = graph.voxels;
     if graph_voxels < surface.len() {
-        warnings.push(format!(
-            "the medial surface has several parts: only the largest ({graph_voxels} of {} voxels) is labelled, the rest takes the labels of the nearest labelled voxels",
-            surface.len()
-        ));
+        warnings.push(
+            AnatomyWarning::LargestPartOnly {
+                labelled: graph_voxels,
+                voxels: surface.len(),
+            }
+            .into(),
+        );
     }
-    warnings.append(&mut draft.warnings);
+    warnings.extend(draft.warnings.drain(..).map(Warning::Anatomy));
     let (mut parts, vertex_parts) = build::build_parts(&draft, &graph, surface, &options.rules);
     let voxel_parts: Vec<u32> = graph
         .vertex_of

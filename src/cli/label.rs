@@ -10,7 +10,8 @@ use skelfit::anatomy::{
     label_with_overrides, labels_json, labels_ply, labels_svg, LabelOptions, Overrides,
 };
 use skelfit::eval::{label_table_json, label_table_markdown, label_table_models, label_table_row};
-use skelfit::pipeline::{label_by_bones, RigOptions, MEDIAL_FALLBACK};
+use skelfit::pipeline::{label_by_bones, RigOptions, RigWarning};
+use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 
 /// Where the per-mesh-vertex labels come from.
@@ -173,7 +174,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     let fell_back = labels
         .warnings
         .iter()
-        .any(|w| w.starts_with(MEDIAL_FALLBACK));
+        .any(|w| matches!(w, Warning::Rig(RigWarning::MedialLabels { .. })));
     println!(
         "vertex labels   {}",
         match args.vertex_labels {
@@ -186,9 +187,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     for p in [&args.ply, &args.svg].into_iter().flatten() {
         println!("wrote           {}", p.display());
     }
-    for w in &labels.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
+    super::common::print_warnings(&labels.warnings);
     if let Some(hint) = super::common::orientation_hint(&labels, labels.frame.up) {
         eprintln!("skelfit: hint: {hint}");
     }

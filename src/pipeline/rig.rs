@@ -19,6 +19,9 @@ use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{apply_preset, Preset, RefineKind, Template};
 use crate::voxel::{voxelize, Solid};
+use crate::warning::Warning;
+
+pub use super::warning::{RigWarning, MEDIAL_FALLBACK};
 
 /// Which template [`rig`] fits.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -124,8 +127,8 @@ pub struct Rig {
     pub distance: DistanceMap,
     /// Wall-clock time per stage, `(stage, milliseconds)`, in stage order.
     pub timings: Vec<(String, f64)>,
-    /// Warnings of every stage (labelling, paths, fit, skin), as sentences.
-    pub warnings: Vec<String>,
+    /// Warnings of every stage (labelling, paths, fit, refinement, skin), in stage order.
+    pub warnings: Vec<Warning>,
     /// Body parts the template expects that the labelling did not find (`arm R`, `head`, ...;
     /// see [`missing_parts`]): the rig has no joints for them.
     pub missing: Vec<String>,
@@ -181,22 +184,18 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     reach_the_skin(&mut input, &options.input, &solid, &distance);
     lap.lap("paths", &mut timings);
     let mut warnings = labelling.warnings.clone();
-    warnings.append(&mut path_warnings);
+    warnings.extend(path_warnings.drain(..).map(Warning::FitInput));
     let template = match chosen {
         Some(t) => t,
         None => {
             if let Some(reason) = no_template_fits(&labelling) {
-                warnings.push(format!(
-                    "no template fits: {reason}; fitted the general control skeleton (joints named root, joint_NNN, end_NNN; no canonical joints); choose a template with --template to force one"
-                ));
+                warnings.push(RigWarning::NoTemplateFits { reason }.into());
                 return general_fallback(
                     mesh, options, labelling, input, solid, distance, &surface, timings, warnings,
                 );
             }
             let (name, note) = auto_template(&labelling);
-            if let Some(note) = note {
-                warnings.push(note);
-            }
+            warnings.extend(note.map(Warning::Rig));
             Template::builtin(name)?
         }
     };
@@ -210,7 +209,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         ..options.fit.clone()
     };
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
-    warnings.extend(fit.warnings.iter().map(ToString::to_string));
+    warnings.extend(fit.warnings.iter().cloned().map(Warning::Fit));
     lap.lap("fit", &mut timings);
     if options.refine.in_rig && template.refinement == Some(RefineKind::HumanSlicing) {
         let up = input.up;
@@ -225,9 +224,14 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
             Ok(refined) => {
                 fit.skeleton = refined.skeleton;
                 assign_trunk_keys(&fit.skeleton, &mut fit.canonical, &template.axial);
-                warnings.extend(refined.warnings.iter().map(|w| format!("refine: {w}")));
+                warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
             }
-            Err(e) => warnings.push(format!("refine: {e}; the fitted joints are kept")),
+            Err(e) => warnings.push(
+                RigWarning::RefineFailed {
+                    error: e.to_string(),
+                }
+                .into(),
+            ),
         }
         lap.lap("refine", &mut timings);
     }
@@ -243,7 +247,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     apply_preset(&mut fit.skeleton, &fit.canonical, options.fit.preset)
         .map_err(|e| FitError::Preset(e.to_string()))?;
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
-    warnings.extend(skin.warnings.iter().map(ToString::to_string));
+    warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
     let missing = missing_parts(&template.name, &labelling);
     Ok(Rig {
@@ -296,9 +300,6 @@ pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
         .collect()
 }
 
-/// How the warning of [`label_by_bones`] begins when it kept the medial per-vertex labels.
-pub const MEDIAL_FALLBACK: &str = "per-vertex labels follow the medial surface, not bones";
-
 /// Validates every stage's options and resolves the chosen template (`None` for
 /// [`TemplateChoice::Auto`]), before any work.
 fn checked_template(options: &RigOptions) -> crate::Result<Option<Template>> {
@@ -340,9 +341,12 @@ fn bones_or_medial(
         Err(e) => {
             let mut labelling =
                 label_with_overrides(mesh, &options.label, options.overrides.as_ref())?;
-            labelling
-                .warnings
-                .push(format!("{MEDIAL_FALLBACK}: the rig failed ({e})"));
+            labelling.warnings.push(
+                RigWarning::MedialLabels {
+                    error: e.to_string(),
+                }
+                .into(),
+            );
             Ok(labelling)
         }
     }
@@ -360,7 +364,7 @@ fn general_fallback(
     distance: DistanceMap,
     surface: &MedialSurface,
     mut timings: Vec<(String, f64)>,
-    mut warnings: Vec<String>,
+    mut warnings: Vec<Warning>,
 ) -> crate::Result<Rig> {
     let mut lap = Laps::start();
     let tree = path_tree(surface, &options.label.paths)?;
@@ -374,7 +378,7 @@ fn general_fallback(
         template: GENERAL.to_string(),
     };
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
-    warnings.extend(skin.warnings.iter().map(ToString::to_string));
+    warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
     Ok(Rig {
         missing: Vec::new(),
@@ -415,8 +419,8 @@ pub fn no_template_fits(labelling: &Labelling) -> Option<String> {
 }
 
 /// The built-in template for a labelled figure and, when the figure class was unknown, a
-/// sentence saying what was chosen and why.
-pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<String>) {
+/// warning saying what was chosen and why.
+pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<RigWarning>) {
     let wings = labelling.count(Label::Wing) > 0;
     match labelling.figure {
         FigureClass::HumanLike => ("humanoid", None),
@@ -432,10 +436,10 @@ pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<String>) {
             };
             (
                 name,
-                Some(format!(
-                    "the figure class is unknown (trunk {:.0} degrees from up): fitted the {name} template; choose one with --template if it is wrong",
-                    labelling.trunk_angle
-                )),
+                Some(RigWarning::UnknownFigureClass {
+                    template: name,
+                    trunk_angle: labelling.trunk_angle,
+                }),
             )
         }
     }
@@ -455,7 +459,14 @@ mod tests {
         let medial = label(&mesh, &options.label).unwrap();
         assert_eq!(labels.mesh_parts, medial.mesh_parts);
         let warning = labels.warnings.last().unwrap();
-        assert!(warning.starts_with(MEDIAL_FALLBACK), "{warning}");
+        assert!(
+            matches!(warning, Warning::Rig(RigWarning::MedialLabels { .. })),
+            "{warning}"
+        );
+        assert!(
+            warning.to_string().starts_with(MEDIAL_FALLBACK),
+            "{warning}"
+        );
     }
 
     #[test]

@@ -12,6 +12,7 @@ mod sizing;
 mod solid;
 mod surface;
 mod voxelize;
+mod warning;
 mod winding;
 
 pub use error::VoxelError;
@@ -21,3 +22,4 @@ pub use options::{VoxelOptions, VoxelSize};
 pub use solid::{Solid, VoxelReport};
 
 pub use voxelize::{grid_for, voxelize};
+pub use warning::VoxelWarning;
