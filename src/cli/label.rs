@@ -7,7 +7,7 @@ use super::common::{load_mesh, write_file, Outputs, VoxelArgs};
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
 use skelfit::anatomy::{
-    label_with_overrides, labels_json, labels_ply, labels_svg, LabelOptions, Overrides,
+    label_with_overrides, labels_json, labels_ply, labels_svg, LabelPipelineOptions, Overrides,
 };
 use skelfit::eval::{label_table_json, label_table_markdown, label_table_models, label_table_row};
 use skelfit::pipeline::{label_by_bones, RigOptions, RigWarning};
@@ -96,13 +96,14 @@ pub struct LabelArgs {
 
 impl LabelArgs {
     /// Validated options.
-    pub fn options(&self) -> anyhow::Result<LabelOptions> {
-        let mut options = LabelOptions {
+    pub fn options(&self) -> anyhow::Result<LabelPipelineOptions> {
+        let mut stages = LabelPipelineOptions {
             voxel: self.voxel.options()?,
-            up: super::common::parse_up(&self.up)?,
-            forward: super::common::parse_forward(&self.forward)?,
             ..Default::default()
         };
+        let options = &mut stages.label;
+        options.up = super::common::parse_up(&self.up)?;
+        options.forward = super::common::parse_forward(&self.forward)?;
         if let Some(j) = self.junction_fraction {
             options.level.junction_fraction = j;
         }
@@ -117,7 +118,7 @@ impl LabelArgs {
             options.level.bins = b;
         }
         options.validate()?;
-        Ok(options)
+        Ok(stages)
     }
 }
 
@@ -153,9 +154,8 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
         VertexLabels::Bones => label_by_bones(
             &mesh,
             &RigOptions {
-                label: options,
                 overrides,
-                ..Default::default()
+                ..RigOptions::from(options)
             },
         ),
     }
@@ -197,7 +197,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
 /// Labels every `<kind>/<model>/mesh.obj` below `refdata`
 /// (kinds humanoid, quadruped, other, robustness) and writes the table of figure class, parts
 /// found and the scores of [`skelfit::eval::label_score`] ([`skelfit::eval::label_table_row`]).
-fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<()> {
+fn table(refdata: &Path, out: &Path, options: &LabelPipelineOptions) -> anyhow::Result<()> {
     super::common::output_folder(out)?;
     let mut rows = Vec::new();
     for (name, model) in label_table_models(refdata) {

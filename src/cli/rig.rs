@@ -107,7 +107,7 @@ impl RigArgs {
     /// Validated options (stage ranges are checked by the library before any work).
     pub fn options(&self) -> anyhow::Result<RigOptions> {
         let mut options = RigOptions::default();
-        options.label.voxel = self.voxel.options()?;
+        options.voxel = self.voxel.options()?;
         options.label.up = super::common::parse_up(&self.up)?;
         options.label.forward = super::common::parse_forward(&self.forward)?;
         options.template = match self.template.as_str() {

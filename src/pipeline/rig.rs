@@ -3,7 +3,7 @@
 use super::Laps;
 use crate::anatomy::{
     label_pieces, label_vertices_by_bones, label_with_overrides, FigureClass, Label, LabelOptions,
-    Labelling, Overrides,
+    LabelPipelineOptions, Labelling, Overrides,
 };
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{
@@ -11,14 +11,14 @@ use crate::fit::{
     FitInputOptions, FitOptions,
 };
 use crate::general::{control_skeleton, GeneralOptions};
-use crate::medial::{dms, MedialSurface};
+use crate::medial::{dms, MedialOptions, MedialSurface};
 use crate::mesh::Mesh;
-use crate::paths::path_tree;
+use crate::paths::{path_tree, PathOptions};
 use crate::refine::{refine, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{apply_preset, Preset, RefineKind, Template};
-use crate::voxel::{voxelize, Solid};
+use crate::voxel::{voxelize, Solid, VoxelOptions};
 use crate::warning::Warning;
 
 pub use super::warning::{RigWarning, MEDIAL_FALLBACK};
@@ -37,11 +37,17 @@ pub enum TemplateChoice {
     Custom(Box<Template>),
 }
 
-/// All parameters of [`rig`], one options struct per stage.
+/// All parameters of [`rig`], one options struct per stage, in pipeline order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RigOptions {
-    /// Voxelization, medial surface, heart, level graph, labelling rules and orientation
-    /// (`up`, `forward`; default +Y up, +Z forward).
+    /// Voxelization (default voxel size 0.01 of the longest side, Table 5.2).
+    pub voxel: VoxelOptions,
+    /// Discrete medial surface.
+    pub medial: MedialOptions,
+    /// Heart sampling for the level graph, and the path tree of the general fallback.
+    pub paths: PathOptions,
+    /// Level graph, labelling rules and orientation (`up`, `forward`; default up found from
+    /// the figure, +Z forward).
     pub label: LabelOptions,
     /// User corrections of the labels (`skelfit label --labels`), applied before the fit.
     pub overrides: Option<Overrides>,
@@ -62,8 +68,8 @@ pub struct RigOptions {
 }
 
 impl RigOptions {
-    /// Checks the options of every stage (labelling with its voxel, medial and path options,
-    /// the fit's input, the fit, the refinement, the skin).
+    /// Checks the options of every stage (voxel, medial, paths, labelling, the fit's input,
+    /// the fit, the refinement, the skin, the general fallback) and collects every problem.
     ///
     /// # Errors
     /// The stage's error when one stage's options are invalid; [`crate::Error::Options`] with
@@ -71,9 +77,10 @@ impl RigOptions {
     pub fn validate(&self) -> crate::Result<()> {
         let mut errors: Vec<crate::Error> = Vec::new();
         let mut check = |result: crate::Result<()>| errors.extend(result.err());
+        check(self.voxel.validate().map_err(Into::into));
+        check(self.medial.validate().map_err(Into::into));
+        check(self.paths.validate().map_err(Into::into));
         check(self.label.validate().map_err(Into::into));
-        check(self.label.medial.validate().map_err(Into::into));
-        check(self.label.paths.validate().map_err(Into::into));
         check(
             self.input
                 .validate()
@@ -95,9 +102,37 @@ impl RigOptions {
     }
 }
 
+impl RigOptions {
+    /// The options of the labelling stages alone ([`crate::anatomy::label`]).
+    pub fn label_pipeline(&self) -> LabelPipelineOptions {
+        LabelPipelineOptions {
+            voxel: self.voxel,
+            medial: self.medial,
+            paths: self.paths,
+            label: self.label,
+        }
+    }
+}
+
+impl From<LabelPipelineOptions> for RigOptions {
+    /// The labelling stages' options, every other stage's default.
+    fn from(stages: LabelPipelineOptions) -> Self {
+        Self {
+            voxel: stages.voxel,
+            medial: stages.medial,
+            paths: stages.paths,
+            label: stages.label,
+            ..Default::default()
+        }
+    }
+}
+
 impl Default for RigOptions {
     fn default() -> Self {
         Self {
+            voxel: VoxelOptions::default(),
+            medial: MedialOptions::default(),
+            paths: PathOptions::default(),
             label: LabelOptions::default(),
             overrides: None,
             template: TemplateChoice::Auto,
@@ -166,16 +201,17 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut timings = Vec::new();
     let mut lap = Laps::start();
 
-    let solid = voxelize(mesh, &options.label.voxel)?;
+    let solid = voxelize(mesh, &options.voxel)?;
     lap.lap("voxelize", &mut timings);
     let distance = edt(&solid);
     lap.lap("distance", &mut timings);
-    let surface = dms(&distance, &options.label.medial)?;
+    let surface = dms(&distance, &options.medial)?;
     lap.lap("medial", &mut timings);
     let labelling = label_pieces(
         mesh,
         &solid,
         &surface,
+        &options.paths,
         &options.label,
         options.overrides.as_ref(),
     )?;
@@ -340,7 +376,7 @@ fn bones_or_medial(
         Ok(r) => Ok(r.into_bone_labels(mesh)),
         Err(e) => {
             let mut labelling =
-                label_with_overrides(mesh, &options.label, options.overrides.as_ref())?;
+                label_with_overrides(mesh, &options.label_pipeline(), options.overrides.as_ref())?;
             labelling.warnings.push(
                 RigWarning::MedialLabels {
                     error: e.to_string(),
@@ -367,7 +403,7 @@ fn general_fallback(
     mut warnings: Vec<Warning>,
 ) -> crate::Result<Rig> {
     let mut lap = Laps::start();
-    let tree = path_tree(surface, &options.label.paths)?;
+    let tree = path_tree(surface, &options.paths)?;
     let general = control_skeleton(tree, &options.general)?;
     warnings.extend(general.warnings.iter().cloned());
     lap.lap("fit", &mut timings);
@@ -456,7 +492,7 @@ mod tests {
         let options = RigOptions::default();
         let failed = Err(AnatomyError::EmptySurface.into());
         let labels = bones_or_medial(&mesh, &options, failed).unwrap();
-        let medial = label(&mesh, &options.label).unwrap();
+        let medial = label(&mesh, &options.label_pipeline()).unwrap();
         assert_eq!(labels.mesh_parts, medial.mesh_parts);
         let warning = labels.warnings.last().unwrap();
         assert!(
