@@ -8,7 +8,9 @@
 
 use glam::DVec3;
 use skelfit::anatomy::Side;
-use skelfit::anatomy::{agreement, label, part_region, reference_regions, LabelOptions, Region};
+use skelfit::anatomy::{
+    agreement, label, part_region, reference_regions, LabelPipelineOptions, Region,
+};
 use skelfit::eval::load_skeleton;
 use skelfit::mesh::load;
 use std::path::PathBuf;
@@ -41,7 +43,7 @@ fn main() {
         .find(|p| p.is_file())
         .expect("rig");
     let rig = load_skeleton(&rig).expect("rig");
-    let labels = label(&mesh, &LabelOptions::default()).expect("label");
+    let labels = label(&mesh, &LabelPipelineOptions::default()).expect("label");
     let reference = reference_regions(&rig, &mesh);
     let a = agreement(&labels, &reference);
     println!("{:.1} % ({}/{})", a.percent, a.agreeing, a.compared);

@@ -18,6 +18,7 @@ use skelfit::pipeline::{rig, RigOptions};
 use skelfit::refine::{carry, refine, RefineOptions, REFINED_KEYS};
 use skelfit::report::{line_chart, LineChartOptions, Series};
 use skelfit::skeleton::JointId;
+use skelfit::warning::Warning;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -228,8 +229,8 @@ fn pipeline(root: &Path, models: &[(&str, &str)], out_dir: &Path) -> Result<Stri
             let warnings = r
                 .warnings
                 .iter()
-                .filter(|w| w.starts_with("refine:"))
-                .cloned()
+                .filter(|w| matches!(w, Warning::Refine(_)))
+                .map(ToString::to_string)
                 .collect();
             Ok((e, warnings))
         };

@@ -2,10 +2,11 @@
 //! figure, dissertation ch.5) and [`rig`] (the anatomical skeleton from a template, ch.7-8).
 
 mod rig;
+mod warning;
 
 pub use rig::{
     auto_template, label_by_bones, missing_parts, no_template_fits, rig, Rig, RigOptions,
-    TemplateChoice, GENERAL, MEDIAL_FALLBACK,
+    RigWarning, TemplateChoice, GENERAL, MEDIAL_FALLBACK,
 };
 
 use crate::distance::{edt, DistanceMap};
@@ -15,6 +16,7 @@ use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
 use crate::skin::{skin, skin_from_bones, SegmentVoxels, Skin, SkinError, SkinOptions};
 use crate::voxel::{voxelize, Grid, Solid, VoxelOptions, VoxelReport};
+use crate::warning::Warning;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -106,8 +108,13 @@ fn general_stages(mesh: &Mesh, options: &GeneralSkeletonOptions) -> crate::Resul
     lap.lap("paths", &mut timings);
     let mut general = control_skeleton(tree, &options.general)?;
     lap.lap("general", &mut timings);
-    let mut warnings = solid.report.warnings();
-    warnings.extend(surface.warnings);
+    let mut warnings: Vec<Warning> = solid
+        .report
+        .warnings()
+        .into_iter()
+        .map(Into::into)
+        .collect();
+    warnings.extend(surface.warnings.into_iter().map(Warning::Medial));
     warnings.append(&mut general.warnings);
     general.warnings = warnings;
     general.timings = timings;
@@ -138,8 +145,8 @@ pub struct GeneralRig {
     pub grid: Grid,
     /// What voxelization found (interior voxels, dropped parts).
     pub voxels: VoxelReport,
-    /// Warnings of every stage, skinning included, as sentences.
-    pub warnings: Vec<String>,
+    /// Warnings of every stage, skinning included.
+    pub warnings: Vec<Warning>,
 }
 
 /// Fits a general control skeleton into `mesh` and anchors the mesh to it: the stages of
@@ -185,11 +192,7 @@ pub fn general_rig(mesh: &Mesh, options: &GeneralRigOptions) -> crate::Result<Ge
         // A figure without limbs (a sphere, a hollow shell): its skeleton has no segment
         // whose chain voxels reach inside, so the mesh is skinned to the bones instead.
         Err(SkinError::NoInfluence) => {
-            warnings.push(
-                "no segment of the skeleton reaches inside the figure (a figure without limbs): \
-                 the mesh is skinned to the nearest bones instead"
-                    .to_string(),
-            );
+            warnings.push(RigWarning::SkinnedToBones.into());
             skin_from_bones(mesh, &general.skeleton, &solid, &distance, &options.skin)?
         }
         result => result?,
@@ -197,7 +200,7 @@ pub fn general_rig(mesh: &Mesh, options: &GeneralRigOptions) -> crate::Result<Ge
     general
         .timings
         .push(("skin".to_string(), clock.elapsed().as_secs_f64() * 1e3));
-    warnings.extend(skin.warnings.iter().map(ToString::to_string));
+    warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     Ok(GeneralRig {
         grid: solid.grid,
         voxels: solid.report.clone(),

@@ -23,12 +23,12 @@
 //! ordered by a total key, so labels are identical on any number of threads.
 //!
 //! ```
-//! use skelfit::anatomy::{label, Label, LabelOptions};
+//! use skelfit::anatomy::{label, Label, LabelPipelineOptions};
 //! use skelfit::mesh::Mesh;
 //!
 //! // A sphere has no trunk: a best effort with a warning, not an error.
 //! let mesh = Mesh::uv_sphere(glam::DVec3::ZERO, 1.0, 16, 32);
-//! let labels = label(&mesh, &LabelOptions::default()).unwrap();
+//! let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
 //! assert_eq!(labels.parts[0].label, Label::Trunk);
 //! assert!(!labels.warnings.is_empty());
 //! ```
@@ -48,12 +48,13 @@ mod parts;
 mod project;
 mod reference;
 mod rules;
+mod warning;
 
 pub use bone_labels::label_vertices_by_bones;
 pub use error::AnatomyError;
 pub use frame::{parse_direction, Frame};
 pub use level_graph::{level_graph, LevelGraph, LevelVertex, Marks, NO_VERTEX};
-pub use options::{Forward, LabelOptions, LevelOptions, RuleOptions, Up};
+pub use options::{Forward, LabelOptions, LabelPipelineOptions, LevelOptions, RuleOptions, Up};
 pub use orient::{find_up, UpChoice, UpScore};
 pub use output::{labels_json, labels_ply, labels_svg, part_colour};
 pub use overrides::{Overrides, SectionOverride};
@@ -65,11 +66,14 @@ pub use reference::{
     WeightRegions, WeightShare,
 };
 pub use rules::{label_graph, Assignment, Draft};
+pub use warning::AnatomyWarning;
 
 use crate::distance::edt;
 use crate::medial::{dms, MedialSurface};
 use crate::mesh::Mesh;
+use crate::paths::PathOptions;
 use crate::voxel::{voxelize, Solid};
+use crate::warning::Warning;
 use glam::DVec3;
 
 /// Labels the body parts of `mesh` (dissertation ch.7): voxelize, distance map, medial
@@ -77,7 +81,7 @@ use glam::DVec3;
 ///
 /// # Errors
 /// Invalid options of any stage, a mesh that does not voxelize, an empty medial surface.
-pub fn label(mesh: &Mesh, options: &LabelOptions) -> crate::Result<Labelling> {
+pub fn label(mesh: &Mesh, options: &LabelPipelineOptions) -> crate::Result<Labelling> {
     label_with_overrides(mesh, options, None)
 }
 
@@ -87,20 +91,25 @@ pub fn label(mesh: &Mesh, options: &LabelOptions) -> crate::Result<Labelling> {
 /// As [`label`], plus [`AnatomyError::Override`] for an override naming a missing section.
 pub fn label_with_overrides(
     mesh: &Mesh,
-    options: &LabelOptions,
+    options: &LabelPipelineOptions,
     overrides: Option<&Overrides>,
 ) -> crate::Result<Labelling> {
     options.validate()?;
-    options.medial.validate()?;
-    options.paths.validate()?;
     let solid = voxelize(mesh, &options.voxel)?;
     let surface = dms(&edt(&solid), &options.medial)?;
-    Ok(label_pieces(mesh, &solid, &surface, options, overrides)?)
+    Ok(label_pieces(
+        mesh,
+        &solid,
+        &surface,
+        &options.paths,
+        &options.label,
+        overrides,
+    )?)
 }
 
 /// Labels from already computed pipeline pieces (so that a caller running the voxel stages
 /// anyway does not repeat them): the `solid` `mesh` was voxelized into and its medial
-/// `surface`. Phases: body frame; level graph and marks ([`level_graph`]); labelling rules
+/// `surface`; `paths` samples the heart. Phases: body frame; level graph and marks ([`level_graph`]); labelling rules
 /// ([`label_graph`]); overrides; parts, girdles and digits; labels per DMS voxel, interior
 /// voxel and mesh vertex. With [`Forward::Auto`] the whole labelling runs twice, the second
 /// time facing the guessed forward direction.
@@ -112,6 +121,7 @@ pub fn label_pieces(
     mesh: &Mesh,
     solid: &Solid,
     surface: &MedialSurface,
+    paths: &PathOptions,
     options: &LabelOptions,
     overrides: Option<&Overrides>,
 ) -> Result<Labelling, AnatomyError> {
@@ -124,7 +134,7 @@ pub fn label_pieces(
     }
     let up_found = match options.up {
         Up::Direction(_) => None,
-        Up::Auto => Some(find_up(solid, surface, options)),
+        Up::Auto => Some(find_up(solid, surface, paths, options)),
     };
     let up = up_found.as_ref().map_or(options.up.or_default(), |c| c.up);
     // A figure found lying in the file (Z-up from Blender, CAD tools, scanners) faces where the
@@ -139,7 +149,9 @@ pub fn label_pieces(
     let mut labelling = match forward {
         Forward::Direction(f) if f.cross(up).length_squared() > 1e-6 * f.length_squared() => {
             let frame = Frame::new(up, f)?;
-            label_in_frame(mesh, solid, surface, options, overrides, frame, false)?
+            label_in_frame(
+                mesh, solid, surface, paths, options, overrides, frame, false,
+            )?
         }
         Forward::Direction(_) | Forward::Auto => {
             let first_guess = if up.normalize_or_zero().dot(DVec3::Z).abs() < 0.9 {
@@ -148,24 +160,37 @@ pub fn label_pieces(
                 DVec3::Y
             };
             let frame = Frame::new(up, first_guess)?;
-            let first = label_in_frame(mesh, solid, surface, options, overrides, frame, true)?;
+            let first =
+                label_in_frame(mesh, solid, surface, paths, options, overrides, frame, true)?;
             let (guess, note) = guess_forward(&first);
             let frame = Frame::new(up, guess).unwrap_or(first.frame);
-            let mut second = label_in_frame(mesh, solid, surface, options, overrides, frame, true)?;
+            let mut second =
+                label_in_frame(mesh, solid, surface, paths, options, overrides, frame, true)?;
             let f = second.frame.forward;
-            second.warnings.push(format!(
-                "forward guessed as ({:.3}, {:.3}, {:.3}) {note}",
-                f.x, f.y, f.z
-            ));
+            second.warnings.push(
+                AnatomyWarning::ForwardGuessed {
+                    forward: f,
+                    reason: note,
+                }
+                .into(),
+            );
             second
         }
     };
     // What the voxelization left out comes first, then how up was found.
     if let Some(choice) = up_found.as_ref().filter(|c| c.up != DVec3::Y) {
-        labelling.warnings.insert(0, choice.note.clone());
+        let found = AnatomyWarning::UpFound {
+            up: choice.up,
+            confidence: choice.confidence,
+            note: choice.note.clone(),
+        };
+        labelling.warnings.insert(0, found.into());
     }
     labelling.up_found = up_found;
-    labelling.warnings.splice(0..0, solid.report.warnings());
+    labelling.warnings.splice(
+        0..0,
+        solid.report.warnings().into_iter().map(Warning::Voxel),
+    );
     Ok(labelling)
 }
 
@@ -217,6 +242,7 @@ fn guess_forward(l: &Labelling) -> (DVec3, &'static str) {
 fn graph_in_frame(
     solid: &Solid,
     surface: &MedialSurface,
+    paths: &PathOptions,
     options: &LabelOptions,
     frame: &Frame,
 ) -> LevelGraph {
@@ -232,15 +258,7 @@ fn graph_in_frame(
             fw = (fw.0.min(f), fw.1.max(f));
         }
     }
-    level_graph(
-        surface,
-        Some(solid),
-        &options.paths,
-        &options.level,
-        frame,
-        up,
-        fw,
-    )
+    level_graph(surface, Some(solid), paths, &options.level, frame, up, fw)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -248,26 +266,30 @@ fn label_in_frame(
     mesh: &Mesh,
     solid: &Solid,
     surface: &MedialSurface,
+    paths: &PathOptions,
     options: &LabelOptions,
     overrides: Option<&Overrides>,
     frame: Frame,
     forward_guessed: bool,
 ) -> Result<Labelling, AnatomyError> {
-    let graph = graph_in_frame(solid, surface, options, &frame);
+    let graph = graph_in_frame(solid, surface, paths, options, &frame);
     let mut draft = label_graph(&graph, surface, &frame, &options.rules);
     if let Some(o) = overrides {
         let centroids: Vec<DVec3> = graph.vertices.iter().map(|v| v.centroid).collect();
         o.apply(&mut draft, &centroids)?;
     }
-    let mut warnings = surface.warnings.clone();
+    let mut warnings: Vec<Warning> = surface.warnings.iter().cloned().map(Into::into).collect();
     let graph_voxels = graph.voxels;
     if graph_voxels < surface.len() {
-        warnings.push(format!(
-            "the medial surface has several parts: only the largest ({graph_voxels} of {} voxels) is labelled, the rest takes the labels of the nearest labelled voxels",
-            surface.len()
-        ));
+        warnings.push(
+            AnatomyWarning::LargestPartOnly {
+                labelled: graph_voxels,
+                voxels: surface.len(),
+            }
+            .into(),
+        );
     }
-    warnings.append(&mut draft.warnings);
+    warnings.extend(draft.warnings.drain(..).map(Warning::Anatomy));
     let (mut parts, vertex_parts) = build::build_parts(&draft, &graph, surface, &options.rules);
     let voxel_parts: Vec<u32> = graph
         .vertex_of

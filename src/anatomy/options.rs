@@ -170,16 +170,11 @@ impl Default for RuleOptions {
     }
 }
 
-/// All parameters of [`label`](super::label): the voxel stages, the level graph, the rules and
-/// the orientation.
+/// Parameters of the labelling itself ([`label_pieces`](super::label_pieces)): the level
+/// graph, the rules and the orientation. The voxel stages' options sit beside it
+/// ([`LabelPipelineOptions`], `pipeline::RigOptions`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct LabelOptions {
-    /// Voxelization (default voxel size 0.01 of the longest side, Table 5.2).
-    pub voxel: VoxelOptions,
-    /// Discrete medial surface.
-    pub medial: MedialOptions,
-    /// Heart sampling (the heart values come from the heart's depth sums, ch.7.3.1).
-    pub paths: PathOptions,
     /// Level graph and vertex marks.
     pub level: LevelOptions,
     /// Labelling rules.
@@ -194,13 +189,43 @@ pub struct LabelOptions {
 impl Default for LabelOptions {
     fn default() -> Self {
         Self {
-            voxel: VoxelOptions::default(),
-            medial: MedialOptions::default(),
-            paths: PathOptions::default(),
             level: LevelOptions::default(),
             rules: RuleOptions::default(),
             up: Up::Auto,
             forward: Forward::Direction(DVec3::Z),
+        }
+    }
+}
+
+/// All parameters of [`label`](super::label), one options struct per stage: the voxel stages
+/// and the labelling.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct LabelPipelineOptions {
+    /// Voxelization (default voxel size 0.01 of the longest side, Table 5.2).
+    pub voxel: VoxelOptions,
+    /// Discrete medial surface.
+    pub medial: MedialOptions,
+    /// Heart sampling (the heart values come from the heart's depth sums, ch.7.3.1).
+    pub paths: PathOptions,
+    /// Level graph, rules and orientation.
+    pub label: LabelOptions,
+}
+
+impl LabelPipelineOptions {
+    /// Checks the options of every stage (medial surface, paths, labelling).
+    ///
+    /// # Errors
+    /// The stage's error when one stage's options are invalid; [`crate::Error::Options`] with
+    /// each stage's error when several are.
+    pub fn validate(&self) -> crate::Result<()> {
+        let mut errors: Vec<crate::Error> = Vec::new();
+        errors.extend(self.medial.validate().err().map(Into::into));
+        errors.extend(self.paths.validate().err().map(Into::into));
+        errors.extend(self.label.validate().err().map(Into::into));
+        match errors.len() {
+            0 => Ok(()),
+            1 => Err(errors.remove(0)),
+            _ => Err(crate::Error::Options(errors)),
         }
     }
 }
@@ -223,8 +248,8 @@ fn check(
 }
 
 impl LabelOptions {
-    /// Checks every parameter of the anatomy stage (the voxel, medial and path options are
-    /// checked by their stages).
+    /// Checks every parameter of the anatomy stage (the voxel, medial and path options beside
+    /// it are checked by their stages).
     ///
     /// # Errors
     /// [`AnatomyError::InvalidOption`] naming the first bad field,

@@ -14,6 +14,7 @@
 
 use super::{label_graph, Draft, FigureClass, Frame, Label, LabelOptions};
 use crate::medial::MedialSurface;
+use crate::paths::PathOptions;
 use crate::voxel::Solid;
 use glam::DVec3;
 use serde::Serialize;
@@ -148,6 +149,7 @@ fn score(draft: &Draft, up: DVec3, name: &'static str) -> UpScore {
 fn draft_under(
     solid: &Solid,
     surface: &MedialSurface,
+    paths: &PathOptions,
     options: &LabelOptions,
     up: DVec3,
 ) -> Option<Draft> {
@@ -157,16 +159,21 @@ fn draft_under(
         DVec3::Y
     };
     let frame = Frame::new(up, across).ok()?;
-    let graph = super::graph_in_frame(solid, surface, options, &frame);
+    let graph = super::graph_in_frame(solid, surface, paths, options, &frame);
     Some(label_graph(&graph, surface, &frame, &options.rules))
 }
 
 /// Finds the up direction of the figure voxelized in `solid` with medial `surface` (see the
-/// module docs).
-pub fn find_up(solid: &Solid, surface: &MedialSurface, options: &LabelOptions) -> UpChoice {
+/// module docs); `paths` samples the heart.
+pub fn find_up(
+    solid: &Solid,
+    surface: &MedialSurface,
+    paths: &PathOptions,
+    options: &LabelOptions,
+) -> UpChoice {
     let mut scores = Vec::new();
     for &(up, name) in &CANDIDATES {
-        let Some(draft) = draft_under(solid, surface, options, up) else {
+        let Some(draft) = draft_under(solid, surface, paths, options, up) else {
             continue;
         };
         let s = score(&draft, up, name);

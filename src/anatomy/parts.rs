@@ -2,6 +2,7 @@
 
 use super::{Frame, LevelGraph};
 use crate::voxel::Grid;
+use crate::warning::Warning;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -183,8 +184,9 @@ pub struct Labelling {
     pub voxel_parts: Vec<u32>,
     /// Part of each mesh vertex, in mesh order.
     pub mesh_parts: Vec<u32>,
-    /// What could not be identified, in sentences.
-    pub warnings: Vec<String>,
+    /// What could not be identified, and what earlier stages (voxelization, the medial
+    /// surface) warned about, in stage order.
+    pub warnings: Vec<Warning>,
 }
 
 impl Labelling {

@@ -1,7 +1,9 @@
 //! Labelling the level graph (dissertation ch.7.3.3): trunk, legs, wings, tail, head, arms,
 //! leftovers.
 
-use super::{FigureClass, Frame, Label, LevelGraph, LimbPair, RuleOptions, Section, Side};
+use super::{
+    AnatomyWarning, FigureClass, Frame, Label, LevelGraph, LimbPair, RuleOptions, Section, Side,
+};
 use crate::medial::MedialSurface;
 use glam::DVec3;
 
@@ -41,7 +43,7 @@ pub struct Draft {
     /// One assignment per section.
     pub assignments: Vec<Assignment>,
     /// What could not be identified.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<AnatomyWarning>,
 }
 
 /// Sections of `graph` given its trunk vertices: every non-trunk child of a trunk vertex roots
@@ -303,10 +305,7 @@ pub fn label_graph(
         }
     }
     if junctions.is_empty() {
-        warnings.push(
-            "no major junction: the figure has no clear trunk, so no limbs, head or tail could be identified"
-                .to_string(),
-        );
+        warnings.push(AnatomyWarning::NoMajorJunction);
     }
     let trunk_points: Vec<DVec3> = (0..n)
         .filter(|&v| trunk[v])
@@ -455,7 +454,7 @@ pub fn label_graph(
                 ..UNLABELLED
             }
         }
-        _ => warnings.push("no head could be identified".to_string()),
+        _ => warnings.push(AnatomyWarning::NoHead),
     }
 
     // Arms: remaining long sections joining the trunk at about the same place, in pairs.
@@ -506,10 +505,7 @@ pub fn label_graph(
                     limb_pair: Some(LimbPair::Fore),
                     partner: None,
                 };
-                warnings.push(format!(
-                    "found a single arm (section {s}, on the {} side): its partner is missing",
-                    if side == Side::Left { "left" } else { "right" }
-                ));
+                warnings.push(AnatomyWarning::SingleArm { section: s, side });
             }
         }
     }
@@ -531,29 +527,29 @@ pub fn label_graph(
         .filter(|a| a.label == Some(Label::Leg))
         .count();
     if leg_count % 2 == 1 {
-        warnings.push(format!(
-            "found an odd number of legs ({leg_count}): {} could not be paired",
-            single_legs.len()
-        ));
+        warnings.push(AnatomyWarning::OddLegs {
+            legs: leg_count,
+            unpaired: single_legs.len(),
+        });
     }
     if ordered.len() > 2 {
-        warnings.push(format!(
-            "found {} leg pairs: a vertebrate-like figure has at most two limb pairs, so the figure is not vertebrate-like; the pairs behind the most anterior one are all labelled hind legs",
-            ordered.len()
-        ));
+        warnings.push(AnatomyWarning::TooManyLegPairs {
+            pairs: ordered.len(),
+        });
     }
     if leg_count == 0 && !junctions.is_empty() {
-        warnings.push("no legs: no protrusion reaches the bottom of the figure".to_string());
+        warnings.push(AnatomyWarning::NoLegs);
     }
 
     // Leftovers: merged into the trunk; long ones are named for the user.
     for s in unlabelled(&assign) {
         if sections[s].length >= options.leftover_length * radius {
             let d = sections[s].distal;
-            warnings.push(format!(
-                "an unidentified protrusion (section {s}, {} DMS voxels, reaching ({:.3}, {:.3}, {:.3})) was merged into the trunk; label it in a labels override file if it is a body part",
-                sections[s].voxels, d.x, d.y, d.z
-            ));
+            warnings.push(AnatomyWarning::UnidentifiedProtrusion {
+                section: s,
+                voxels: sections[s].voxels,
+                reach: d,
+            });
         }
     }
     Draft {

@@ -5,22 +5,20 @@ use super::context::Context;
 use super::measure::max_radius;
 use super::settle::{Draft, Shrink};
 use super::shapes::{animal_cranium, human_cranium, mandible, vertebra, Jaw, Skull, Vertebra};
-use super::{Articulation, BoneKind};
+use super::{Articulation, BoneKind, BoneWarning};
 use glam::DVec3;
 
 /// Cranium on the head segment, mandible on the jaw segment (or under the cranium, its hinges
 /// then added to the articulations).
 pub(crate) fn skull(ctx: &mut Context) {
     let (Some(head), Some(end)) = (ctx.body.head, ctx.body.head_end) else {
-        ctx.warnings
-            .push("no head segment (head and head end joints): no cranium or mandible".into());
+        ctx.warnings.push(BoneWarning::NoHeadSegment);
         return;
     };
     let (a, b) = (ctx.pos(head), ctx.pos(end));
     let length = a.distance(b);
     let Some(z) = (b - a).try_normalize() else {
-        ctx.warnings
-            .push("the head segment has zero length: no cranium".into());
+        ctx.warnings.push(BoneWarning::ZeroLengthHead);
         return;
     };
     let o = ctx.options;
@@ -77,8 +75,7 @@ pub(crate) fn skull(ctx: &mut Context) {
         }
     };
     let Some(jz) = (chin - hinge).try_normalize() else {
-        ctx.warnings
-            .push("the jaw segment has zero length: no mandible".into());
+        ctx.warnings.push(BoneWarning::ZeroLengthJaw);
         return;
     };
     let jaw_length = hinge.distance(chin);
@@ -123,8 +120,7 @@ pub(crate) fn column(ctx: &mut Context) {
         segments.push((k, k + 1));
     }
     if segments.is_empty() {
-        ctx.warnings
-            .push("no vertebral segments between the root and the head: no vertebrae".into());
+        ctx.warnings.push(BoneWarning::NoVertebralSegments);
     }
     let width = ctx.vertebra_width;
     for (n, (i, j)) in segments.into_iter().enumerate() {
@@ -163,8 +159,7 @@ fn add_vertebra(
 ) {
     let (a, b) = (ctx.pos(from), ctx.pos(to));
     let Some(z) = (b - a).try_normalize() else {
-        ctx.warnings
-            .push(format!("{name}: zero-length segment, no vertebra"));
+        ctx.warnings.push(BoneWarning::ZeroLengthVertebra { name });
         return;
     };
     let local = vertebra(&Vertebra {

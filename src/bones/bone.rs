@@ -1,6 +1,6 @@
 //! The output of bone generation: bone meshes attached to joints.
 
-use super::BoneKind;
+use super::{BoneKind, BoneWarning};
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
 use glam::{DQuat, DVec3};
@@ -37,7 +37,7 @@ pub struct Bones {
     /// Where bones meet (joints and jaw hinges).
     pub articulations: Vec<Articulation>,
     /// What could not be made, or was made smaller than measured, and why.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<BoneWarning>,
 }
 
 impl Bone {

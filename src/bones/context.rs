@@ -3,7 +3,7 @@
 
 use super::settle::{settle, Draft};
 use super::structure::{perpendicular, Body};
-use super::{Articulation, Bone, BoneOptions};
+use super::{Articulation, Bone, BoneOptions, BoneWarning};
 use crate::distance::DistanceMap;
 use crate::fit::Side;
 use crate::skeleton::{JointId, Skeleton};
@@ -21,7 +21,7 @@ pub(crate) struct Context<'a> {
     pub bones: Vec<Bone>,
     /// Where bones may meet: a sphere per joint, jaw hinges added by the skull.
     pub articulations: Vec<Articulation>,
-    pub warnings: Vec<String>,
+    pub warnings: Vec<BoneWarning>,
 }
 
 impl<'a> Context<'a> {
@@ -30,7 +30,7 @@ impl<'a> Context<'a> {
         map: &'a DistanceMap,
         options: &'a BoneOptions,
         body: Body,
-        warnings: Vec<String>,
+        warnings: Vec<BoneWarning>,
     ) -> Self {
         let dorsal = DMat3::from_quat(skeleton.joint(body.root).frame).y_axis;
         let dorsal = perpendicular(dorsal, body.forward.cross(body.up).normalize_or_zero())

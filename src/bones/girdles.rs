@@ -7,7 +7,7 @@ use super::measure::median_radius;
 use super::settle::{Draft, Shrink};
 use super::shapes::{pelvis, rib_cage, scapula, Pelvis, RibCage, Scapula};
 use super::structure::{perpendicular, GirdleKind};
-use super::BoneKind;
+use super::{BoneKind, BoneWarning};
 use crate::fit::Side;
 use crate::skeleton::JointId;
 use glam::DVec3;
@@ -115,8 +115,7 @@ pub(crate) fn rib_cages(ctx: &mut Context) -> Vec<Option<usize>> {
         }
     }
     if spheres.is_empty() {
-        ctx.warnings
-            .push("no pectoral girdle (arms, wings or fore legs): no rib cage".into());
+        ctx.warnings.push(BoneWarning::NoPectoralGirdle);
         return cage_of;
     }
     let groups = overlap_groups(&spheres.iter().map(|&(_, s)| s).collect::<Vec<_>>());
@@ -196,10 +195,9 @@ pub(crate) fn scapulae(ctx: &mut Context, cage_of: &[Option<usize>]) {
         let anchor = l.girdle_joint.unwrap_or(l.parent);
         let toward = ctx.pos(anchor);
         let Some(u) = (toward - shoulder).try_normalize() else {
-            ctx.warnings.push(format!(
-                "{} pectoral limb: girdle joint on the shoulder, no scapula",
-                l.side.as_str()
-            ));
+            ctx.warnings.push(BoneWarning::NoScapula {
+                side: l.side.as_str(),
+            });
             continue;
         };
         let length = o.scapula_length * shoulder.distance(toward);
@@ -284,12 +282,11 @@ pub(crate) fn pelvic_girdle(ctx: &mut Context) {
     let (l, r) = match (find(Side::Left), find(Side::Right)) {
         (Some(l), Some(r)) => (l, r),
         (Some(l), None) | (None, Some(l)) => {
-            ctx.warnings
-                .push("one pelvic limb only: the pelvis mirrors its socket".into());
+            ctx.warnings.push(BoneWarning::OnePelvicLimb);
             (l, l)
         }
         (None, None) => {
-            ctx.warnings.push("no pelvic limbs: no pelvis".into());
+            ctx.warnings.push(BoneWarning::NoPelvicLimbs);
             return;
         }
     };
@@ -303,8 +300,7 @@ pub(crate) fn pelvic_girdle(ctx: &mut Context) {
         }
     }
     let Some(x) = (pl - pr).try_normalize() else {
-        ctx.warnings
-            .push("the hip joints coincide: no pelvis".into());
+        ctx.warnings.push(BoneWarning::HipsCoincide);
         return;
     };
     let half_width = 0.5 * pl.distance(pr);

@@ -10,7 +10,7 @@ use super::shapes::{
     Block, LongBone,
 };
 use super::structure::{GirdleKind, Limb};
-use super::BoneKind;
+use super::{BoneKind, BoneWarning};
 use crate::mesh::Mesh;
 use crate::skeleton::JointId;
 use glam::DVec3;
@@ -84,10 +84,10 @@ fn limb_bones(ctx: &mut Context, limb: &Limb) {
         };
         let (j, b) = (chain[i], ctx.pos(chain[i + 1]));
         let Some((bone, z)) = long(ctx, a, b, 1.0) else {
-            ctx.warnings.push(format!(
-                "{label}: zero-length segment at {}, no bone",
-                ctx.skeleton.joint(j).name
-            ));
+            ctx.warnings.push(BoneWarning::ZeroLengthLimbSegment {
+                limb: label.clone(),
+                joint: ctx.skeleton.joint(j).name.clone(),
+            });
             continue;
         };
         match (i, pelvic) {
@@ -130,9 +130,11 @@ fn limb_bones(ctx: &mut Context, limb: &Limb) {
             _ => None,
         };
         if let Some(m) = missing {
-            ctx.warnings.push(format!(
-                "{label} has {segments} segment(s): no {m} (digit-less or short limb)"
-            ));
+            ctx.warnings.push(BoneWarning::ShortLimb {
+                limb: label,
+                segments,
+                missing: m,
+            });
         }
         return;
     }

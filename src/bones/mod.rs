@@ -41,6 +41,7 @@ mod preview;
 mod settle;
 pub mod shapes;
 mod structure;
+mod warning;
 
 pub use bone::{Articulation, Bone, Bones};
 pub use error::BoneError;
@@ -48,6 +49,7 @@ pub use export::{bones_glb_bytes, write_bones_glb, write_bones_obj};
 pub use kind::BoneKind;
 pub use options::BoneOptions;
 pub use preview::bones_svg;
+pub use warning::BoneWarning;
 
 use crate::distance::DistanceMap;
 use crate::fit::Fit;

@@ -4,7 +4,7 @@
 use super::collision::overlaps;
 use super::measure::inside_fraction;
 use super::shapes::place;
-use super::{Articulation, Bone, BoneKind, BoneOptions};
+use super::{Articulation, Bone, BoneKind, BoneOptions, BoneWarning};
 use crate::distance::DistanceMap;
 use crate::mesh::Mesh;
 use crate::skeleton::JointId;
@@ -73,7 +73,7 @@ pub(crate) fn settle(
     options: &BoneOptions,
     kept: &[Bone],
     articulations: &[Articulation],
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<BoneWarning>,
 ) -> Option<Bone> {
     let offsets = draft.offsets();
     let mut best: Option<(f64, f64, Mesh)> = None;
@@ -109,28 +109,25 @@ pub(crate) fn settle(
     if !clear && (touching || (touching_fallback && best.is_none())) {
         // Bones must not intersect outside the joints: a bone that overlaps a neighbour at
         // every size and offset is left out rather than kept intersecting.
-        warnings.push(format!(
-            "{}: left out, it overlaps a neighbouring bone outside the joints at every size tried",
-            draft.name
-        ));
+        warnings.push(BoneWarning::Overlapping {
+            bone: draft.name.clone(),
+        });
         return None;
     }
     let (fraction, scale, mesh) = best?;
     if fraction < options.min_inside_fraction {
-        warnings.push(format!(
-            "{}: left out, only {:.1} % of its vertices lie inside the figure at best (its segment runs outside the figure)",
-            draft.name,
-            100.0 * fraction
-        ));
+        warnings.push(BoneWarning::Outside {
+            bone: draft.name.clone(),
+            inside: fraction,
+        });
         return None;
     }
     if fraction < options.inside_fraction {
-        warnings.push(format!(
-            "{}: only {:.1} % of its vertices lie inside the figure, at {:.0} % of its measured size",
-            draft.name,
-            100.0 * fraction,
-            100.0 * scale
-        ));
+        warnings.push(BoneWarning::PartlyOutside {
+            bone: draft.name.clone(),
+            inside: fraction,
+            scale,
+        });
     }
     Some(Bone {
         kind: draft.kind,

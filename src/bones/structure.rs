@@ -2,6 +2,7 @@
 //! column, head, jaw, tail, and each limb's girdle, chain and digits. Names are not used (a
 //! naming preset may have renamed every joint).
 
+use super::BoneWarning;
 use crate::fit::{Fit, Side};
 use crate::skeleton::canonical::{Canonical, Tail};
 use crate::skeleton::{JointId, Skeleton};
@@ -71,7 +72,7 @@ fn spine(
     s: &Skeleton,
     root: JointId,
     head: Option<JointId>,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<BoneWarning>,
 ) -> Vec<JointId> {
     let mut spine = Vec::new();
     if let Some(h) = head {
@@ -89,7 +90,7 @@ fn spine(
         }
     }
     if spine.is_empty() {
-        warnings.push("no head joint on a chain from the root: no cranium; the vertebral column follows the root's longest chain".into());
+        warnings.push(BoneWarning::NoHeadOnChain);
         spine = longest_chain(s, root);
     }
     spine
@@ -146,7 +147,7 @@ fn limb(
 }
 
 /// Reads the body of `fit`. `warnings` receives what is missing.
-pub(crate) fn body(fit: &Fit, warnings: &mut Vec<String>) -> Body {
+pub(crate) fn body(fit: &Fit, warnings: &mut Vec<BoneWarning>) -> Body {
     let s = &fit.skeleton;
     let key_of: BTreeMap<JointId, Option<Canonical>> = fit
         .canonical

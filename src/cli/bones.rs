@@ -10,6 +10,7 @@ use clap::Args;
 use skelfit::bones::{bones, bones_glb_bytes, bones_svg, BoneOptions, Bones};
 use skelfit::export::{obj_text, GltfOptions};
 use skelfit::pipeline::{rig, Rig};
+use skelfit::warning::Warning;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -88,12 +89,9 @@ pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
     {
         println!("wrote           {}", path.display());
     }
-    for w in &rigged.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
-    for w in &made.warnings {
-        eprintln!("skelfit: warning: bones: {w}");
-    }
+    let mut warnings = rigged.warnings.clone();
+    warnings.extend(made.warnings.iter().cloned().map(Warning::Bones));
+    super::common::print_warnings(&warnings);
     if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
         eprintln!("skelfit: hint: {hint}");
     }

@@ -4,6 +4,7 @@ use anyhow::Context;
 use clap::Args;
 use skelfit::mesh::Mesh;
 use skelfit::voxel::{VoxelOptions, VoxelSize};
+use skelfit::warning::{ranked, Warning, WarningRecord};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -176,4 +177,25 @@ pub fn orientation_hint(labels: &skelfit::anatomy::Labelling, up: glam::DVec3) -
             up.x, up.y, up.z
         )
     })
+}
+
+/// Prints `warnings` to stderr ranked for the reader ([`skelfit::warning::ranked`]: most
+/// severe first, grouped by stage), each with its stage and severity.
+pub fn print_warnings(warnings: &[Warning]) {
+    for w in ranked(warnings) {
+        eprintln!("skelfit: warning: {w} [{}, {}]", w.stage(), w.severity());
+    }
+}
+
+/// Prints warning records (an evaluation's) to stderr, most severe first, as
+/// [`print_warnings`] does.
+pub fn print_warning_records(records: &[WarningRecord]) {
+    let mut ranked: Vec<&WarningRecord> = records.iter().collect();
+    ranked.sort_by_key(|r| std::cmp::Reverse(r.severity));
+    for r in ranked {
+        eprintln!(
+            "skelfit: warning: {} [{}, {}]",
+            r.message, r.stage, r.severity
+        );
+    }
 }

@@ -20,6 +20,7 @@ use skelfit::export::{
     write_bvh, write_glb, write_skeleton_json, BvhOptions, GltfOptions, JsonOptions,
 };
 use skelfit::pipeline::{general_rig, rig, GeneralRigOptions, RigOptions};
+use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `skelfit demo`.
@@ -177,9 +178,7 @@ fn rig_general(mesh_path: &Path, out: &Path) -> anyhow::Result<(usize, f64)> {
         rig_ms,
         glb.display()
     );
-    for w in &rig.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
+    super::common::print_warnings(&rig.warnings);
     Ok((rig.general.skeleton.len(), rig_ms))
 }
 
@@ -234,9 +233,8 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
         made.bones.len(),
         out.join("bones.glb").display()
     );
-    for w in &made.warnings {
-        eprintln!("skelfit: warning: bones: {w}");
-    }
+    let bone_warnings: Vec<Warning> = made.warnings.iter().cloned().map(Warning::Bones).collect();
+    super::common::print_warnings(&bone_warnings);
     println!(
         "anatomical rig       {} template, {} joints ({} canonical) in {:.1} ms -> {}",
         rigged.fit.template,
@@ -245,9 +243,7 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
         rig_ms,
         glb.display()
     );
-    for w in &rigged.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
+    super::common::print_warnings(&rigged.warnings);
     let error = match reference_beside(mesh_path) {
         Some(reference) => {
             let reference = load_skeleton(&reference)?;

@@ -109,9 +109,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
                 args.reference.display()
             )
         })?;
-    for warning in &evaluation.warnings {
-        eprintln!("skelfit: warning: {warning}");
-    }
+    super::common::print_warning_records(&evaluation.warnings);
     print!("{}", summary_text(&evaluation, args.markdown));
     if let Some(path) = &args.csv {
         let mut bytes = Vec::new();

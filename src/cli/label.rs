@@ -7,10 +7,11 @@ use super::common::{load_mesh, write_file, Outputs, VoxelArgs};
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
 use skelfit::anatomy::{
-    label_with_overrides, labels_json, labels_ply, labels_svg, LabelOptions, Overrides,
+    label_with_overrides, labels_json, labels_ply, labels_svg, LabelPipelineOptions, Overrides,
 };
 use skelfit::eval::{label_table_json, label_table_markdown, label_table_models, label_table_row};
-use skelfit::pipeline::{label_by_bones, RigOptions, MEDIAL_FALLBACK};
+use skelfit::pipeline::{label_by_bones, RigOptions, RigWarning};
+use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 
 /// Where the per-mesh-vertex labels come from.
@@ -95,13 +96,14 @@ pub struct LabelArgs {
 
 impl LabelArgs {
     /// Validated options.
-    pub fn options(&self) -> anyhow::Result<LabelOptions> {
-        let mut options = LabelOptions {
+    pub fn options(&self) -> anyhow::Result<LabelPipelineOptions> {
+        let mut stages = LabelPipelineOptions {
             voxel: self.voxel.options()?,
-            up: super::common::parse_up(&self.up)?,
-            forward: super::common::parse_forward(&self.forward)?,
             ..Default::default()
         };
+        let options = &mut stages.label;
+        options.up = super::common::parse_up(&self.up)?;
+        options.forward = super::common::parse_forward(&self.forward)?;
         if let Some(j) = self.junction_fraction {
             options.level.junction_fraction = j;
         }
@@ -116,7 +118,7 @@ impl LabelArgs {
             options.level.bins = b;
         }
         options.validate()?;
-        Ok(options)
+        Ok(stages)
     }
 }
 
@@ -152,9 +154,8 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
         VertexLabels::Bones => label_by_bones(
             &mesh,
             &RigOptions {
-                label: options,
                 overrides,
-                ..Default::default()
+                ..RigOptions::from(options)
             },
         ),
     }
@@ -173,7 +174,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     let fell_back = labels
         .warnings
         .iter()
-        .any(|w| w.starts_with(MEDIAL_FALLBACK));
+        .any(|w| matches!(w, Warning::Rig(RigWarning::MedialLabels { .. })));
     println!(
         "vertex labels   {}",
         match args.vertex_labels {
@@ -186,9 +187,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     for p in [&args.ply, &args.svg].into_iter().flatten() {
         println!("wrote           {}", p.display());
     }
-    for w in &labels.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
+    super::common::print_warnings(&labels.warnings);
     if let Some(hint) = super::common::orientation_hint(&labels, labels.frame.up) {
         eprintln!("skelfit: hint: {hint}");
     }
@@ -198,7 +197,7 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
 /// Labels every `<kind>/<model>/mesh.obj` below `refdata`
 /// (kinds humanoid, quadruped, other, robustness) and writes the table of figure class, parts
 /// found and the scores of [`skelfit::eval::label_score`] ([`skelfit::eval::label_table_row`]).
-fn table(refdata: &Path, out: &Path, options: &LabelOptions) -> anyhow::Result<()> {
+fn table(refdata: &Path, out: &Path, options: &LabelPipelineOptions) -> anyhow::Result<()> {
     super::common::output_folder(out)?;
     let mut rows = Vec::new();
     for (name, model) in label_table_models(refdata) {

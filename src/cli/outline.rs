@@ -18,6 +18,7 @@ use skelfit::outline::{
 use skelfit::skeleton::Skeleton;
 use skelfit::skin::{skin_from_bones, Skin, SkinOptions};
 use skelfit::voxel::{voxelize, VoxelOptions, VoxelSize};
+use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -193,6 +194,7 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
         );
     }
     outputs.write()?;
+    let skin_warnings: Vec<Warning> = skin.warnings.iter().cloned().map(Warning::Skin).collect();
     let summary = json!({
         "outlines": args.outlines.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
         "polygon_corners": parts.iter().map(|p| p.skeleton.polygon.len()).collect::<Vec<_>>(),
@@ -201,7 +203,7 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
         "triangles": assembly.mesh.triangles.len(),
         "parent_part": assembly.parent_part,
         "timings_ms": {"skeleton_and_inflate": skeleton_ms, "skin": skin_ms, "total": millis(start)},
-        "warnings": skin.warnings.iter().map(ToString::to_string).collect::<Vec<_>>(),
+        "warnings": skin_warnings,
     });
     if args.print_json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
@@ -218,8 +220,6 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
             println!("wrote           {}", path.display());
         }
     }
-    for w in &skin.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
+    super::common::print_warnings(&skin_warnings);
     Ok(())
 }

@@ -11,6 +11,7 @@ use skelfit::anatomy::Overrides;
 use skelfit::export::{bvh_text, glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions};
 use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice, GENERAL};
 use skelfit::template::{Preset, Template};
+use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -106,7 +107,7 @@ impl RigArgs {
     /// Validated options (stage ranges are checked by the library before any work).
     pub fn options(&self) -> anyhow::Result<RigOptions> {
         let mut options = RigOptions::default();
-        options.label.voxel = self.voxel.options()?;
+        options.voxel = self.voxel.options()?;
         options.label.up = super::common::parse_up(&self.up)?;
         options.label.forward = super::common::parse_forward(&self.forward)?;
         options.template = match self.template.as_str() {
@@ -168,9 +169,7 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     })
     .context("fitting the anatomical control skeleton")?;
     if args.strict && !rigged.missing.is_empty() {
-        for w in &rigged.warnings {
-            eprintln!("skelfit: warning: {w}");
-        }
+        super::common::print_warnings(&rigged.warnings);
         anyhow::bail!(
             "--strict: the rig lacks {} that the {} template expects; nothing was written (see the warnings above for why, or label the parts with --labels)",
             rigged.missing.join(", "),
@@ -179,9 +178,7 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     }
     let general = rigged.fit.template == GENERAL;
     if args.strict && general {
-        for w in &rigged.warnings {
-            eprintln!("skelfit: warning: {w}");
-        }
+        super::common::print_warnings(&rigged.warnings);
         anyhow::bail!(
             "--strict: no template fits the figure (see the warnings above for why); nothing was written (choose one with --template, or run without --strict for the general control skeleton)"
         );
@@ -226,12 +223,9 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     } else {
         print_summary(args, &rigged, load_ms, export_ms);
     }
-    for w in &rigged.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
-    for w in &bone_warnings {
-        eprintln!("skelfit: warning: bones: {w}");
-    }
+    let mut warnings = rigged.warnings.clone();
+    warnings.extend(bone_warnings.into_iter().map(Warning::Bones));
+    super::common::print_warnings(&warnings);
     if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
         eprintln!("skelfit: hint: {hint}");
     }

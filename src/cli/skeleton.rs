@@ -149,9 +149,7 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     } else {
         print_summary(args, &rig, load_ms, export_ms);
     }
-    for w in &rig.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
+    super::common::print_warnings(&rig.warnings);
     Ok(())
 }
 

@@ -141,9 +141,7 @@ pub fn run(args: &SkinArgs) -> anyhow::Result<()> {
     } else {
         print_summary(args, &rig, &skinned, [load_ms, skin_ms, export_ms]);
     }
-    for w in &skinned.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
+    super::common::print_warnings(&skinned.warnings);
     Ok(())
 }
 

@@ -6,7 +6,8 @@ use clap::Args;
 use serde::Serialize;
 use skelfit::distance::{edt, DistanceMap};
 use skelfit::report::{distance_slice, png_bytes};
-use skelfit::voxel::{voxelize, Solid, VoxelOptions, VoxelReport};
+use skelfit::voxel::{voxelize, Solid, VoxelOptions, VoxelReport, VoxelWarning};
+use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -41,7 +42,7 @@ pub struct VoxelSummary {
     pub voxels: VoxelReport,
     pub timings_ms: Timings,
     pub slices: Vec<String>,
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 #[derive(Debug, Serialize)]
@@ -86,13 +87,21 @@ pub fn summarize(
     let grid = solid.grid;
     let stats = mesh.stats();
 
-    let mut warnings = Vec::new();
-    warnings.extend(solid.report.warnings());
+    let mut warnings: Vec<Warning> = solid
+        .report
+        .warnings()
+        .into_iter()
+        .map(Warning::Voxel)
+        .collect();
     if stats.boundary_edges > 0 || stats.non_manifold_edges > 0 {
-        warnings.push(format!(
-            "the mesh is not closed ({} boundary, {} non-manifold edges): inside/outside was decided by a six-direction winding-number vote ({} voxels had disagreeing votes)",
-            stats.boundary_edges, stats.non_manifold_edges, solid.report.ambiguous_voxels
-        ));
+        warnings.push(
+            VoxelWarning::OpenMesh {
+                boundary_edges: stats.boundary_edges,
+                non_manifold_edges: stats.non_manifold_edges,
+                ambiguous_voxels: solid.report.ambiguous_voxels,
+            }
+            .into(),
+        );
     }
     let slices = match slices {
         Some(dir) => write_slices(dir, &solid, &map)?,
@@ -151,9 +160,7 @@ pub fn print_text(s: &VoxelSummary) {
     for path in &s.slices {
         println!("wrote                {path}");
     }
-    for w in &s.warnings {
-        eprintln!("skelfit: warning: {w}");
-    }
+    super::common::print_warnings(&s.warnings);
 }
 
 /// Writes five slices across the up axis (y) through the interior and one x and one z slice

@@ -7,6 +7,7 @@ use super::{
     EvalOptions, Evaluation, JointPairing, MatchMethod, ReferenceRig, RigAnatomy, RigMethod,
     RiggerOptions, Table,
 };
+use crate::warning::{Warning, WarningRecord};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -206,9 +207,10 @@ pub struct BenchResult {
     /// What the anatomical rig found (figure, template, parts, missing parts).
     #[serde(default)]
     pub anatomy: Option<RigAnatomy>,
-    /// The rigging method's warnings (also among `notes`).
+    /// The rigging method's warnings (their messages also among `notes`), as records: bench
+    /// results are a file format that `skelfit report` reads back.
     #[serde(default)]
-    pub warnings: Vec<String>,
+    pub warnings: Vec<WarningRecord>,
 }
 
 impl BenchResult {
@@ -279,8 +281,10 @@ fn run_model(
     let rigged = rig_mesh(&mesh, &options.rigger)
         .map_err(|e| format!("{} rig failed: {e}", options.rigger.method.name()))?;
     result.timings.extend(rigged.timings);
-    result.notes.extend(rigged.warnings.iter().cloned());
-    result.warnings = rigged.warnings;
+    result
+        .notes
+        .extend(rigged.warnings.iter().map(ToString::to_string));
+    result.warnings = rigged.warnings.iter().map(Warning::record).collect();
     result.anatomy = rigged.anatomy;
     result.predicted_joints = rigged.skeleton.len();
     let mut predicted = ReferenceRig::from_skeleton(model.name.clone(), rigged.skeleton);
@@ -289,7 +293,9 @@ fn run_model(
     let evaluation =
         evaluate(&predicted, &reference, Some(&mesh), &options.eval).map_err(|e| e.to_string())?;
     result.timings.push(("evaluate".into(), millis(clock)));
-    result.notes.extend(evaluation.warnings.iter().cloned());
+    result
+        .notes
+        .extend(evaluation.warnings.iter().map(|w| w.message.clone()));
     result.core = core_error(&evaluation);
     result.evaluation = Some(evaluation);
     result.predicted = Some(predicted);

@@ -120,7 +120,7 @@ pub fn anatomy_table(results: &[BenchResult]) -> Table {
                 .warnings
                 .iter()
                 .take(TOP_WARNINGS)
-                .map(|w| cut(w))
+                .map(|w| cut(&w.message))
                 .collect();
             if let Some(f) = &r.failure {
                 top.insert(0, format!("failed: {}", cut(f)));

@@ -3,7 +3,7 @@
 //! it, else the medial surface) and scored by [`label_score`], as Markdown and JSON rows.
 
 use super::{label_score, EvalError};
-use crate::anatomy::{label_with_overrides, Label, LabelOptions, Labelling};
+use crate::anatomy::{label_with_overrides, Label, LabelPipelineOptions, Labelling};
 use crate::mesh::Mesh;
 use crate::pipeline::{rig, RigOptions};
 use std::fmt::Write;
@@ -121,13 +121,10 @@ pub struct LabelTableRow {
 fn table_labels(
     name: &str,
     mesh: &Mesh,
-    options: &LabelOptions,
+    options: &LabelPipelineOptions,
     notes: &mut Vec<String>,
 ) -> Result<(Labelling, Option<Labelling>), crate::Error> {
-    let rig_options = RigOptions {
-        label: *options,
-        ..Default::default()
-    };
+    let rig_options = RigOptions::from(*options);
     Ok(match rig(mesh, &rig_options) {
         Ok(r) => (r.labelling.clone(), Some(r.into_bone_labels(mesh))),
         Err(e) => {
@@ -147,7 +144,7 @@ pub fn label_table_row(
     name: &str,
     model: &Path,
     mesh: &Mesh,
-    options: &LabelOptions,
+    options: &LabelPipelineOptions,
 ) -> Result<LabelTableRow, crate::Error> {
     let mut notes = Vec::new();
     let (medial, by_bones) = table_labels(name, mesh, options, &mut notes)?;

@@ -3,10 +3,11 @@
 
 use super::{
     canonical_map, chamfer, correspond, CanonicalSource, ChamferDistances, ChamferOptions,
-    Correspondence, EvalError, MatchMethod, ReferenceRig,
+    Correspondence, EvalError, EvalWarning, MatchMethod, ReferenceRig,
 };
 use crate::mesh::Mesh;
 use crate::skeleton::Canonical;
+use crate::warning::{Warning, WarningRecord};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -193,9 +194,11 @@ pub struct Evaluation {
     pub chamfer: ChamferDistances,
     /// Chamfer distances as a percentage of figure size.
     pub chamfer_percent: ChamferDistances,
-    /// Things the caller should tell the user (e.g. suspected unit mismatch). Never printed by
-    /// the library.
-    pub warnings: Vec<String>,
+    /// Things the caller should tell the user (e.g. suspected unit mismatch), from
+    /// [`EvalWarning`]s. Never printed by the library. Records rather than typed warnings: an
+    /// evaluation is a file format (`skelfit eval --json`, bench results that `skelfit report`
+    /// reads back), and a record is what a file can give back.
+    pub warnings: Vec<WarningRecord>,
 }
 
 fn extent(bbox: Option<(DVec3, DVec3)>, measure: FigureMeasure) -> f64 {
@@ -252,13 +255,12 @@ pub fn figure_size(
     }
 }
 
-fn size_warning(what: &str, a: f64, b: f64, ratio: f64) -> Option<String> {
+fn size_warning(what: &'static str, a: f64, b: f64, ratio: f64) -> Option<EvalWarning> {
     let (lo, hi) = (a.min(b), a.max(b));
-    (lo > 0.0 && hi / lo > ratio).then(|| {
-        format!(
-            "{what} differ by {:.1}x ({a:.4} vs {b:.4}): check that both use the same units (e.g. m vs cm)",
-            hi / lo
-        )
+    (lo > 0.0 && hi / lo > ratio).then_some(EvalWarning::UnitMismatch {
+        what,
+        first: a,
+        second: b,
     })
 }
 
@@ -372,7 +374,10 @@ pub fn evaluate(
         chamfer,
         chamfer_percent: chamfer.normalised(figure.size / 100.0),
         joints,
-        warnings,
+        warnings: warnings
+            .into_iter()
+            .map(|w| Warning::Eval(w).record())
+            .collect(),
     })
 }
 
@@ -385,7 +390,7 @@ fn pairing(
     predicted: &ReferenceRig,
     reference: &ReferenceRig,
     options: &EvalOptions,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<EvalWarning>,
 ) -> Result<Correspondence, EvalError> {
     Ok(match options.pairing {
         JointPairing::Required => correspond(predicted, reference)?,
@@ -395,13 +400,10 @@ fn pairing(
                     && (c.pairs.len() as f64)
                         < options.min_name_fraction * reference.skeleton.len() as f64 =>
             {
-                let names: Vec<&str> = c.pairs.iter().map(|p| p.key.as_str()).collect();
-                warnings.push(format!(
-                    "per-joint errors are unavailable: no canonical keys are shared and only {} of the reference's {} joint names coincide ({}); only the chamfer distances are reported",
-                    names.len(),
-                    reference.skeleton.len(),
-                    names.join(", ")
-                ));
+                warnings.push(EvalWarning::FewSharedNames {
+                    names: c.pairs.iter().map(|p| p.key.clone()).collect(),
+                    reference_joints: reference.skeleton.len(),
+                });
                 chamfer_only(predicted, reference)
             }
             Ok(c) => c,
@@ -409,11 +411,10 @@ fn pairing(
                 predicted: p,
                 reference: r,
             }) => {
-                warnings.push(format!(
-                    "per-joint errors are unavailable: the skeletons share no joints (predicted has {} joints without canonical names, reference has {}); only the chamfer distances are reported",
-                    p.len(),
-                    r.len()
-                ));
+                warnings.push(EvalWarning::NoSharedJoints {
+                    predicted: p.len(),
+                    reference: r.len(),
+                });
                 chamfer_only(predicted, reference)
             }
             Err(e) => return Err(e),
@@ -429,7 +430,7 @@ fn size_warnings(
     reference: &ReferenceRig,
     figure: &FigureSize,
     options: &EvalOptions,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<EvalWarning>,
 ) {
     let predicted_size = extent(predicted.bounding_box(), figure.measure);
     let reference_size = extent(reference.bounding_box(), figure.measure);
@@ -448,9 +449,7 @@ fn size_warnings(
         ));
     }
     if figure.size <= 0.0 {
-        warnings.push(
-            "the figure size is zero, so percentages are reported as 0: pass the mesh".into(),
-        );
+        warnings.push(EvalWarning::ZeroFigureSize);
     }
 }
 

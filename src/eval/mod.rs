@@ -69,6 +69,7 @@ mod study;
 mod table;
 #[cfg(test)]
 mod tests;
+mod warning;
 
 pub use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
 pub use bench::{
@@ -111,3 +112,4 @@ pub use table::{
     aggregate, joint_rows, joint_table, key_table, model_row, model_table, percent_cell, to_json,
     write_csv, DatasetSummary, JointRow, KeyRow, ModelRow, Table,
 };
+pub use warning::EvalWarning;

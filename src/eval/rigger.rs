@@ -7,6 +7,7 @@ use crate::fit::FitWarning;
 use crate::mesh::Mesh;
 use crate::pipeline::{general_skeleton, rig, GeneralSkeletonOptions, RigOptions};
 use crate::skeleton::{JointId, Skeleton};
+use crate::warning::Warning;
 use glam::{DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -89,8 +90,8 @@ pub struct Rigged {
     pub canonical: BTreeMap<String, JointId>,
     /// Wall-clock time per pipeline stage, `(stage, milliseconds)`, in stage order.
     pub timings: Vec<(String, f64)>,
-    /// Warnings of every stage, as sentences.
-    pub warnings: Vec<String>,
+    /// Warnings of every stage.
+    pub warnings: Vec<Warning>,
     /// What the anatomical rig found (`None` for methods without body parts).
     pub anatomy: Option<RigAnatomy>,
 }

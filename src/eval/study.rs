@@ -9,6 +9,7 @@ use super::{
 };
 use crate::mesh::Mesh;
 use crate::skeleton::Skeleton;
+use crate::warning::{Warning, WarningRecord};
 use glam::{DQuat, DVec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -94,8 +95,9 @@ pub struct StudyVariant {
     pub to_reference: Option<Evaluation>,
     /// Rig time per stage, milliseconds.
     pub timings: Vec<(String, f64)>,
-    /// Warnings of the rig and the evaluation.
-    pub warnings: Vec<String>,
+    /// Warnings of the rig and the evaluation, as records: a study is a file format that
+    /// `skelfit report` reads back.
+    pub warnings: Vec<WarningRecord>,
     /// Why the variant failed, if it did.
     pub failure: Option<String>,
     /// The variant's skeleton mapped back into the base frame (not serialised).
@@ -248,7 +250,7 @@ fn run_study(
         };
         variant.joints = rig.skeleton.len();
         variant.timings = rig.timings;
-        variant.warnings = rig.warnings;
+        variant.warnings = rig.warnings.iter().map(Warning::record).collect();
         let mut predicted = ReferenceRig::from_skeleton(model, rig.skeleton.clone());
         predicted.canonical = rig.canonical;
         let (pairing, displacement) = displacement(&predicted, &base_rig);

@@ -272,7 +272,12 @@ fn unit_mismatch_warns() {
     }
     let e = evaluate(&rig(cm), &rig(s.clone()), None, &EvalOptions::default()).unwrap();
     assert_eq!(e.warnings.len(), 1, "{:?}", e.warnings);
-    assert!(e.warnings[0].contains("100.0x"), "{}", e.warnings[0]);
+    assert!(
+        e.warnings[0].message.contains("100.0x"),
+        "{}",
+        e.warnings[0]
+    );
+    assert_eq!(e.warnings[0].code, "unit_mismatch");
     // A mesh in other units than the reference is flagged too.
     let mesh = crate::mesh::Mesh::cuboid(DVec3::ZERO, DVec3::splat(180.0));
     let e = evaluate(
@@ -624,7 +629,9 @@ fn chamfer_only_when_nothing_pairs_and_pairing_is_optional() {
     assert!(!e.has_joint_errors());
     assert!(e.joints.is_empty() && e.worst_joint.is_empty());
     assert!(
-        e.warnings[0].contains("per-joint errors are unavailable"),
+        e.warnings[0]
+            .message
+            .contains("per-joint errors are unavailable"),
         "{:?}",
         e.warnings
     );
@@ -772,10 +779,16 @@ fn anatomy_table_lists_missing_core_joints_and_parts() {
         worst: "pelvis".into(),
         missing: vec!["shoulder_R".into()],
     });
+    let record = |message: String| crate::warning::WarningRecord {
+        stage: "fit".into(),
+        code: "missing_limb".into(),
+        severity: crate::warning::Severity::PartMissing,
+        message,
+    };
     result.warnings = vec![
-        "w".repeat(WARNING_CHARS + 5),
-        "second".into(),
-        "third".into(),
+        record("w".repeat(WARNING_CHARS + 5)),
+        record("second".into()),
+        record("third".into()),
     ];
     let mut other = result.clone();
     other.real = false;
@@ -886,7 +899,9 @@ fn a_coincidental_shared_name_does_not_make_a_per_joint_evaluation() {
     .unwrap();
     assert_eq!(e.method, MatchMethod::ChamferOnly);
     assert!(
-        e.warnings[0].contains("only 1 of the reference's 3 joint names"),
+        e.warnings[0]
+            .message
+            .contains("only 1 of the reference's 3 joint names"),
         "{:?}",
         e.warnings
     );

@@ -1,7 +1,7 @@
 //! The skeletal graph: path-tree chains approximated by straight edges, split by a global heap
 //! (dissertation ch.5.2.5, Figure 5.8).
 
-use super::GeneralOptions;
+use super::{GeneralOptions, GeneralWarning};
 use crate::paths::{Chain, PathTree};
 use glam::DVec3;
 use serde::Serialize;
@@ -30,7 +30,8 @@ pub struct SkeletalGraph {
     /// The edges, ordered by chain, then along the chain.
     pub edges: Vec<SkeletalEdge>,
     /// Things worth telling the user (a segment limit below the number of chains...).
-    pub warnings: Vec<String>,
+    #[serde(serialize_with = "crate::warning::serialize_records")]
+    pub warnings: Vec<GeneralWarning>,
 }
 
 /// Distance from point `p` to the segment `a`-`b`.
@@ -96,10 +97,10 @@ pub fn skeletal_graph(tree: &PathTree, options: &GeneralOptions) -> SkeletalGrap
         .collect();
     if let Some(limit) = options.segments {
         if limit < edges.len() {
-            warnings.push(format!(
-                "number of segments {limit} is below the {} chains of the path tree: every chain keeps one segment",
-                edges.len()
-            ));
+            warnings.push(GeneralWarning::SegmentLimitBelowChains {
+                limit,
+                chains: edges.len(),
+            });
         }
     }
     let splittable = |e: &SkeletalEdge| e.length > min_length && e.end >= e.start + 2;

@@ -17,14 +17,17 @@ mod frames;
 mod graph;
 mod joints;
 mod options;
+mod warning;
 
 pub use error::GeneralError;
 pub use graph::{skeletal_graph, SkeletalEdge, SkeletalGraph};
 pub use joints::Segment;
 pub use options::GeneralOptions;
+pub use warning::GeneralWarning;
 
 use crate::paths::PathTree;
 use crate::skeleton::{JointId, Skeleton};
+use crate::warning::Warning;
 use serde::Serialize;
 
 /// A general control skeleton with what it was built from.
@@ -44,7 +47,7 @@ pub struct GeneralSkeleton {
     /// [`control_skeleton`]).
     pub timings: Vec<(String, f64)>,
     /// Things worth telling the user, from every stage that ran.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 impl GeneralSkeleton {
@@ -82,10 +85,10 @@ pub fn control_skeleton(
         &assembly.outgoing,
     );
     debug_assert!(assembly.skeleton.validate().is_ok());
-    let mut warnings = tree.warnings.clone();
-    warnings.extend(graph.warnings.iter().cloned());
+    let mut warnings: Vec<Warning> = tree.warnings.iter().cloned().map(Into::into).collect();
+    warnings.extend(graph.warnings.iter().cloned().map(Warning::General));
     if graph.edges.is_empty() {
-        warnings.push("the skeleton has a single joint: the path tree has no chain".to_string());
+        warnings.push(GeneralWarning::SingleJoint.into());
     }
     Ok(GeneralSkeleton {
         skeleton: assembly.skeleton,

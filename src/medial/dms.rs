@@ -9,7 +9,7 @@ use super::neighbourhood::{
 use super::record::{Label, VoxelRecord};
 use super::surface::{DmsKind, MedialSurface, NOT_MEDIAL};
 use super::union_find::UnionFind;
-use super::{MedialError, MedialOptions};
+use super::{MedialError, MedialOptions, MedialWarning};
 use crate::distance::DistanceMap;
 use rayon::prelude::*;
 
@@ -268,29 +268,31 @@ impl Extraction {
     }
 
     /// Warnings about the result: an unusual threshold, a degenerate DMS, several parts.
-    fn warnings(&self, dms_voxels: usize, components: usize, interior: usize) -> Vec<String> {
+    fn warnings(
+        &self,
+        dms_voxels: usize,
+        components: usize,
+        interior: usize,
+    ) -> Vec<MedialWarning> {
         let mut warnings = Vec::new();
         let threshold = self.options.exposure_threshold;
         if !USEFUL_THRESHOLDS.contains(&threshold) {
-            warnings.push(format!(
-                "exposure threshold {threshold} is outside the useful range {:?} of ch.4.4: expect a DMS that is too detailed (low) or too sparse (high)",
-                USEFUL_THRESHOLDS
-            ));
+            warnings.push(MedialWarning::UnusualThreshold {
+                threshold,
+                useful: USEFUL_THRESHOLDS,
+            });
         }
         if dms_voxels == 1 {
-            warnings.push(format!(
-                "the medial surface is a single voxel (the figure has {interior} interior voxels and is nowhere more than about two voxels thick): use a smaller voxel size"
-            ));
+            warnings.push(MedialWarning::SingleVoxel {
+                interior_voxels: interior,
+            });
         } else if self.forced_founders > 0 {
-            warnings.push(format!(
-                "{} DMS voxels were kept below the exposure threshold only to start a group: lower the exposure threshold or use a smaller voxel size",
-                self.forced_founders
-            ));
+            warnings.push(MedialWarning::ForcedFounders {
+                count: self.forced_founders,
+            });
         }
         if components > 1 {
-            warnings.push(format!(
-                "the figure has {components} separate 26-connected parts, so the medial surface has {components} components: keep only the largest part when voxelizing"
-            ));
+            warnings.push(MedialWarning::SeveralComponents { components });
         }
         warnings
     }
@@ -392,7 +394,10 @@ mod tests {
         assert_eq!(surface.voxels, vec![distance.grid.index([1, 1, 1])]);
         assert_eq!(surface.kinds, vec![DmsKind::Bridging]);
         assert!((surface.exposure[0] - 2.0).abs() < 1e-12);
-        assert!(surface.warnings.iter().any(|w| w.contains("single voxel")));
+        assert!(surface
+            .warnings
+            .iter()
+            .any(|w| matches!(w, MedialWarning::SingleVoxel { .. })));
     }
 
     #[test]
@@ -405,7 +410,7 @@ mod tests {
         assert!(surface
             .warnings
             .iter()
-            .any(|w| w.contains("smaller voxel size")));
+            .any(|w| w.to_string().contains("smaller voxel size")));
         // Without the "1" voxel handling the plate's exposed voxels count.
         let options = MedialOptions {
             ignore_distance_one: false,
@@ -456,7 +461,9 @@ mod tests {
         let surface = dms(&distance, &options).unwrap();
         assert_invariants(&distance, &surface, &options);
         assert_eq!(surface.components, 2);
-        assert!(surface.warnings.iter().any(|w| w.contains("2 separate")));
+        assert!(surface
+            .warnings
+            .contains(&MedialWarning::SeveralComponents { components: 2 }));
     }
 
     #[test]

@@ -50,6 +50,7 @@ mod options;
 mod record;
 mod surface;
 mod union_find;
+mod warning;
 
 #[cfg(test)]
 mod testing;
@@ -59,3 +60,4 @@ pub use error::MedialError;
 pub use exposure::exposure;
 pub use options::MedialOptions;
 pub use surface::{DmsKind, MedialSurface, NOT_MEDIAL};
+pub use warning::MedialWarning;

@@ -1,5 +1,6 @@
 //! The discrete medial surface: plain data for the path stages.
 
+use super::MedialWarning;
 use crate::voxel::{Grid, NEIGHBOURS_26};
 use glam::DVec3;
 use serde::Serialize;
@@ -53,7 +54,8 @@ pub struct MedialSurface {
     /// Number of interior voxels of the figure.
     pub interior_voxels: usize,
     /// Things worth telling the user (a degenerate DMS, a disconnected figure...).
-    pub warnings: Vec<String>,
+    #[serde(serialize_with = "crate::warning::serialize_records")]
+    pub warnings: Vec<MedialWarning>,
 }
 
 impl MedialSurface {

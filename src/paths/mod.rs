@@ -47,4 +47,4 @@ pub use extreme::{extreme_points, ExtremePoint};
 pub use graph::DmsGraph;
 pub use heart::{heart, Heart};
 pub use options::PathOptions;
-pub use tree::{path_tree, PathTree};
+pub use tree::{path_tree, PathTree, PathWarning};

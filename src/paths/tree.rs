@@ -6,8 +6,10 @@ use super::{
 };
 use crate::medial::MedialSurface;
 use crate::voxel::Grid;
+use crate::warning::Severity;
 use glam::DVec3;
 use serde::Serialize;
+use std::fmt;
 
 /// Marks "not a path-tree voxel" in the per-position node table.
 const NOT_IN_TREE: u32 = u32::MAX;
@@ -45,7 +47,8 @@ pub struct PathTree {
     /// DMS voxels covered by the tree's spheres when growth stopped.
     pub covered_voxels: usize,
     /// Things worth telling the user (a disconnected DMS, a single-voxel tree...).
-    pub warnings: Vec<String>,
+    #[serde(serialize_with = "crate::warning::serialize_records")]
+    pub warnings: Vec<PathWarning>,
 }
 
 impl PathTree {
@@ -150,12 +153,11 @@ pub fn path_tree(surface: &MedialSurface, options: &PathOptions) -> Result<PathT
     let graph = DmsGraph::new(surface);
     let component = graph.largest_component().ok_or(PathError::EmptySurface)?;
     if graph.components() > 1 {
-        warnings.push(format!(
-            "the medial surface has {} connected parts: the path tree covers the largest ({} of {} voxels)",
-            graph.components(),
-            graph.component_size(component),
-            graph.len()
-        ));
+        warnings.push(PathWarning::SeveralParts {
+            parts: graph.components(),
+            covered: graph.component_size(component),
+            voxels: graph.len(),
+        });
     }
     let heart = heart(&graph, component, options);
     let extremes = extreme_points(surface, &graph, &heart.depth, options);
@@ -203,10 +205,7 @@ pub fn path_tree(surface: &MedialSurface, options: &PathOptions) -> Result<PathT
     } = tree;
     let chains = chains(surface, &positions, &parents, options.smoothing_radius);
     if chains.is_empty() {
-        warnings.push(
-            "the path tree is a single voxel: the figure is too small for its voxel size, use a smaller voxel size"
-                .to_string(),
-        );
+        warnings.push(PathWarning::SingleVoxel);
     }
     let voxel_size = surface.grid.voxel_size;
     Ok(PathTree {
@@ -225,6 +224,56 @@ pub fn path_tree(surface: &MedialSurface, options: &PathOptions) -> Result<PathT
         covered_voxels,
         warnings,
     })
+}
+
+/// Something about a path tree the user should know.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PathWarning {
+    /// The medial surface is disconnected: the tree covers its largest part only.
+    SeveralParts {
+        /// Connected parts of the medial surface.
+        parts: usize,
+        /// Voxels of the largest part.
+        covered: usize,
+        /// Voxels of the medial surface.
+        voxels: usize,
+    },
+    /// The tree is a single voxel: the figure is too small for its voxel size.
+    SingleVoxel,
+}
+
+impl PathWarning {
+    /// How much it matters.
+    pub fn severity(&self) -> Severity {
+        Severity::Degraded
+    }
+
+    /// A stable snake_case id of the variant.
+    pub fn code(&self) -> &'static str {
+        match self {
+            Self::SeveralParts { .. } => "several_parts",
+            Self::SingleVoxel => "single_voxel",
+        }
+    }
+}
+
+impl fmt::Display for PathWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::SeveralParts {
+                parts,
+                covered,
+                voxels,
+            } => write!(
+                f,
+                "the medial surface has {parts} connected parts: the path tree covers the largest ({covered} of {voxels} voxels)"
+            ),
+            Self::SingleVoxel => write!(
+                f,
+                "the path tree is a single voxel: the figure is too small for its voxel size, use a smaller voxel size"
+            ),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -262,6 +311,6 @@ mod tests {
         let tree = path_tree(&s, &PathOptions::default()).unwrap();
         assert_eq!(tree.voxels.len(), 1);
         assert!(tree.chains.is_empty());
-        assert_eq!(tree.warnings.len(), 1);
+        assert_eq!(tree.warnings, [PathWarning::SingleVoxel]);
     }
 }

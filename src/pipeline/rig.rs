@@ -3,7 +3,7 @@
 use super::Laps;
 use crate::anatomy::{
     label_pieces, label_vertices_by_bones, label_with_overrides, FigureClass, Label, LabelOptions,
-    Labelling, Overrides,
+    LabelPipelineOptions, Labelling, Overrides,
 };
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{
@@ -11,14 +11,17 @@ use crate::fit::{
     FitInputOptions, FitOptions,
 };
 use crate::general::{control_skeleton, GeneralOptions};
-use crate::medial::{dms, MedialSurface};
+use crate::medial::{dms, MedialOptions, MedialSurface};
 use crate::mesh::Mesh;
-use crate::paths::path_tree;
+use crate::paths::{path_tree, PathOptions};
 use crate::refine::{refine, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{apply_preset, Preset, RefineKind, Template};
-use crate::voxel::{boundary_mesh, voxelize, Solid};
+use crate::voxel::{boundary_mesh, voxelize, Solid, VoxelOptions};
+use crate::warning::Warning;
+
+pub use super::warning::{RigWarning, MEDIAL_FALLBACK};
 
 /// Which template [`rig`] fits.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -34,11 +37,17 @@ pub enum TemplateChoice {
     Custom(Box<Template>),
 }
 
-/// All parameters of [`rig`], one options struct per stage.
+/// All parameters of [`rig`], one options struct per stage, in pipeline order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RigOptions {
-    /// Voxelization, medial surface, heart, level graph, labelling rules and orientation
-    /// (`up`, `forward`; default +Y up, +Z forward).
+    /// Voxelization (default voxel size 0.01 of the longest side, Table 5.2).
+    pub voxel: VoxelOptions,
+    /// Discrete medial surface.
+    pub medial: MedialOptions,
+    /// Heart sampling for the level graph, and the path tree of the general fallback.
+    pub paths: PathOptions,
+    /// Level graph, labelling rules and orientation (`up`, `forward`; default up found from
+    /// the figure, +Z forward).
     pub label: LabelOptions,
     /// User corrections of the labels (`skelfit label --labels`), applied before the fit.
     pub overrides: Option<Overrides>,
@@ -59,8 +68,8 @@ pub struct RigOptions {
 }
 
 impl RigOptions {
-    /// Checks the options of every stage (labelling with its voxel, medial and path options,
-    /// the fit's input, the fit, the refinement, the skin).
+    /// Checks the options of every stage (voxel, medial, paths, labelling, the fit's input,
+    /// the fit, the refinement, the skin, the general fallback) and collects every problem.
     ///
     /// # Errors
     /// The stage's error when one stage's options are invalid; [`crate::Error::Options`] with
@@ -68,9 +77,10 @@ impl RigOptions {
     pub fn validate(&self) -> crate::Result<()> {
         let mut errors: Vec<crate::Error> = Vec::new();
         let mut check = |result: crate::Result<()>| errors.extend(result.err());
+        check(self.voxel.validate().map_err(Into::into));
+        check(self.medial.validate().map_err(Into::into));
+        check(self.paths.validate().map_err(Into::into));
         check(self.label.validate().map_err(Into::into));
-        check(self.label.medial.validate().map_err(Into::into));
-        check(self.label.paths.validate().map_err(Into::into));
         check(
             self.input
                 .validate()
@@ -92,9 +102,37 @@ impl RigOptions {
     }
 }
 
+impl RigOptions {
+    /// The options of the labelling stages alone ([`crate::anatomy::label`]).
+    pub fn label_pipeline(&self) -> LabelPipelineOptions {
+        LabelPipelineOptions {
+            voxel: self.voxel,
+            medial: self.medial,
+            paths: self.paths,
+            label: self.label,
+        }
+    }
+}
+
+impl From<LabelPipelineOptions> for RigOptions {
+    /// The labelling stages' options, every other stage's default.
+    fn from(stages: LabelPipelineOptions) -> Self {
+        Self {
+            voxel: stages.voxel,
+            medial: stages.medial,
+            paths: stages.paths,
+            label: stages.label,
+            ..Default::default()
+        }
+    }
+}
+
 impl Default for RigOptions {
     fn default() -> Self {
         Self {
+            voxel: VoxelOptions::default(),
+            medial: MedialOptions::default(),
+            paths: PathOptions::default(),
             label: LabelOptions::default(),
             overrides: None,
             template: TemplateChoice::Auto,
@@ -124,8 +162,8 @@ pub struct Rig {
     pub distance: DistanceMap,
     /// Wall-clock time per stage, `(stage, milliseconds)`, in stage order.
     pub timings: Vec<(String, f64)>,
-    /// Warnings of every stage (labelling, paths, fit, skin), as sentences.
-    pub warnings: Vec<String>,
+    /// Warnings of every stage (labelling, paths, fit, refinement, skin), in stage order.
+    pub warnings: Vec<Warning>,
     /// Body parts the template expects that the labelling did not find (`arm R`, `head`, ...;
     /// see [`missing_parts`]): the rig has no joints for them.
     pub missing: Vec<String>,
@@ -163,16 +201,17 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut timings = Vec::new();
     let mut lap = Laps::start();
 
-    let solid = voxelize(mesh, &options.label.voxel)?;
+    let solid = voxelize(mesh, &options.voxel)?;
     lap.lap("voxelize", &mut timings);
     let distance = edt(&solid);
     lap.lap("distance", &mut timings);
-    let surface = dms(&distance, &options.label.medial)?;
+    let surface = dms(&distance, &options.medial)?;
     lap.lap("medial", &mut timings);
     let labelling = label_pieces(
         mesh,
         &solid,
         &surface,
+        &options.paths,
         &options.label,
         options.overrides.as_ref(),
     )?;
@@ -181,22 +220,18 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     reach_the_skin(&mut input, &options.input, &solid, &distance);
     lap.lap("paths", &mut timings);
     let mut warnings = labelling.warnings.clone();
-    warnings.append(&mut path_warnings);
+    warnings.extend(path_warnings.drain(..).map(Warning::FitInput));
     let template = match chosen {
         Some(t) => t,
         None => {
             if let Some(reason) = no_template_fits(&labelling) {
-                warnings.push(format!(
-                    "no template fits: {reason}; fitted the general control skeleton (joints named root, joint_NNN, end_NNN; no canonical joints); choose a template with --template to force one"
-                ));
+                warnings.push(RigWarning::NoTemplateFits { reason }.into());
                 return general_fallback(
                     mesh, options, labelling, input, solid, distance, &surface, timings, warnings,
                 );
             }
             let (name, note) = auto_template(&labelling);
-            if let Some(note) = note {
-                warnings.push(note);
-            }
+            warnings.extend(note.map(Warning::Rig));
             Template::builtin(name)?
         }
     };
@@ -210,7 +245,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         ..options.fit.clone()
     };
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
-    warnings.extend(fit.warnings.iter().map(ToString::to_string));
+    warnings.extend(fit.warnings.iter().cloned().map(Warning::Fit));
     lap.lap("fit", &mut timings);
     if options.refine.in_rig && template.refinement == Some(RefineKind::HumanSlicing) {
         let up = input.up;
@@ -226,9 +261,14 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
             Ok(refined) => {
                 fit.skeleton = refined.skeleton;
                 assign_trunk_keys(&fit.skeleton, &mut fit.canonical, &template.axial);
-                warnings.extend(refined.warnings.iter().map(|w| format!("refine: {w}")));
+                warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
             }
-            Err(e) => warnings.push(format!("refine: {e}; the fitted joints are kept")),
+            Err(e) => warnings.push(
+                RigWarning::RefineFailed {
+                    error: e.to_string(),
+                }
+                .into(),
+            ),
         }
         lap.lap("refine", &mut timings);
     }
@@ -244,7 +284,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     apply_preset(&mut fit.skeleton, &fit.canonical, options.fit.preset)
         .map_err(|e| FitError::Preset(e.to_string()))?;
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
-    warnings.extend(skin.warnings.iter().map(ToString::to_string));
+    warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
     let missing = missing_parts(&template.name, &labelling);
     Ok(Rig {
@@ -308,9 +348,6 @@ pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
         .collect()
 }
 
-/// How the warning of [`label_by_bones`] begins when it kept the medial per-vertex labels.
-pub const MEDIAL_FALLBACK: &str = "per-vertex labels follow the medial surface, not bones";
-
 /// Validates every stage's options and resolves the chosen template (`None` for
 /// [`TemplateChoice::Auto`]), before any work.
 fn checked_template(options: &RigOptions) -> crate::Result<Option<Template>> {
@@ -351,10 +388,13 @@ fn bones_or_medial(
         Ok(r) => Ok(r.into_bone_labels(mesh)),
         Err(e) => {
             let mut labelling =
-                label_with_overrides(mesh, &options.label, options.overrides.as_ref())?;
-            labelling
-                .warnings
-                .push(format!("{MEDIAL_FALLBACK}: the rig failed ({e})"));
+                label_with_overrides(mesh, &options.label_pipeline(), options.overrides.as_ref())?;
+            labelling.warnings.push(
+                RigWarning::MedialLabels {
+                    error: e.to_string(),
+                }
+                .into(),
+            );
             Ok(labelling)
         }
     }
@@ -372,10 +412,10 @@ fn general_fallback(
     distance: DistanceMap,
     surface: &MedialSurface,
     mut timings: Vec<(String, f64)>,
-    mut warnings: Vec<String>,
+    mut warnings: Vec<Warning>,
 ) -> crate::Result<Rig> {
     let mut lap = Laps::start();
-    let tree = path_tree(surface, &options.label.paths)?;
+    let tree = path_tree(surface, &options.paths)?;
     let general = control_skeleton(tree, &options.general)?;
     warnings.extend(general.warnings.iter().cloned());
     lap.lap("fit", &mut timings);
@@ -386,7 +426,7 @@ fn general_fallback(
         template: GENERAL.to_string(),
     };
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
-    warnings.extend(skin.warnings.iter().map(ToString::to_string));
+    warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
     Ok(Rig {
         missing: Vec::new(),
@@ -427,8 +467,8 @@ pub fn no_template_fits(labelling: &Labelling) -> Option<String> {
 }
 
 /// The built-in template for a labelled figure and, when the figure class was unknown, a
-/// sentence saying what was chosen and why.
-pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<String>) {
+/// warning saying what was chosen and why.
+pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<RigWarning>) {
     let wings = labelling.count(Label::Wing) > 0;
     match labelling.figure {
         FigureClass::HumanLike => ("humanoid", None),
@@ -444,10 +484,10 @@ pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<String>) {
             };
             (
                 name,
-                Some(format!(
-                    "the figure class is unknown (trunk {:.0} degrees from up): fitted the {name} template; choose one with --template if it is wrong",
-                    labelling.trunk_angle
-                )),
+                Some(RigWarning::UnknownFigureClass {
+                    template: name,
+                    trunk_angle: labelling.trunk_angle,
+                }),
             )
         }
     }
@@ -464,10 +504,17 @@ mod tests {
         let options = RigOptions::default();
         let failed = Err(AnatomyError::EmptySurface.into());
         let labels = bones_or_medial(&mesh, &options, failed).unwrap();
-        let medial = label(&mesh, &options.label).unwrap();
+        let medial = label(&mesh, &options.label_pipeline()).unwrap();
         assert_eq!(labels.mesh_parts, medial.mesh_parts);
         let warning = labels.warnings.last().unwrap();
-        assert!(warning.starts_with(MEDIAL_FALLBACK), "{warning}");
+        assert!(
+            matches!(warning, Warning::Rig(RigWarning::MedialLabels { .. })),
+            "{warning}"
+        );
+        assert!(
+            warning.to_string().starts_with(MEDIAL_FALLBACK),
+            "{warning}"
+        );
     }
 
     #[test]

@@ -59,7 +59,11 @@ pub fn html_report(input: &ReportInput, options: &ReportOptions) -> String {
         t = escape(&title)
     );
     for warning in &e.warnings {
-        let _ = write!(html, "<p class=\"warn\">warning: {}</p>", escape(warning));
+        let _ = write!(
+            html,
+            "<p class=\"warn\">warning: {}</p>",
+            escape(&warning.message)
+        );
     }
     html.push_str(&summary_table(e, &options.extra_rows));
     let s = &options.svg;

@@ -289,6 +289,7 @@ pub fn study_html(
         .flat_map(|v| {
             v.warnings
                 .iter()
+                .map(|w| &w.message)
                 .chain(&v.failure)
                 .map(move |w| format!("<li>{}: {}</li>", escape(&v.label), escape(w)))
         })

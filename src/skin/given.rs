@@ -6,6 +6,7 @@ use crate::distance::edt;
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
 use crate::voxel::{voxelize, Solid, VoxelOptions};
+use crate::warning::Warning;
 
 /// Options of [`skin_skeleton`].
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -28,8 +29,8 @@ pub struct SkinnedSkeleton {
     pub solid: Solid,
     /// How the skeleton sits in the figure.
     pub placement: Placement,
-    /// Warnings of the voxelization, the placement checks and the skin, as sentences.
-    pub warnings: Vec<String>,
+    /// Warnings of the voxelization, the placement checks and the skin.
+    pub warnings: Vec<Warning>,
 }
 
 /// Skins `mesh` to `skeleton` as it is: same units and frame as the mesh, joint names,
@@ -75,8 +76,9 @@ pub fn skin_skeleton(
         .report
         .warnings()
         .into_iter()
-        .chain(placed.warnings.iter().map(ToString::to_string))
-        .chain(skin.warnings.iter().map(ToString::to_string))
+        .map(Warning::Voxel)
+        .chain(placed.warnings.iter().cloned().map(Warning::Skin))
+        .chain(skin.warnings.iter().cloned().map(Warning::Skin))
         .collect();
     Ok(SkinnedSkeleton {
         skin,

@@ -13,6 +13,7 @@ mod sizing;
 mod solid;
 mod surface;
 mod voxelize;
+mod warning;
 mod winding;
 
 pub use boundary::boundary_mesh;
@@ -23,3 +24,4 @@ pub use options::{VoxelOptions, VoxelSize};
 pub use solid::{Solid, VoxelReport};
 
 pub use voxelize::{grid_for, voxelize};
+pub use warning::VoxelWarning;

@@ -1,6 +1,6 @@
 //! The voxelized figure.
 
-use super::{DroppedPiece, Grid};
+use super::{DroppedPiece, Grid, VoxelWarning};
 use serde::Serialize;
 
 /// A voxelized figure: which voxels of a [`Grid`] are inside the mesh.
@@ -55,77 +55,24 @@ pub struct VoxelReport {
 const DROPPED_WARNING: f64 = 0.005;
 
 impl VoxelReport {
-    /// What the voxelization left out, as warning sentences: loose pieces apart from the
-    /// figure, and interior components smaller than the largest when they hold at least 0.5 %
-    /// of the interior.
-    pub fn warnings(&self) -> Vec<String> {
+    /// What the voxelization left out: loose pieces apart from the figure, and interior
+    /// components smaller than the largest when they hold at least 0.5 % of the interior.
+    pub fn warnings(&self) -> Vec<VoxelWarning> {
         let mut out = Vec::new();
         if self.left_out_pieces > 0 {
-            out.push(format!(
-                "{} loose piece{} of the mesh ({} triangles, {:.2} % of the surface area) {} apart \
-                 from the figure and {} left out of the voxels (delete them from the mesh if they \
-                 are not part of the figure)",
-                self.left_out_pieces,
-                if self.left_out_pieces == 1 { "" } else { "s" },
-                self.left_out_triangles,
-                100.0 * self.left_out_area_share,
-                if self.left_out_pieces == 1 { "lies" } else { "lie" },
-                if self.left_out_pieces == 1 { "was" } else { "were" }
-            ));
+            out.push(VoxelWarning::LooseMeshPieces {
+                pieces: self.left_out_pieces,
+                triangles: self.left_out_triangles,
+                area_share: self.left_out_area_share,
+            });
         }
         let all = self.interior_voxels + self.dropped_voxels;
         if self.dropped_voxels as f64 >= DROPPED_WARNING * all as f64 && self.dropped_voxels > 0 {
-            let named: Vec<String> = self
-                .dropped_pieces
-                .iter()
-                .take(3)
-                .map(|p| {
-                    format!(
-                        "{} voxels around ({:.3}, {:.3}, {:.3})",
-                        p.voxels, p.centre[0], p.centre[1], p.centre[2]
-                    )
-                })
-                .collect();
-            let more = self.dropped_pieces.len().saturating_sub(named.len());
-            out.push(format!(
-                "{} piece{} of the interior ({} voxels, {:.1} % of the interior) {} too far apart \
-                 from the figure to join it and {} dropped: {}{} (raise the join gap if {} part of \
-                 the figure, or delete {} from the mesh)",
-                self.dropped_pieces.len(),
-                if self.dropped_pieces.len() == 1 {
-                    ""
-                } else {
-                    "s"
-                },
-                self.dropped_voxels,
-                100.0 * self.dropped_voxels as f64 / all.max(1) as f64,
-                if self.dropped_pieces.len() == 1 {
-                    "lies"
-                } else {
-                    "lie"
-                },
-                if self.dropped_pieces.len() == 1 {
-                    "was"
-                } else {
-                    "were"
-                },
-                named.join(", "),
-                if more > 0 {
-                    format!(" and {more} more")
-                } else {
-                    String::new()
-                },
-                if self.dropped_pieces.len() == 1 {
-                    "it is"
-                } else {
-                    "they are"
-                },
-                if self.dropped_pieces.len() == 1 {
-                    "it"
-                } else {
-                    "them"
-                },
-            ));
+            out.push(VoxelWarning::DroppedInterior {
+                pieces: self.dropped_pieces.clone(),
+                dropped_voxels: self.dropped_voxels,
+                interior_voxels: all,
+            });
         }
         out
     }

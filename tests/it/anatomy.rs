@@ -10,16 +10,25 @@
 use crate::common;
 use glam::{DQuat, DVec3};
 use skelfit::anatomy::{
-    agreement, label, labels_json, reference_regions, FigureClass, Forward, Label, LabelOptions,
-    Labelling, LimbPair, Side,
+    agreement, label, labels_json, reference_regions, AnatomyWarning, FigureClass, Forward, Label,
+    LabelOptions, LabelPipelineOptions, Labelling, LimbPair, Side,
 };
 use skelfit::eval::load_skeleton;
 use skelfit::mesh::{load, Mesh};
+use skelfit::warning::Warning;
 use std::path::Path;
+
+/// The labelling stages with `label` and every voxel stage's defaults.
+fn stages(label: LabelOptions) -> LabelPipelineOptions {
+    LabelPipelineOptions {
+        label,
+        ..Default::default()
+    }
+}
 
 fn labelled(dir: &Path, options: &LabelOptions) -> (Mesh, Labelling) {
     let mesh = load(&dir.join("mesh.obj")).unwrap();
-    let labels = label(&mesh, options).unwrap();
+    let labels = label(&mesh, &stages(*options)).unwrap();
     (mesh, labels)
 }
 
@@ -166,7 +175,7 @@ fn cesium_man_neck_and_back_of_head_are_labelled_head() {
     // The parts (which the anatomical fit reads) keep the neck in the trunk.
     let mut options = LabelOptions::default();
     options.rules.neck_in_head = false;
-    let kept = label(&mesh, &options).unwrap();
+    let kept = label(&mesh, &stages(options)).unwrap();
     assert_eq!(kept.voxel_parts, labels.voxel_parts);
     let a = agreement(&kept, &reference_regions(&rig, &mesh));
     let (_, _, k_kept) = a.per_region.iter().find(|r| r.0 == "head").unwrap().clone();
@@ -205,7 +214,7 @@ fn a_figure_rotated_to_z_up_gets_the_same_labels() {
             forward: Forward::Direction(DVec3::NEG_Y),
             ..Default::default()
         };
-        let turned = label(&rotated, &options).unwrap();
+        let turned = label(&rotated, &stages(options)).unwrap();
         assert_eq!(turned.figure, labels.figure, "{model}");
         assert_eq!(parts(&turned), parts(&labels), "{model}");
         // Same region per vertex (part indices may be ordered alike; compare by label/side).
@@ -253,7 +262,10 @@ fn labels_are_identical_on_one_and_two_threads() {
             .build()
             .unwrap();
         pool.install(|| {
-            let medial = labels_json(&label(&mesh, &LabelOptions::default()).unwrap(), None);
+            let medial = labels_json(
+                &label(&mesh, &LabelPipelineOptions::default()).unwrap(),
+                None,
+            );
             let bones = skelfit::pipeline::label_by_bones(&mesh, &Default::default()).unwrap();
             (medial.to_string(), labels_json(&bones, None).to_string())
         })
@@ -278,12 +290,15 @@ fn merge(parts: &[Mesh]) -> Mesh {
 #[test]
 fn a_sphere_has_no_trunk_and_says_so() {
     let mesh = Mesh::uv_sphere(DVec3::ZERO, 1.0, 24, 48);
-    let labels = label(&mesh, &LabelOptions::default()).unwrap();
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
     assert_eq!(labels.figure, FigureClass::Unknown);
     assert_eq!(labels.parts[0].label, Label::Trunk);
     assert_eq!(labels.mesh_parts.len(), mesh.positions.len());
     assert!(
-        labels.warnings.iter().any(|w| w.contains("no clear trunk")),
+        labels
+            .warnings
+            .iter()
+            .any(|w| matches!(w, Warning::Anatomy(AnatomyWarning::NoMajorJunction))),
         "{:?}",
         labels.warnings
     );
@@ -299,13 +314,13 @@ fn three_legs_are_labelled_with_an_odd_leg_warning() {
     let leg = |x: f64, z: f64| Mesh::capsule(DVec3::new(x, 0.55, z), 0.08, 0.45, 8, 16);
     let head = Mesh::uv_sphere(DVec3::new(0.0, 1.2, 0.85), 0.22, 12, 24);
     let mesh = merge(&[body, leg(0.15, 0.5), leg(-0.15, 0.5), leg(0.0, -0.5), head]);
-    let labels = label(&mesh, &LabelOptions::default()).unwrap();
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
     assert_eq!(labels.count(Label::Leg), 3, "{:?}", parts(&labels));
     assert!(
         labels
             .warnings
             .iter()
-            .any(|w| w.contains("odd number of legs")),
+            .any(|w| w.to_string().contains("odd number of legs")),
         "{:?}",
         labels.warnings
     );
@@ -323,7 +338,7 @@ fn the_spider_gets_a_best_effort_with_a_warning() {
         labels
             .warnings
             .iter()
-            .any(|w| w.contains("not vertebrate-like")),
+            .any(|w| w.to_string().contains("not vertebrate-like")),
         "{:?}",
         labels.warnings
     );
@@ -460,7 +475,9 @@ fn cli_label_writes_json_ply_and_svg_and_guesses_forward() {
         .as_array()
         .unwrap()
         .iter()
-        .any(|w| w.as_str().unwrap().contains("forward guessed")));
+        .any(|w| w["code"] == "forward_guessed"
+            && w["severity"] == "info"
+            && w["message"].as_str().unwrap().contains("forward guessed")));
     let ply = std::fs::read_to_string(&ply).unwrap();
     assert!(ply.starts_with("ply\n") && ply.contains("property uchar red"));
     let svg = std::fs::read_to_string(&svg).unwrap();
@@ -487,16 +504,19 @@ fn an_override_relabels_a_section() {
         return;
     };
     let mesh = load(&dir.join("mesh.obj")).unwrap();
-    let labels = label(&mesh, &LabelOptions::default()).unwrap();
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
     let tail = one(&labels, Label::Tail, None, None);
     let point = labels.parts[tail].distal.to_array();
     let overrides: skelfit::anatomy::Overrides = serde_json::from_value(serde_json::json!({
         "sections": [{"point": point, "label": "trunk"}]
     }))
     .unwrap();
-    let fixed =
-        skelfit::anatomy::label_with_overrides(&mesh, &LabelOptions::default(), Some(&overrides))
-            .unwrap();
+    let fixed = skelfit::anatomy::label_with_overrides(
+        &mesh,
+        &LabelPipelineOptions::default(),
+        Some(&overrides),
+    )
+    .unwrap();
     assert_eq!(fixed.count(Label::Tail), 0);
     assert_eq!(fixed.count(Label::Leg), 4);
     assert!(fixed.parts[0].vertex_count > labels.parts[0].vertex_count);
@@ -513,7 +533,7 @@ fn flat_paired_protrusions_are_wings() {
     let left = Mesh::cuboid(DVec3::new(0.1, 0.96, -0.2), DVec3::new(1.1, 1.04, 0.3));
     let right = Mesh::cuboid(DVec3::new(-1.1, 0.96, -0.2), DVec3::new(-0.1, 1.04, 0.3));
     let mesh = merge(&[body, leg(0.12), leg(-0.12), head, left, right]);
-    let labels = label(&mesh, &LabelOptions::default()).unwrap();
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
     assert_eq!(
         labels.count(Label::Wing),
         2,

@@ -161,7 +161,7 @@ fn single_interior_voxel_gives_a_single_voxel_dms_and_a_warning() {
     assert_eq!(surface.voxels, vec![solid.grid.index([1, 1, 1])]);
     assert_eq!(surface.kinds, vec![DmsKind::Bridging]);
     assert_eq!(surface.warnings.len(), 1);
-    assert!(surface.warnings[0].contains("single voxel"));
+    assert!(surface.warnings[0].to_string().contains("single voxel"));
 }
 
 #[test]
@@ -175,7 +175,7 @@ fn thin_sheet_gives_a_single_voxel_dms_and_a_warning() {
     assert!(surface
         .warnings
         .iter()
-        .any(|w| w.contains("smaller voxel size")));
+        .any(|w| w.to_string().contains("smaller voxel size")));
 }
 
 #[test]
