@@ -18,6 +18,7 @@
 use super::{AxialPath, EarInput, Side};
 use crate::anatomy::{Frame, Label, Labelling};
 use crate::distance::DistanceMap;
+use crate::math::{moving_average, Ends};
 use crate::options::{Checks, OptionProblems};
 use crate::voxel::NEIGHBOURS_26;
 use glam::DVec3;
@@ -208,13 +209,13 @@ pub fn ears(
     [(a, Side::Left), (b, Side::Right)]
         .into_iter()
         .map(|(c, side)| {
-            let mut path: Vec<DVec3> = candidates[c]
+            let chain: Vec<DVec3> = candidates[c]
                 .chain
                 .iter()
                 .rev()
                 .map(|&i| centre(i))
                 .collect();
-            smooth(&mut path, options.smoothing);
+            let path = moving_average(&chain, options.smoothing, Ends::Keep);
             EarInput { side, path }
         })
         .collect()
@@ -406,14 +407,4 @@ fn nearest_point(points: &[DVec3], p: DVec3) -> usize {
         .enumerate()
         .min_by(|a, b| a.1.distance_squared(p).total_cmp(&b.1.distance_squared(p)))
         .map_or(0, |(k, _)| k)
-}
-
-/// Moving average over `half` points each side, the ends kept as they are.
-fn smooth(path: &mut [DVec3], half: usize) {
-    let n = path.len();
-    if half == 0 || n < 3 {
-        return;
-    }
-    let smoothed = crate::math::moving_average(path, half);
-    path[1..n - 1].copy_from_slice(&smoothed[1..n - 1]);
 }
