@@ -10,10 +10,10 @@
 use crate::common;
 use glam::{DQuat, DVec3};
 use skelfit::anatomy::{
-    agreement, label, labels_json, reference_regions, FigureClass, Forward, Label, LabelOptions,
-    Labelling, LimbPair, Side,
+    agreement, label, labels_json, FigureClass, Forward, Label, LabelOptions, Labelling, LimbPair,
+    Side,
 };
-use skelfit::eval::load_skeleton;
+use skelfit::eval::{load_skeleton, reference_regions};
 use skelfit::mesh::{load, Mesh};
 use std::path::Path;
 
