@@ -7,8 +7,8 @@ use crate::anatomy::{
 };
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{
-    assign_trunk_keys, ears, fit_input, fit_with_probe, reach_the_skin, Fit, FitError, FitInput,
-    FitInputOptions, FitOptions,
+    assign_trunk_keys, fit_input, fit_with_probe, Fit, FitError, FitInput, FitInputOptions,
+    FitOptions,
 };
 use crate::general::{control_skeleton, GeneralOptions};
 use crate::medial::{dms, MedialSurface};
@@ -177,32 +177,32 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         options.overrides.as_ref(),
     )?;
     lap.lap("label", &mut timings);
-    let (mut input, mut path_warnings) = fit_input(&labelling, &surface, &options.input);
-    reach_the_skin(&mut input, &options.input, &solid, &distance);
+    let resolved = resolve_template(chosen, &labelling)?;
+    let (input, mut path_warnings) = fit_input(
+        &labelling,
+        &surface,
+        &solid,
+        &distance,
+        resolved.template(),
+        &options.input,
+    )?;
     lap.lap("paths", &mut timings);
     let mut warnings = labelling.warnings.clone();
     warnings.append(&mut path_warnings);
-    let template = match chosen {
-        Some(t) => t,
-        None => {
-            if let Some(reason) = no_template_fits(&labelling) {
-                warnings.push(format!(
-                    "no template fits: {reason}; fitted the general control skeleton (joints named root, joint_NNN, end_NNN; no canonical joints); choose a template with --template to force one"
-                ));
-                return general_fallback(
-                    mesh, options, labelling, input, solid, distance, &surface, timings, warnings,
-                );
-            }
-            let (name, note) = auto_template(&labelling);
-            if let Some(note) = note {
-                warnings.push(note);
-            }
-            Template::builtin(name)?
+    let template = match resolved {
+        Resolved::Template(t, note) => {
+            warnings.extend(note);
+            t
+        }
+        Resolved::General(reason) => {
+            warnings.push(format!(
+                "no template fits: {reason}; fitted the general control skeleton (joints named root, joint_NNN, end_NNN; no canonical joints); choose a template with --template to force one"
+            ));
+            return general_fallback(
+                mesh, options, labelling, input, solid, distance, &surface, timings, warnings,
+            );
         }
     };
-    if template.placed("ear").is_some() {
-        input.ears = ears(&labelling, &distance, &input.axial, &options.input.ears);
-    }
     // Anatomical names through the refinement; the preset's names go on last, from the final
     // canonical keys (the refinement may move `spine` and `chest` to other joints).
     let anatomical = FitOptions {
@@ -298,6 +298,38 @@ pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
 
 /// How the warning of [`label_by_bones`] begins when it kept the medial per-vertex labels.
 pub const MEDIAL_FALLBACK: &str = "per-vertex labels follow the medial surface, not bones";
+
+/// What [`rig`] fits to a labelled figure.
+enum Resolved {
+    /// A template, with a note when the automatic choice was unsure ([`auto_template`]).
+    Template(Template, Option<String>),
+    /// The general control skeleton, because no template fits ([`no_template_fits`]: why).
+    General(String),
+}
+
+impl Resolved {
+    fn template(&self) -> Option<&Template> {
+        match self {
+            Resolved::Template(t, _) => Some(t),
+            Resolved::General(_) => None,
+        }
+    }
+}
+
+/// The chosen template, else the one the labelling suits, else the general skeleton.
+///
+/// # Errors
+/// An unknown built-in template.
+fn resolve_template(chosen: Option<Template>, labelling: &Labelling) -> crate::Result<Resolved> {
+    if let Some(t) = chosen {
+        return Ok(Resolved::Template(t, None));
+    }
+    if let Some(reason) = no_template_fits(labelling) {
+        return Ok(Resolved::General(reason));
+    }
+    let (name, note) = auto_template(labelling);
+    Ok(Resolved::Template(Template::builtin(name)?, note))
+}
 
 /// Validates every stage's options and resolves the chosen template (`None` for
 /// [`TemplateChoice::Auto`]), before any work.
