@@ -6,18 +6,15 @@ use crate::anatomy::{
     Labelling, Overrides,
 };
 use crate::distance::{edt, DistanceMap};
-use crate::fit::{
-    assign_trunk_keys, fit_input, fit_with_probe, Fit, FitError, FitInput, FitInputOptions,
-    FitOptions,
-};
+use crate::fit::{fit_input, fit_with_probe, Fit, FitError, FitInput, FitInputOptions, FitOptions};
 use crate::general::{control_skeleton, GeneralOptions};
 use crate::medial::{dms, MedialSurface};
 use crate::mesh::Mesh;
 use crate::paths::path_tree;
-use crate::refine::{refine, symmetrize, RefineError, RefineOptions};
+use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
-use crate::template::{apply_preset, Preset, RefineKind, Template};
+use crate::template::{apply_preset, Preset, Template};
 use crate::voxel::{voxelize, Solid};
 
 /// Which template [`rig`] fits.
@@ -212,19 +209,21 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().map(ToString::to_string));
     lap.lap("fit", &mut timings);
-    if options.refine.in_rig && template.refinement == Some(RefineKind::HumanSlicing) {
-        let up = input.up;
-        match refine(
+    let refined = options.refine.in_rig.then(|| {
+        refine_fit(
             mesh,
-            &fit.skeleton,
-            &fit.canonical,
-            up,
+            &fit,
+            &template,
+            input.up,
             input.forward,
             &options.refine,
-        ) {
+        )
+    });
+    if let Some(refined) = refined.flatten() {
+        match refined {
             Ok(refined) => {
                 fit.skeleton = refined.skeleton;
-                assign_trunk_keys(&fit.skeleton, &mut fit.canonical, &template.axial);
+                fit.canonical = refined.canonical;
                 warnings.extend(refined.warnings.iter().map(|w| format!("refine: {w}")));
             }
             Err(e) => warnings.push(format!("refine: {e}; the fitted joints are kept")),
@@ -477,6 +476,7 @@ pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<String>) {
 mod tests {
     use super::*;
     use crate::anatomy::{label, AnatomyError};
+    use crate::refine::refine;
 
     #[test]
     fn a_failed_rig_leaves_the_medial_labels_with_a_warning() {
