@@ -167,7 +167,7 @@ pub fn ears(
     };
     let g = &search.cost;
 
-    let tips = persistent_maxima(&window, &g);
+    let tips = persistent_maxima(&window, g);
 
     // Candidates: long, prominent tips rising from the head's part of the path.
     let head_end = nearest_point(&axial.points, head.attachment);

@@ -228,3 +228,32 @@ fn before_thicker(
     }
     reach
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_reach_options_are_valid_and_bad_ones_are_all_named() {
+        assert!(ReachOptions::default().validate().is_ok());
+        let bad = ReachOptions {
+            deeper: f64::NAN,
+            tilts: 0,
+            march_step: 0.0,
+            ..ReachOptions::default()
+        };
+        let message = bad.validate().unwrap_err().to_string();
+        for name in ["deeper", "tilts", "march_step"] {
+            assert!(message.contains(name), "{message}");
+        }
+    }
+
+    #[test]
+    fn the_default_tilts_are_every_five_degrees() {
+        let o = ReachOptions::default();
+        let tilts: Vec<f64> = (1..=o.tilts)
+            .map(|i| o.max_tilt * i as f64 / o.tilts as f64)
+            .collect();
+        assert_eq!(tilts, [5.0, 10.0, 15.0, 20.0, 25.0, 30.0]);
+    }
+}

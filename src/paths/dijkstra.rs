@@ -173,4 +173,25 @@ mod tests {
         search.add_sources(&graph, [0], |_, step| step);
         assert_eq!(search.cost[1], std::f64::consts::SQRT_2);
     }
+
+    #[test]
+    fn seeded_costs_spread_over_any_graph_and_report_each_lowering() {
+        // A path 0 - 1 - 2 - 3 with unit steps; sources 0 (cost 5) and 3 (cost 0).
+        let neighbours = |p: usize| {
+            [p.checked_sub(1), (p < 3).then_some(p + 1)]
+                .into_iter()
+                .flatten()
+                .map(|q| (q, 1.0))
+        };
+        let mut search = Search::costs_only(4);
+        assert!(search.seed(0, 5.0));
+        assert!(search.seed(3, 0.0));
+        assert!(!search.seed(3, 1.0));
+        let mut from = [usize::MAX; 4];
+        search.relax(neighbours, |p, q| from[q] = p);
+        assert_eq!(search.cost, vec![3.0, 2.0, 1.0, 0.0]);
+        assert_eq!(from, [1, 2, 3, usize::MAX]);
+        assert_eq!(search.parent(0), None);
+        assert_eq!(search.path_to_source(0), vec![0]);
+    }
 }

@@ -146,7 +146,7 @@ impl Rig {
 /// Rigs `mesh` with an anatomical control skeleton (dissertation ch.7-8): voxelize, exact
 /// distance map, medial surface, body-part labels, centralised paths between the labelled
 /// parts ([`fit_input`]), the template fit ([`fit_with_probe`], dorsal rays through the
-/// voxels), for humanoids the slicing refinement ([`refine`], seed 004), and skin weights from the fitted bones ([`skin_from_bones`]).
+/// voxels), the refinement the template declares ([`refine_fit`]: the humanoid's slicing, seed 004), and skin weights from the fitted bones ([`skin_from_bones`]).
 ///
 /// Missing body parts are warnings (the fit leaves their joints out); a figure the template does
 /// not suit gets the template's best effort and the warnings say what is missing.
@@ -189,7 +189,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let template = match resolved {
         Resolved::Template(t, note) => {
             warnings.extend(note);
-            t
+            *t
         }
         Resolved::General(reason) => {
             warnings.push(format!(
@@ -301,7 +301,7 @@ pub const MEDIAL_FALLBACK: &str = "per-vertex labels follow the medial surface, 
 /// What [`rig`] fits to a labelled figure.
 enum Resolved {
     /// A template, with a note when the automatic choice was unsure ([`auto_template`]).
-    Template(Template, Option<String>),
+    Template(Box<Template>, Option<String>),
     /// The general control skeleton, because no template fits ([`no_template_fits`]: why).
     General(String),
 }
@@ -309,7 +309,7 @@ enum Resolved {
 impl Resolved {
     fn template(&self) -> Option<&Template> {
         match self {
-            Resolved::Template(t, _) => Some(t),
+            Resolved::Template(t, _) => Some(t.as_ref()),
             Resolved::General(_) => None,
         }
     }
@@ -321,13 +321,13 @@ impl Resolved {
 /// An unknown built-in template.
 fn resolve_template(chosen: Option<Template>, labelling: &Labelling) -> crate::Result<Resolved> {
     if let Some(t) = chosen {
-        return Ok(Resolved::Template(t, None));
+        return Ok(Resolved::Template(Box::new(t), None));
     }
     if let Some(reason) = no_template_fits(labelling) {
         return Ok(Resolved::General(reason));
     }
     let (name, note) = auto_template(labelling);
-    Ok(Resolved::Template(Template::builtin(name)?, note))
+    Ok(Resolved::Template(Box::new(Template::builtin(name)?), note))
 }
 
 /// Validates every stage's options and resolves the chosen template (`None` for
