@@ -13,8 +13,8 @@
 //! Run: `cargo run --release --example label_conventions [-- REFDATA_DIR]`
 //! (default `../shared/refdata`).
 
-use skelfit::anatomy::{reference_regions, skeleton_regions, Region};
-use skelfit::eval::load_skeleton;
+use skelfit::anatomy::{skeleton_regions, Region};
+use skelfit::eval::{load_skeleton, reference_regions};
 use skelfit::mesh::load;
 use skelfit::pipeline::{rig, RigOptions};
 use std::path::PathBuf;

@@ -8,10 +8,8 @@
 
 use glam::DVec3;
 use skelfit::anatomy::Side;
-use skelfit::anatomy::{
-    agreement, label, part_region, reference_regions, LabelPipelineOptions, Region,
-};
-use skelfit::eval::load_skeleton;
+use skelfit::anatomy::{agreement, label, part_region, LabelPipelineOptions, Region};
+use skelfit::eval::{load_skeleton, reference_regions};
 use skelfit::mesh::load;
 use std::path::PathBuf;
 

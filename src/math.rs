@@ -1,17 +1,11 @@
-//! Numeric helpers shared by several stages.
+//! Numeric and geometric helpers shared by several stages: one moving average, one principal
+//! component analysis, one Douglas-Peucker simplification. Stage modules call these instead of
+//! keeping their own copies, so the same input gives the same bits everywhere.
 
-use glam::DVec3;
+mod douglas_peucker;
+mod pca;
+mod smoothing;
 
-/// Moving average over `half` neighbours each side, the window shrinking symmetrically near the
-/// ends so the end points stay fixed (a box filter limited at the ends, dissertation Figure
-/// 5.6).
-pub(crate) fn moving_average(points: &[DVec3], half: usize) -> Vec<DVec3> {
-    let n = points.len();
-    (0..n)
-        .map(|k| {
-            let h = half.min(k).min(n - 1 - k);
-            let sum: DVec3 = points[k - h..=k + h].iter().copied().sum();
-            sum / (2 * h + 1) as f64
-        })
-        .collect()
-}
+pub use douglas_peucker::{douglas_peucker, douglas_peucker_closed, point_segment_distance};
+pub(crate) use pca::{point_covariance, principal_axes, principal_axis_2d};
+pub(crate) use smoothing::{moving_average, Ends};

@@ -15,7 +15,7 @@
 //!   per-vertex labels give to the trunk;
 //!   `project.rs`: labels per interior voxel and per mesh vertex; [`label_vertices_by_bones`]
 //!   (`bone_labels.rs`): per-vertex labels from the nearest bone of a fitted skeleton instead
-//!   (`skelfit label --vertex-labels bones`, [`crate::pipeline::label_by_bones`]); [`reference_regions`] (`reference.rs`): the body region of each mesh
+//!   (`skelfit label --vertex-labels bones`, [`crate::pipeline::label_by_bones`]); [`skeleton_regions`] (`reference.rs`, for reference rigs [`crate::eval::reference_regions`]): the body region of each mesh
 //!   vertex from a reference rig, for the accuracy table, and [`weight_share`]: per-vertex
 //!   labels scored against skin weights (girdle bones counting for trunk and limb); `output.rs`: labels.json, PLY, SVG.
 //!
@@ -61,9 +61,8 @@ pub use overrides::{Overrides, SectionOverride};
 pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
 pub use project::NO_PART;
 pub use reference::{
-    agreement, best_regions, girdle_limbs, joint_regions, part_region, reference_regions,
-    skeleton_regions, vertex_regions, weight_regions, weight_share, Agreement, Region,
-    WeightRegions, WeightShare,
+    agreement, best_regions, girdle_limbs, joint_regions, part_region, skeleton_regions,
+    vertex_regions, weight_regions, weight_share, Agreement, Region, WeightRegions, WeightShare,
 };
 pub use rules::{label_graph, Assignment, Draft};
 pub use warning::AnatomyWarning;

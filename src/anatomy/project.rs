@@ -2,9 +2,8 @@
 
 use crate::medial::MedialSurface;
 use crate::mesh::Mesh;
+use crate::paths::Search;
 use crate::voxel::{Solid, NEIGHBOURS_26};
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// Marks "no part".
 pub const NO_PART: u32 = u32::MAX;
@@ -24,8 +23,7 @@ pub fn interior_parts(
 ) -> Vec<u32> {
     let grid = solid.grid;
     let mut part = vec![NO_PART; grid.len()];
-    let mut cost = vec![f64::INFINITY; grid.len()];
-    let mut heap = BinaryHeap::new();
+    let mut search = Search::costs_only(grid.len());
     // Costs are offset by the largest radius so that they stay non-negative (the heap orders
     // non-negative floats by their bits).
     let largest = (0..surface.len())
@@ -34,37 +32,21 @@ pub fn interior_parts(
     for (p, &index) in surface.voxels.iter().enumerate() {
         if voxel_parts[p] != NO_PART && solid.inside[index] {
             let c = largest - radius_weight * surface.distance(p);
-            if c < cost[index] {
+            if search.seed(index, c) {
                 part[index] = voxel_parts[p];
-                cost[index] = c;
             }
         }
     }
-    for (p, &index) in surface.voxels.iter().enumerate() {
-        if voxel_parts[p] != NO_PART && solid.inside[index] {
-            heap.push(Reverse((cost[index].to_bits(), index)));
-        }
-    }
-    while let Some(Reverse((key, index))) = heap.pop() {
-        if cost[index].to_bits() != key {
-            continue;
-        }
-        let coords = grid.coords(index);
-        for n in NEIGHBOURS_26.iter() {
-            let Some(q) = grid.offset(coords, n.offset) else {
-                continue;
-            };
-            if !solid.inside[q] {
-                continue;
-            }
-            let c = cost[index] + n.distance;
-            if c < cost[q] {
-                cost[q] = c;
-                part[q] = part[index];
-                heap.push(Reverse((c.to_bits(), q)));
-            }
-        }
-    }
+    search.relax(
+        |index| {
+            let coords = grid.coords(index);
+            NEIGHBOURS_26.iter().filter_map(move |n| {
+                let q = grid.offset(coords, n.offset)?;
+                solid.inside[q].then_some((q, n.distance))
+            })
+        },
+        |from, to| part[to] = part[from],
+    );
     part
 }
 

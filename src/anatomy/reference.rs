@@ -32,7 +32,6 @@
 //! is the trunk's root, not a girdle.
 
 use super::{Label, Labelling, LimbPair, Side};
-use crate::eval::ReferenceRig;
 use crate::mesh::Mesh;
 use crate::skeleton::Canonical;
 use crate::skeleton::{JointId, Skeleton};
@@ -178,16 +177,10 @@ fn name_region(name: &str) -> Option<Region> {
     Some(region.with_side(side))
 }
 
-/// The region of each mesh vertex from the nearest bone of `rig`'s deforming joints (see the
-/// module documentation for the rule). `None` for every vertex when no joint has a region.
-pub fn reference_regions(rig: &ReferenceRig, mesh: &Mesh) -> Vec<Option<Region>> {
-    let rig = rig.deforming();
-    skeleton_regions(&rig.skeleton, &rig.canonical, mesh)
-}
-
 /// The region of each mesh vertex from the nearest bone of `skeleton`, every joint counted
 /// (a fitted skeleton's non-deforming `*_end` tips included, so a tail or a head reaches its
-/// tip), by the rule of [`reference_regions`]. This is how the labelling's bone-following
+/// tip), by the rule in the module documentation (a reference rig's regions,
+/// [`crate::eval::reference_regions`], come from its deforming joints). This is how the labelling's bone-following
 /// per-vertex labels ([`super::label_vertices_by_bones`]) read a fitted skeleton.
 pub fn skeleton_regions(
     skeleton: &Skeleton,
@@ -553,7 +546,7 @@ pub fn part_region(labelling: &Labelling, part: usize) -> Region {
     }
 }
 
-/// Per-vertex agreement of `labelling` with `reference` (from [`reference_regions`]).
+/// Per-vertex agreement of `labelling` with `reference` (from [`crate::eval::reference_regions`]).
 pub fn agreement(labelling: &Labelling, reference: &[Option<Region>]) -> Agreement {
     let regions: Vec<Region> = (0..labelling.parts.len())
         .map(|i| part_region(labelling, i))

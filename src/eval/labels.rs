@@ -3,10 +3,10 @@
 //! region, and, where the model carries the artists' skin weights, the share of each vertex's
 //! weight on bones of its predicted part (girdle bones counting for trunk and limb).
 
-use super::{load_skeleton, reference_skin, EvalError};
+use super::{load_skeleton, reference_regions, reference_skin, EvalError};
 use crate::anatomy::{
-    agreement, best_regions, reference_regions, vertex_regions, weight_regions, weight_share,
-    Agreement, Labelling, WeightRegions, WeightShare,
+    agreement, best_regions, vertex_regions, weight_regions, weight_share, Agreement, Labelling,
+    WeightRegions, WeightShare,
 };
 use crate::mesh::Mesh;
 use serde::Serialize;
@@ -39,7 +39,7 @@ pub struct LabelScore {
     /// The reference rig file ([`label_reference_file`]).
     pub reference: PathBuf,
     /// The labels against the region of the nearest reference bone
-    /// ([`crate::anatomy::reference_regions`]).
+    /// ([`super::reference_regions`]).
     pub agreement: Agreement,
     /// The second labelling (the medial per-vertex labels), if given, against the same.
     pub agreement_medial: Option<f64>,

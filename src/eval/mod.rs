@@ -62,6 +62,7 @@ mod label_table;
 mod labels;
 mod metrics;
 mod reference;
+mod regions;
 mod rig;
 mod rigger;
 mod skin_weights;
@@ -101,6 +102,7 @@ pub use metrics::{
     FigureSize, JointError, JointPairing, SizeSource,
 };
 pub use reference::{load_gltf_rig, load_skeleton, parse_json_rig, REFDATA_FORMAT};
+pub use regions::reference_regions;
 pub use rig::{ReferenceRig, RigFormat};
 pub use rigger::{rig_mesh, Orientation, RigAnatomy, RigMethod, Rigged, RiggerOptions};
 pub use skin_weights::{reference_skin, ReferenceSkin, VERTEX_MATCH_FRACTION};

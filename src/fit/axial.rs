@@ -1,8 +1,9 @@
 //! The axial skeleton (dissertation 8.1): dorsal offset of the trunk, the S-shaped cervical
 //! replacement, smoothing, the rigid head segment, vertebral segments and the root joint.
 
-use super::polyline::{smooth, Polyline};
+use super::polyline::Polyline;
 use super::{BodyFrame, DorsalProbe, FitOptions, FitWarning};
+use crate::math::{moving_average, Ends};
 use crate::template::Template;
 use glam::DVec3;
 
@@ -162,7 +163,7 @@ pub(crate) fn axial(
     } else {
         0
     };
-    let spine = Polyline::new(smooth(&adjusted, half));
+    let spine = Polyline::new(moving_average(&adjusted, half, Ends::Shrink));
     let arc = |t: f64| -> f64 {
         if length <= 0.0 {
             return 0.0;

@@ -18,11 +18,11 @@
 use super::{AxialPath, EarInput, Side};
 use crate::anatomy::{Frame, Label, Labelling};
 use crate::distance::DistanceMap;
+use crate::math::{moving_average, Ends};
 use crate::options::{Checks, OptionProblems};
+use crate::paths::Search;
 use crate::voxel::NEIGHBOURS_26;
 use glam::DVec3;
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// Options of [`ears`]. Lengths are multiples of the radius of the head-to-tail path's
 /// inscribed ball nearest the ear's base (the skull's radius there).
@@ -162,24 +162,19 @@ pub fn ears(
 
     let covered = cover(distance, &window, &inside, axial);
 
-    let Some((g, parent)) = geodesic(&window, &inside, &covered) else {
+    let Some(search) = geodesic(&window, &inside, &covered) else {
         return Vec::new();
     };
+    let g = &search.cost;
 
-    let tips = persistent_maxima(&window, &g);
+    let tips = persistent_maxima(&window, g);
 
     // Candidates: long, prominent tips rising from the head's part of the path.
     let head_end = nearest_point(&axial.points, head.attachment);
     let frame = &labelling.frame;
     let mut candidates = Vec::new();
     for (tip, persistence) in tips {
-        let mut chain = vec![tip];
-        while let Some(&last) = chain.last() {
-            match parent[last] {
-                usize::MAX => break,
-                p => chain.push(p),
-            }
-        }
+        let chain = search.path_to_source(tip);
         let (t, b) = (centre(tip), centre(*chain.last().unwrap_or(&tip)));
         let k = nearest_point(&axial.points, b);
         let skull = axial.radii[k] / h;
@@ -208,13 +203,13 @@ pub fn ears(
     [(a, Side::Left), (b, Side::Right)]
         .into_iter()
         .map(|(c, side)| {
-            let mut path: Vec<DVec3> = candidates[c]
+            let chain: Vec<DVec3> = candidates[c]
                 .chain
                 .iter()
                 .rev()
                 .map(|&i| centre(i))
                 .collect();
-            smooth(&mut path, options.smoothing);
+            let path = moving_average(&chain, options.smoothing, Ends::Keep);
             EarInput { side, path }
         })
         .collect()
@@ -287,35 +282,23 @@ fn cover(distance: &DistanceMap, window: &Window, inside: &[bool], axial: &Axial
     covered
 }
 
-/// Geodesic distance (voxel units) from the cover through the window's interior, and each
-/// voxel's parent towards the cover (`usize::MAX` for none); `None` without a cover.
-fn geodesic(window: &Window, inside: &[bool], covered: &[bool]) -> Option<(Vec<f64>, Vec<usize>)> {
-    let n = window.len();
-    let mut g = vec![f64::INFINITY; n];
-    let mut parent = vec![usize::MAX; n];
-    let mut heap = BinaryHeap::new();
-    for i in (0..n).filter(|&i| covered[i]) {
-        g[i] = 0.0;
-        heap.push(Reverse((0u64, i)));
+/// Geodesic distance (voxel units, [`Search::cost`]) from the cover through the window's
+/// interior, with each voxel's path back to the cover; `None` without a cover.
+fn geodesic(window: &Window, inside: &[bool], covered: &[bool]) -> Option<Search> {
+    let mut search = Search::new(window.len());
+    let mut sources = 0;
+    for i in (0..window.len()).filter(|&i| covered[i]) {
+        search.seed(i, 0.0);
+        sources += 1;
     }
-    if heap.is_empty() {
+    if sources == 0 {
         return None;
     }
-    while let Some(Reverse((bits, i))) = heap.pop() {
-        let gi = f64::from_bits(bits);
-        if gi > g[i] {
-            continue;
-        }
-        for (j, step) in window.neighbours(i) {
-            let gj = gi + step;
-            if inside[j] && gj < g[j] {
-                g[j] = gj;
-                parent[j] = i;
-                heap.push(Reverse((gj.to_bits(), j)));
-            }
-        }
-    }
-    Some((g, parent))
+    search.relax(
+        |i| window.neighbours(i).filter(|&(j, _)| inside[j]),
+        |_, _| {},
+    );
+    Some(search)
 }
 
 /// Maxima of `g` and their persistence (voxel units): voxels from the highest down, joined by
@@ -406,14 +389,4 @@ fn nearest_point(points: &[DVec3], p: DVec3) -> usize {
         .enumerate()
         .min_by(|a, b| a.1.distance_squared(p).total_cmp(&b.1.distance_squared(p)))
         .map_or(0, |(k, _)| k)
-}
-
-/// Moving average over `half` points each side, the ends kept as they are.
-fn smooth(path: &mut [DVec3], half: usize) {
-    let n = path.len();
-    if half == 0 || n < 3 {
-        return;
-    }
-    let smoothed = crate::math::moving_average(path, half);
-    path[1..n - 1].copy_from_slice(&smoothed[1..n - 1]);
 }

@@ -8,15 +8,19 @@
 //!           ─▶ head-to-tail path: head tip → tail tip, or → the hindmost pair's midpoint
 //!           ─▶ unpaired limbs: path to the head-to-tail path; digits: wrist → digit tip
 //!           ─▶ ends extended to the skin by their inscribed radius; points and radii in mesh units
+//!           ─▶ leg tips out to the skin along rays through the voxels (`reach.rs`)
+//!           ─▶ ears, when the template places them (`ears.rs`)
 //! ```
 
-use super::{AxialPath, DigitInput, DorsalProbe, FitInput, LimbInput, Side};
+use super::ears::{ears, EarOptions};
+use super::reach::{reach_the_skin, ReachOptions};
+use super::{AxialPath, DigitInput, DorsalProbe, FitError, FitInput, LimbInput, Side};
 use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part};
 use crate::distance::DistanceMap;
 use crate::medial::MedialSurface;
 use crate::options::{Checks, OptionProblems};
 use crate::paths::{DmsGraph, Search};
-use crate::template::LimbKind;
+use crate::template::{LimbKind, Template};
 use glam::DVec3;
 
 /// Options of [`fit_input`].
@@ -42,12 +46,15 @@ pub struct FitInputOptions {
     /// be checked. Default 4 (the reference limbs measure 10-20: a fox's leg about 10, a human
     /// arm about 17; a cube's corners about 3.5).
     pub min_limb_slenderness: f64,
-    /// Ear detection ([`super::ears`], run by `pipeline::rig` when the template has ears).
-    pub ears: super::EarOptions,
+    /// Leg tips out to the skin along rays through the voxels, past where the medial surface
+    /// stops ([`ReachOptions`]).
+    pub reach: ReachOptions,
+    /// Ear detection ([`super::ears`], run by [`fit_input`] when the template places ears).
+    pub ears: EarOptions,
 }
 
 impl FitInputOptions {
-    /// Checks every option, the ear options included.
+    /// Checks every option, the reach and ear options included.
     ///
     /// # Errors
     /// Every option out of range.
@@ -61,6 +68,7 @@ impl FitInputOptions {
             0.0,
             1000.0,
         );
+        c.nested("reach", self.reach.validate());
         c.nested("ears", self.ears.validate());
         c.finish()
     }
@@ -74,143 +82,46 @@ impl Default for FitInputOptions {
             end_direction_points: 4,
             symmetric_roots: true,
             min_limb_slenderness: 4.0,
-            ears: super::EarOptions::default(),
+            reach: ReachOptions::default(),
+            ears: EarOptions::default(),
         }
     }
 }
 
-/// [`reach_the_skin`] leaves the straight end direction for a tilted ray only when that ray
-/// reaches this many times as far.
-const DEEPER: f64 = 1.1;
-
-/// [`reach_the_skin`] stops a tip where its ray enters a part whose inscribed radius exceeds
-/// this multiple of the limb end's.
-const THICKER: f64 = 2.0;
-
-/// Moves the extended tip of every leg path (and its digit paths) out to the skin: from the
-/// path's last medial point along its end direction (as [`FitInputOptions::end_extension`]
-/// extends it) to where `probe` says the figure ends, when that is farther than the extension
-/// already reaches. The medial surface of a thin foot or hand can stop well short of the sole
-/// (a few voxels across, its medial piece breaks off), which left the limb's distal joints
-/// hanging above the ground on one side of a symmetric figure; the skin does not move with the
-/// voxel grid.
-///
-/// When a ray within 30 degrees of the end direction reaches more than 10 % farther, the tip
-/// follows the least tilted ray that reaches within 10 % of the farthest: the limb may bend
-/// past its medial piece (a hoof in front of the pastern), or the end direction may dip
-/// through a thin sole (the right foot of the symmetric MakeHuman body ended 5 cm short of the
-/// toes). A tip never goes on into a part more than twice as thick as the limb's end (by
-/// `distance`, the figure's distance map): a foot touching the other leg is one solid with
-/// it. Arms and wings keep the extension: on CesiumMan's mitten hands the longer arm path
-/// moved the refined wrist onto the fingertips. Returns how many tips moved.
-pub fn reach_the_skin(
-    input: &mut FitInput,
-    options: &FitInputOptions,
-    probe: &dyn DorsalProbe,
-    distance: &DistanceMap,
-) -> usize {
-    let mut moved = 0;
-    let mut reach = |points: &mut Vec<DVec3>| {
-        let n = points.len();
-        let k = options.end_direction_points;
-        if n < 3 || k == 0 || options.end_extension <= 0.0 {
-            return;
-        }
-        // The last point is the extension; the one before it, the medial path's end.
-        let end = points[n - 2];
-        let from = points[n.saturating_sub(2 + k)];
-        let Some(dir) = (end - from).try_normalize() else {
-            return;
-        };
-        let Some(depth) = probe.depth(end, dir) else {
-            return;
-        };
-        let extension = end.distance(points[n - 1]);
-        if !(depth.is_finite() && depth > extension) {
-            return;
-        }
-        // The limb may go on past its medial piece, bending (a hoof in front of the pastern), or
-        // the end direction may dip through a thin sole (a foot's medial piece ends a voxel
-        // lower on one side than the other): when a ray within 30 degrees reaches clearly
-        // farther than the straight one, take the least tilted ray that reaches nearly as far
-        // as the farthest (the deepest at that tilt).
-        let side = dir.any_orthonormal_vector();
-        let other = dir.cross(side);
-        let tilts = [5.0_f64, 10.0, 15.0, 20.0, 25.0, 30.0];
-        let rays: Vec<Vec<(DVec3, f64)>> = tilts
-            .iter()
-            .map(|tilt| {
-                (0..16)
-                    .filter_map(|k| {
-                        let azimuth = std::f64::consts::TAU * k as f64 / 16.0;
-                        let d = (dir * tilt.to_radians().cos()
-                            + (side * azimuth.cos() + other * azimuth.sin())
-                                * tilt.to_radians().sin())
-                        .normalize();
-                        probe
-                            .depth(end, d)
-                            .filter(|x| x.is_finite())
-                            .map(|x| (d, x))
-                    })
-                    .collect()
-            })
-            .collect();
-        let farthest = rays.iter().flatten().map(|r| r.1).fold(depth, f64::max);
-        let (mut best_dir, mut best) = (dir, depth);
-        if farthest > DEEPER * depth {
-            if let Some(&(d, x)) = rays
-                .iter()
-                .filter_map(|at_tilt| {
-                    at_tilt
-                        .iter()
-                        .filter(|r| r.1 * DEEPER >= farthest)
-                        .max_by(|a, b| a.1.total_cmp(&b.1))
-                })
-                .next()
-            {
-                (best_dir, best) = (d, x);
-            }
-        }
-        // A foot resting on the other leg is one solid with it: stop where the ray enters a part
-        // much thicker than the limb's end.
-        let limit = THICKER * distance.radius_at(end).max(extension);
-        let steps = (best / (0.25 * extension.max(1e-12))).ceil().min(4096.0) as usize;
-        for k in 1..=steps {
-            let t = best * k as f64 / steps as f64;
-            if distance.radius_at(end + best_dir * t) > limit {
-                best = t.max(extension);
-                break;
-            }
-        }
-        if best > extension {
-            points[n - 1] = end + best_dir * best;
-            moved += 1;
-        }
-    };
-    for limb in &mut input.limbs {
-        if !matches!(
-            limb.kind,
-            LimbKind::Leg | LimbKind::ForeLeg | LimbKind::HindLeg
-        ) {
-            continue;
-        }
-        if limb.digits.is_empty() {
-            reach(&mut limb.path);
-        }
-        for digit in &mut limb.digits {
-            reach(&mut digit.path);
-        }
-    }
-    moved
-}
-
-/// The fit's input from a labelling and the medial surface it was made from (same grid):
-/// centralised DMS paths between the labelled parts, in mesh units and frame. Returns the input
-/// and what could not be built (a missing head, an unreachable limb), as sentences.
+/// The fit's whole input from a labelling and the voxel stages it was made from (one grid), in
+/// mesh units and frame (dissertation 8.1-8.2): centralised DMS paths between the labelled
+/// parts, their free ends extended to the skin, the leg tips carried out to the skin along rays
+/// through `skin` (the figure's inside, e.g. [`crate::voxel::Solid`]; `distance` its distance
+/// map), and the ears when `template` places them (none without a template: the general
+/// control skeleton's fallback). Returns the input and what could not be built (a missing
+/// head, an unreachable limb), as sentences.
 ///
 /// Up and forward are the labelling's frame. Paths run through the labelled (largest) DMS
 /// component only.
+///
+/// # Errors
+/// [`FitError::InvalidInputOptions`] with every option out of range.
 pub fn fit_input(
+    labelling: &Labelling,
+    surface: &MedialSurface,
+    skin: &dyn DorsalProbe,
+    distance: &DistanceMap,
+    template: Option<&Template>,
+    options: &FitInputOptions,
+) -> Result<(FitInput, Vec<String>), FitError> {
+    options.validate()?;
+    let (mut input, warnings) = centralised_paths(labelling, surface, options);
+    reach_the_skin(&mut input, options, skin, distance);
+    if template.is_some_and(|t| t.placed("ear").is_some()) {
+        input.ears = ears(labelling, distance, &input.axial, &options.ears);
+    }
+    Ok((input, warnings))
+}
+
+/// Centralised DMS paths between the labelled parts, their free ends extended by
+/// [`FitInputOptions::end_extension`]: the input of [`fit_input`] before the leg tips reach the
+/// skin and without ears, and the sentences saying what could not be built.
+fn centralised_paths(
     labelling: &Labelling,
     surface: &MedialSurface,
     options: &FitInputOptions,

@@ -2,8 +2,9 @@
 //! limb roots, Table 8.1 segmentation, digits, wing shift.
 
 use super::axial::perpendicular;
-use super::polyline::{boundaries, smooth, Polyline};
+use super::polyline::{boundaries, Polyline};
 use super::{BodyFrame, DorsalProbe, FitOptions, FitWarning, LimbInput, Side};
+use crate::math::{moving_average, Ends};
 use crate::template::{Girdle, LimbGroup, Manus, Placement, Template};
 use glam::DVec3;
 
@@ -42,8 +43,10 @@ impl LimbFit {
     }
 }
 
+/// `points` smoothed by the moving average of `half` neighbours each side (the window
+/// shrinking at the ends, as the chains' smoothing does), as a polyline.
 fn smoothed(points: &[DVec3], half: usize) -> Polyline {
-    Polyline::new(smooth(points, half))
+    Polyline::new(moving_average(points, half, Ends::Shrink))
 }
 
 /// Fits one side of a limb pair.

@@ -30,15 +30,17 @@ mod limbs;
 mod options;
 mod polyline;
 mod probe;
+mod reach;
 
 pub use ears::{ears, EarOptions};
 pub use error::{FitError, FitWarning};
-pub use from_labels::{fit_input, reach_the_skin, FitInputOptions};
+pub use from_labels::{fit_input, FitInputOptions};
 pub use input::{
     voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, EarInput, FitInput, LimbInput,
     Side,
 };
 pub use options::{BendSnap, FitOptions};
+pub use reach::ReachOptions;
 
 use crate::skeleton::{Canonical, JointId, Skeleton};
 use crate::template::{apply_preset, Girdle, LimbKind, Template};

@@ -4,7 +4,7 @@ use super::graph::{branches, check, in_scope};
 use super::options::check_threshold;
 use super::rebuild::{rebuild, Groups};
 use super::{LodError, LodScope};
-use crate::outline::douglas_peucker;
+use crate::math::douglas_peucker;
 use crate::skeleton::Skeleton;
 
 /// Drops the sleeve joints of each branch that Douglas-Peucker with tolerance `epsilon`

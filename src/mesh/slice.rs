@@ -2,8 +2,9 @@
 //! [`super::slice_sphere`]), with the per-loop measures of seed 004 (3.1, 3.3): centroid,
 //! perimeter and principal axes/diameters.
 
+use crate::math::principal_axes;
 use glam::DVec3;
-use nalgebra::{Matrix3, SymmetricEigen};
+use nalgebra::Matrix3;
 use std::collections::HashMap;
 
 /// One connected piece of a mesh/surface intersection.
@@ -95,14 +96,8 @@ impl SliceLoop {
         if length == 0.0 {
             return None;
         }
-        let eigen = SymmetricEigen::new(covariance / length);
-        let mut order = [0usize, 1, 2];
-        order.sort_by(|&i, &j| eigen.eigenvalues[j].total_cmp(&eigen.eigenvalues[i]));
-        let axis = |k: usize| {
-            let c = eigen.eigenvectors.column(order[k]);
-            DVec3::new(c[0], c[1], c[2]).normalize_or_zero()
-        };
-        let (major, minor, normal) = (axis(0), axis(1), axis(2));
+        let [major, minor, normal] =
+            principal_axes(covariance / length).map(|(_, axis)| axis.normalize_or_zero());
         let extent = |d: DVec3| {
             let (lo, hi) = self
                 .points

@@ -168,7 +168,7 @@ fn select(slices: &[Slice], epsilon: f64, alpha: f64) -> Vec<bool> {
         let mut best = (st, 0.0);
         for i in st + 1..en {
             let s = &slices[i];
-            let axis = super::douglas_peucker::point_segment_distance(
+            let axis = crate::math::point_segment_distance(
                 s.centre.extend(0.0),
                 a.centre.extend(0.0),
                 b.centre.extend(0.0),

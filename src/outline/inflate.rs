@@ -98,7 +98,7 @@ fn boundary_distance(boundary: &[DVec2], p: DVec2) -> f64 {
     let m = boundary.len();
     (0..m)
         .map(|i| {
-            super::douglas_peucker::point_segment_distance(
+            crate::math::point_segment_distance(
                 p.extend(0.0),
                 boundary[i].extend(0.0),
                 boundary[(i + 1) % m].extend(0.0),

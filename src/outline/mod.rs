@@ -38,7 +38,6 @@
 mod assemble;
 mod axis;
 mod bounded_dp;
-mod douglas_peucker;
 mod error;
 mod inflate;
 mod input;
@@ -50,10 +49,10 @@ mod straight_skeleton;
 mod svg;
 mod svg_path;
 
+pub use crate::math::{douglas_peucker, douglas_peucker_closed, point_segment_distance};
 pub use assemble::{assemble, attach_point, bone_distance, Assembly, PartPlacement};
 pub use axis::{axis_graph, AxisGraph};
 pub use bounded_dp::{bounded_dp, slices, spline_samples, Slice, MAX_THRESHOLD_STEPS};
-pub use douglas_peucker::{douglas_peucker, douglas_peucker_closed, point_segment_distance};
 pub use error::OutlineError;
 pub use inflate::{inflate, outline_part, OutlinePart};
 pub use input::{parse_csv, parse_svg, read_outline, Outline};

@@ -1,5 +1,6 @@
 //! Chains of the path tree and their smoothing (dissertation ch.5.2.4, Figure 5.6).
 
+use crate::math::{moving_average, Ends};
 use crate::medial::MedialSurface;
 use glam::DVec3;
 use serde::Serialize;
@@ -70,7 +71,8 @@ fn chain(surface: &MedialSurface, positions: &[usize], nodes: Vec<usize>, radius
         .iter()
         .map(|&v| surface.centre(positions[v]))
         .collect();
-    let smoothed = smooth(&centres, radius);
+    // Box filter of `radius` edges, limited at the ends (Figure 5.6).
+    let smoothed = moving_average(&centres, radius, Ends::Shrink);
     let mut cumulative = Vec::with_capacity(nodes.len());
     let mut total = 0.0;
     cumulative.push(0.0);
@@ -87,25 +89,5 @@ fn chain(surface: &MedialSurface, positions: &[usize], nodes: Vec<usize>, radius
         smoothed,
         cumulative,
         length: total * surface.grid.voxel_size,
-    }
-}
-
-/// Box filter of `radius` edges, limited at the ends (Figure 5.6).
-pub(crate) use crate::math::moving_average as smooth;
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn smoothing_follows_figure_5_6() {
-        let p: Vec<DVec3> = (0..12)
-            .map(|i| DVec3::new(i as f64, (i % 2) as f64, 0.0))
-            .collect();
-        let s = smooth(&p, 2);
-        assert_eq!(s[0], p[0]);
-        assert_eq!(s[11], p[11]);
-        assert_eq!(s[1], (p[0] + p[1] + p[2]) / 3.0);
-        assert_eq!(s[5], (p[3] + p[4] + p[5] + p[6] + p[7]) / 5.0);
     }
 }

@@ -1,4 +1,5 @@
-//! Multi-source, incremental Dijkstra searches over the DMS (dissertation ch.5.2.4).
+//! Multi-source, incremental Dijkstra searches over the DMS (dissertation ch.5.2.4) and
+//! other voxel graphs.
 
 use super::DmsGraph;
 use std::cmp::Reverse;
@@ -7,7 +8,9 @@ use std::collections::BinaryHeap;
 /// Marks "no parent" in [`Search::parent`].
 const NO_PARENT: u32 = u32::MAX;
 
-/// A shortest-path search over a [`DmsGraph`] from a growing set of zero-cost sources.
+/// A multi-source shortest-path search (Dijkstra) from a growing set of sources: the one
+/// search of the crate, over the DMS ([`Search::add_sources`]) or any graph given by a
+/// neighbour function ([`Search::seed`], [`Search::relax`]: interior voxels, a window of them).
 ///
 /// Costs only ever decrease as sources are added, so a search is updated in place: adding
 /// sources relaxes outward from them and stops where the old costs are already lower. This is
@@ -19,11 +22,12 @@ const NO_PARENT: u32 = u32::MAX;
 /// one, so results are deterministic.
 #[derive(Debug, Clone)]
 pub struct Search {
-    /// Cost per DMS position (`f64::INFINITY` when unreached).
+    /// Cost per position (`f64::INFINITY` when unreached).
     pub cost: Vec<f64>,
-    /// Predecessor on a cheapest path to the sources, `u32::MAX` for sources and unreached.
+    /// Predecessor on a cheapest path to the sources, [`NO_PARENT`] for sources and unreached;
+    /// empty for a search that keeps no paths ([`Search::costs_only`]).
     parent: Vec<u32>,
-    heap: BinaryHeap<Reverse<(u64, u32)>>,
+    heap: BinaryHeap<Reverse<(u64, usize)>>,
 }
 
 /// Heap key of a non-negative cost: for non-negative finite floats the IEEE bit patterns sort
@@ -34,7 +38,7 @@ fn key(cost: f64) -> u64 {
 }
 
 impl Search {
-    /// A search over `n` positions with no sources yet.
+    /// A search over `n` positions (at most `u32::MAX`) with no sources yet.
     pub fn new(n: usize) -> Self {
         Self {
             cost: vec![f64::INFINITY; n],
@@ -43,8 +47,20 @@ impl Search {
         }
     }
 
-    /// Adds zero-cost `sources` and relaxes outward. Entering position `q` from `p` over a step
-    /// of length `step` (voxel units) costs `weight(q, step)`, which must be non-negative.
+    /// A search over `n` positions that keeps only the costs, not the paths
+    /// ([`Search::path_to_source`] and [`Search::parent`] find nothing): for large graphs
+    /// such as every voxel of a grid.
+    pub fn costs_only(n: usize) -> Self {
+        Self {
+            cost: vec![f64::INFINITY; n],
+            parent: Vec::new(),
+            heap: BinaryHeap::new(),
+        }
+    }
+
+    /// Adds zero-cost `sources` and relaxes outward over the DMS. Entering position `q` from
+    /// `p` over a step of length `step` (voxel units) costs `weight(q, step)`, which must be
+    /// non-negative.
     pub fn add_sources(
         &mut self,
         graph: &DmsGraph,
@@ -52,27 +68,66 @@ impl Search {
         weight: impl Fn(usize, f64) -> f64,
     ) {
         for s in sources {
-            if self.cost[s] > 0.0 {
-                self.cost[s] = 0.0;
-                self.parent[s] = NO_PARENT;
-                self.heap.push(Reverse((key(0.0), s as u32)));
-            }
+            self.seed(s, 0.0);
         }
+        self.relax(
+            |p| graph.neighbours(p).map(|(q, step)| (q, weight(q, step))),
+            |_, _| {},
+        );
+    }
+
+    /// Makes `p` a source of cost `cost` (non-negative) when that is lower than its cost so
+    /// far; the search goes on from it at the next [`Search::relax`]. Returns whether it did.
+    pub fn seed(&mut self, p: usize, cost: f64) -> bool {
+        if cost < self.cost[p] {
+            self.cost[p] = cost;
+            if let Some(parent) = self.parent.get_mut(p) {
+                *parent = NO_PARENT;
+            }
+            self.heap.push(Reverse((key(cost), p)));
+            true
+        } else {
+            false
+        }
+    }
+
+    /// Relaxes outward from the positions seeded or lowered since the last call, cheapest
+    /// first. `neighbours(p)` gives each position `q` reachable from `p` with the cost of the
+    /// step (non-negative); `lowered(p, q)` is called each time `q`'s cost is lowered through
+    /// `p` (the last call for `q` names its predecessor on a cheapest path).
+    pub fn relax<I>(
+        &mut self,
+        mut neighbours: impl FnMut(usize) -> I,
+        mut lowered: impl FnMut(usize, usize),
+    ) where
+        I: IntoIterator<Item = (usize, f64)>,
+    {
         while let Some(Reverse((k, p))) = self.heap.pop() {
-            let p = p as usize;
             let cost = self.cost[p];
             if key(cost) != k {
                 continue;
             }
-            for (q, step) in graph.neighbours(p) {
-                let candidate = cost + weight(q, step);
+            for (q, step) in neighbours(p) {
+                let candidate = cost + step;
                 if candidate < self.cost[q] {
                     self.cost[q] = candidate;
-                    self.parent[q] = p as u32;
-                    self.heap.push(Reverse((key(candidate), q as u32)));
+                    if let Some(parent) = self.parent.get_mut(q) {
+                        *parent = p as u32;
+                    }
+                    lowered(p, q);
+                    self.heap.push(Reverse((key(candidate), q)));
                 }
             }
         }
+    }
+
+    /// The predecessor of `p` on a cheapest path to the sources; `None` for sources, unreached
+    /// positions and searches that keep no paths.
+    pub fn parent(&self, p: usize) -> Option<usize> {
+        self.parent
+            .get(p)
+            .filter(|&&q| q != NO_PARENT)
+            .map(|&q| q as usize)
     }
 
     /// The cheapest path from `p` back to a source: `p` first, the source last. Empty when `p`
@@ -83,8 +138,8 @@ impl Search {
         }
         let mut path = vec![p];
         let mut at = p;
-        while self.parent[at] != NO_PARENT {
-            at = self.parent[at] as usize;
+        while let Some(q) = self.parent(at) {
+            at = q;
             path.push(at);
         }
         path
@@ -117,5 +172,26 @@ mod tests {
         // Adding a closer source lowers costs in place.
         search.add_sources(&graph, [0], |_, step| step);
         assert_eq!(search.cost[1], std::f64::consts::SQRT_2);
+    }
+
+    #[test]
+    fn seeded_costs_spread_over_any_graph_and_report_each_lowering() {
+        // A path 0 - 1 - 2 - 3 with unit steps; sources 0 (cost 5) and 3 (cost 0).
+        let neighbours = |p: usize| {
+            [p.checked_sub(1), (p < 3).then_some(p + 1)]
+                .into_iter()
+                .flatten()
+                .map(|q| (q, 1.0))
+        };
+        let mut search = Search::costs_only(4);
+        assert!(search.seed(0, 5.0));
+        assert!(search.seed(3, 0.0));
+        assert!(!search.seed(3, 1.0));
+        let mut from = [usize::MAX; 4];
+        search.relax(neighbours, |p, q| from[q] = p);
+        assert_eq!(search.cost, vec![3.0, 2.0, 1.0, 0.0]);
+        assert_eq!(from, [1, 2, 3, usize::MAX]);
+        assert_eq!(search.parent(0), None);
+        assert_eq!(search.path_to_source(0), vec![0]);
     }
 }

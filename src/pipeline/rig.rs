@@ -6,18 +6,15 @@ use crate::anatomy::{
     LabelPipelineOptions, Labelling, Overrides,
 };
 use crate::distance::{edt, DistanceMap};
-use crate::fit::{
-    assign_trunk_keys, ears, fit_input, fit_with_probe, reach_the_skin, Fit, FitError, FitInput,
-    FitInputOptions, FitOptions,
-};
+use crate::fit::{fit_input, fit_with_probe, Fit, FitError, FitInput, FitInputOptions, FitOptions};
 use crate::general::{control_skeleton, GeneralOptions};
 use crate::medial::{dms, MedialOptions, MedialSurface};
 use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
-use crate::refine::{refine, symmetrize, RefineError, RefineOptions};
+use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
-use crate::template::{apply_preset, Preset, RefineKind, Template};
+use crate::template::{apply_preset, Preset, Template};
 use crate::voxel::{boundary_mesh, voxelize, Solid, VoxelOptions};
 use crate::warning::Warning;
 
@@ -187,7 +184,7 @@ impl Rig {
 /// Rigs `mesh` with an anatomical control skeleton (dissertation ch.7-8): voxelize, exact
 /// distance map, medial surface, body-part labels, centralised paths between the labelled
 /// parts ([`fit_input`]), the template fit ([`fit_with_probe`], dorsal rays through the
-/// voxels), for humanoids the slicing refinement ([`refine`], seed 004), and skin weights from the fitted bones ([`skin_from_bones`]).
+/// voxels), the refinement the template declares ([`refine_fit`]: the humanoid's slicing, seed 004), and skin weights from the fitted bones ([`skin_from_bones`]).
 ///
 /// Missing body parts are warnings (the fit leaves their joints out); a figure the template does
 /// not suit gets the template's best effort and the warnings say what is missing.
@@ -216,28 +213,30 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         options.overrides.as_ref(),
     )?;
     lap.lap("label", &mut timings);
-    let (mut input, mut path_warnings) = fit_input(&labelling, &surface, &options.input);
-    reach_the_skin(&mut input, &options.input, &solid, &distance);
+    let resolved = resolve_template(chosen, &labelling)?;
+    let (input, mut path_warnings) = fit_input(
+        &labelling,
+        &surface,
+        &solid,
+        &distance,
+        resolved.template(),
+        &options.input,
+    )?;
     lap.lap("paths", &mut timings);
     let mut warnings = labelling.warnings.clone();
     warnings.extend(path_warnings.drain(..).map(Warning::FitInput));
-    let template = match chosen {
-        Some(t) => t,
-        None => {
-            if let Some(reason) = no_template_fits(&labelling) {
-                warnings.push(RigWarning::NoTemplateFits { reason }.into());
-                return general_fallback(
-                    mesh, options, labelling, input, solid, distance, &surface, timings, warnings,
-                );
-            }
-            let (name, note) = auto_template(&labelling);
+    let template = match resolved {
+        Resolved::Template(t, note) => {
             warnings.extend(note.map(Warning::Rig));
-            Template::builtin(name)?
+            *t
+        }
+        Resolved::General(reason) => {
+            warnings.push(RigWarning::NoTemplateFits { reason }.into());
+            return general_fallback(
+                mesh, options, labelling, input, solid, distance, &surface, timings, warnings,
+            );
         }
     };
-    if template.placed("ear").is_some() {
-        input.ears = ears(&labelling, &distance, &input.axial, &options.input.ears);
-    }
     // Anatomical names through the refinement; the preset's names go on last, from the final
     // canonical keys (the refinement may move `spine` and `chest` to other joints).
     let anatomical = FitOptions {
@@ -247,20 +246,24 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().cloned().map(Warning::Fit));
     lap.lap("fit", &mut timings);
-    if options.refine.in_rig && template.refinement == Some(RefineKind::HumanSlicing) {
-        let up = input.up;
-        let joined = refine_surface(mesh, &solid, &options.refine);
-        match refine(
+    let joined = (options.refine.in_rig && template.refinement.is_some())
+        .then(|| refine_surface(mesh, &solid, &options.refine))
+        .flatten();
+    let refined = options.refine.in_rig.then(|| {
+        refine_fit(
             joined.as_ref().unwrap_or(mesh),
-            &fit.skeleton,
-            &fit.canonical,
-            up,
+            &fit,
+            &template,
+            input.up,
             input.forward,
             &options.refine,
-        ) {
+        )
+    });
+    if let Some(refined) = refined.flatten() {
+        match refined {
             Ok(refined) => {
                 fit.skeleton = refined.skeleton;
-                assign_trunk_keys(&fit.skeleton, &mut fit.canonical, &template.axial);
+                fit.canonical = refined.canonical;
                 warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
             }
             Err(e) => warnings.push(
@@ -346,6 +349,38 @@ pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
         .filter(|(label, side, pair, _)| !has(*label, *side, *pair))
         .map(|(_, _, _, name)| name)
         .collect()
+}
+
+/// What [`rig`] fits to a labelled figure.
+enum Resolved {
+    /// A template, with a note when the automatic choice was unsure ([`auto_template`]).
+    Template(Box<Template>, Option<RigWarning>),
+    /// The general control skeleton, because no template fits ([`no_template_fits`]: why).
+    General(String),
+}
+
+impl Resolved {
+    fn template(&self) -> Option<&Template> {
+        match self {
+            Resolved::Template(t, _) => Some(t.as_ref()),
+            Resolved::General(_) => None,
+        }
+    }
+}
+
+/// The chosen template, else the one the labelling suits, else the general skeleton.
+///
+/// # Errors
+/// An unknown built-in template.
+fn resolve_template(chosen: Option<Template>, labelling: &Labelling) -> crate::Result<Resolved> {
+    if let Some(t) = chosen {
+        return Ok(Resolved::Template(Box::new(t), None));
+    }
+    if let Some(reason) = no_template_fits(labelling) {
+        return Ok(Resolved::General(reason));
+    }
+    let (name, note) = auto_template(labelling);
+    Ok(Resolved::Template(Box::new(Template::builtin(name)?), note))
 }
 
 /// Validates every stage's options and resolves the chosen template (`None` for
@@ -497,6 +532,7 @@ pub fn auto_template(labelling: &Labelling) -> (&'static str, Option<RigWarning>
 mod tests {
     use super::*;
     use crate::anatomy::{label, AnatomyError};
+    use crate::refine::refine;
 
     #[test]
     fn a_failed_rig_leaves_the_medial_labels_with_a_warning() {

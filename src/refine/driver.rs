@@ -10,8 +10,10 @@ use super::limb_joints::centre_in_depth;
 use super::spine::{spine, Spine};
 use super::torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
 use super::{RefineError, RefineOptions, RefineWarning};
+use crate::fit::{assign_trunk_keys, Fit};
 use crate::mesh::{slice_plane_outer, Mesh};
 use crate::skeleton::{Canonical, JointId, Side, Skeleton};
+use crate::template::{AxialRules, RefineKind, Template};
 use glam::DVec3;
 use std::collections::BTreeMap;
 
@@ -51,6 +53,10 @@ pub struct Refinement {
     /// The input skeleton with the refined canonical joints moved, the joints between them
     /// carried along (spine joints onto the spine curve) and frames turned with their segments.
     pub skeleton: Skeleton,
+    /// Canonical key → joint of `skeleton`: the rough map, with `spine` and `chest` reassigned
+    /// to the trunk joints where they ended up when the template's trunk rules were given
+    /// ([`refine_fit`]; [`crate::fit::assign_trunk_keys`]).
+    pub canonical: BTreeMap<String, JointId>,
     /// The full spine from the top: `C1`..`C7`, `T1`..`T12`, `L1`..`L5` (each the joint below
     /// that vertebra) and `sacrum`; empty when the spine was not found.
     pub spine: Vec<(String, DVec3)>,
@@ -106,6 +112,34 @@ pub(super) struct Scene<'a> {
     pub(super) options: &'a RefineOptions,
 }
 
+/// Refines `fit` as its template declares ([`Template::refinement`]): for
+/// [`RefineKind::HumanSlicing`], [`refine`] of the fit's skeleton, with the canonical `spine`
+/// and `chest` then reassigned by the template's trunk rules ([`Refinement::canonical`]).
+/// `None` when the template declares no refinement. `up` and `forward` as for [`refine`].
+///
+/// # Errors
+/// As [`refine`].
+pub fn refine_fit(
+    mesh: &Mesh,
+    fit: &Fit,
+    template: &Template,
+    up: DVec3,
+    forward: DVec3,
+    options: &RefineOptions,
+) -> Option<Result<Refinement, RefineError>> {
+    match template.refinement? {
+        RefineKind::HumanSlicing => Some(refine_with(
+            mesh,
+            &fit.skeleton,
+            &fit.canonical,
+            Some(&template.axial),
+            up,
+            forward,
+            options,
+        )),
+    }
+}
+
 /// Refines a roughly aligned humanoid skeleton by slicing its mesh (seed 004).
 ///
 /// * `mesh`: the body surface (closed or nearly so), any units and frame.
@@ -125,6 +159,19 @@ pub fn refine(
     mesh: &Mesh,
     skeleton: &Skeleton,
     canonical: &BTreeMap<String, JointId>,
+    up: DVec3,
+    forward: DVec3,
+    options: &RefineOptions,
+) -> Result<Refinement, RefineError> {
+    refine_with(mesh, skeleton, canonical, None, up, forward, options)
+}
+
+/// [`refine`], reassigning the canonical `spine` and `chest` by `trunk` when given.
+fn refine_with(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    trunk: Option<&AxialRules>,
     up: DVec3,
     forward: DVec3,
     options: &RefineOptions,
@@ -204,8 +251,14 @@ pub fn refine(
             targets.insert(id, p);
         }
     }
+    let skeleton = carry(skeleton, &targets);
+    let mut canonical = canonical.clone();
+    if let Some(rules) = trunk {
+        assign_trunk_keys(&skeleton, &mut canonical, rules);
+    }
     Ok(Refinement {
-        skeleton: carry(skeleton, &targets),
+        skeleton,
+        canonical,
         spine: spine_result.map(|s| s.joints).unwrap_or_default(),
         moved,
         frame,

@@ -1,6 +1,7 @@
 //! Small geometric helpers shared by the refinement steps: loop choice, 2-D PCA, circle fit,
 //! polyline resampling, line fit.
 
+use crate::math::{point_covariance, principal_axes, principal_axis_2d};
 use crate::mesh::SliceLoop;
 use glam::DVec3;
 
@@ -47,37 +48,11 @@ pub fn pca_2d_curve(segments: &[Segment2]) -> Option<((f64, f64), f64)> {
         syy += w * moment((p.1, p.1), (q.1, q.1));
         sxy += w * moment((p.0, p.1), (q.0, q.1));
     }
-    principal((sxx, sxy, syy))
+    principal_axis_2d((sxx, sxy, syy))
 }
 
 fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
     (a.0 - b.0).hypot(a.1 - b.1)
-}
-
-/// Major direction and axis ratio of the 2x2 covariance `(sxx, sxy, syy)`.
-fn principal((sxx, sxy, syy): (f64, f64, f64)) -> Option<((f64, f64), f64)> {
-    let trace = sxx + syy;
-    let det = sxx * syy - sxy * sxy;
-    let disc = (trace * trace / 4.0 - det).max(0.0).sqrt();
-    let (l1, l2) = (trace / 2.0 + disc, trace / 2.0 - disc);
-    if l1 <= 0.0 {
-        return None;
-    }
-    // Two forms of the same eigenvector; the longer one is the well-conditioned one (the
-    // first vanishes when the major axis is the second coordinate's, the second when it is
-    // the first's).
-    let (a, b) = ((l1 - syy, sxy), (sxy, l1 - sxx));
-    let dir = if a.0.hypot(a.1) >= b.0.hypot(b.1) {
-        a
-    } else {
-        b
-    };
-    if dir.0.hypot(dir.1) <= 0.0 {
-        return Some(((1.0, 0.0), 1.0));
-    }
-    let len = (dir.0 * dir.0 + dir.1 * dir.1).sqrt();
-    let ratio = (l1 / l2.max(l1 * 1e-12)).sqrt();
-    Some(((dir.0 / len, dir.1 / len), ratio))
 }
 
 /// Least-squares circle (Kåsa fit) through 2-D points: `(centre, radius)`, or `None` for fewer
@@ -138,17 +113,9 @@ pub fn fit_line(points: &[DVec3]) -> Option<(DVec3, DVec3)> {
     if points.len() < 2 {
         return None;
     }
-    let mean = points.iter().sum::<DVec3>() / points.len() as f64;
-    let mut c = nalgebra::Matrix3::<f64>::zeros();
-    for p in points {
-        let d = *p - mean;
-        let v = nalgebra::Vector3::new(d.x, d.y, d.z);
-        c += v * v.transpose();
-    }
-    let eigen = nalgebra::SymmetricEigen::new(c);
-    let k = eigen.eigenvalues.imax();
-    let e = eigen.eigenvectors.column(k);
-    let mut dir = DVec3::new(e[0], e[1], e[2]).try_normalize()?;
+    let (mean, covariance) = point_covariance(points);
+    let [(_, major), ..] = principal_axes(covariance);
+    let mut dir = major.try_normalize()?;
     if dir.dot(points[points.len() - 1] - points[0]) < 0.0 {
         dir = -dir;
     }

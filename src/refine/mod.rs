@@ -41,7 +41,7 @@ mod torso;
 mod warning;
 
 pub use carry::carry;
-pub use driver::{refine, Refinement, REFINED, REFINED_KEYS};
+pub use driver::{refine, refine_fit, Refinement, REFINED, REFINED_KEYS};
 pub use error::RefineError;
 pub use frame::{frame_from_head, head_slices, BodyFrame, HeadSlices};
 pub use head::{head_joint, HeadJoint};

@@ -37,7 +37,7 @@ pub enum Posture {
 /// The refinement a template's fits get after the fit (`refine` in the template header).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RefineKind {
-    /// Slicing the mesh to place a human body's joints ([`crate::refine::refine`], seed 004):
+    /// Slicing the mesh to place a human body's joints ([`crate::refine::refine_fit`], seed 004):
     /// `refine = "human_slicing"`.
     HumanSlicing,
 }

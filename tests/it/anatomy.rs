@@ -10,10 +10,10 @@
 use crate::common;
 use glam::{DQuat, DVec3};
 use skelfit::anatomy::{
-    agreement, label, labels_json, reference_regions, AnatomyWarning, FigureClass, Forward, Label,
-    LabelOptions, LabelPipelineOptions, Labelling, LimbPair, Side,
+    agreement, label, labels_json, AnatomyWarning, FigureClass, Forward, Label, LabelOptions,
+    LabelPipelineOptions, Labelling, LimbPair, Side,
 };
-use skelfit::eval::load_skeleton;
+use skelfit::eval::{load_skeleton, reference_regions};
 use skelfit::mesh::{load, Mesh};
 use skelfit::warning::Warning;
 use std::path::Path;

@@ -479,7 +479,7 @@ fn quadruped_necks_leave_the_trunk_at_the_chest_front() {
 /// The bundled MakeHuman body is left-right symmetric, and so are its feet: the right leg's
 /// medial path used to end a voxel lower, its end direction dipped through the thin sole, and
 /// the right toe chain stopped 5 cm short of the toes (toe_R 68 mm from the reference, toe_L
-/// 29 mm). `fit::reach_the_skin` now takes a clearly deeper ray within 30 degrees.
+/// 29 mm). The fit input's reach to the skin (`fit/reach.rs`) now takes a clearly deeper ray within 30 degrees.
 #[test]
 fn a_symmetric_body_gets_mirrored_feet() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
@@ -541,7 +541,7 @@ fn a_loose_piece_far_away_leaves_the_rig_unchanged_and_is_named() {
 
 /// Legs reach the ground on both sides even where the medial surface of a thin foot broke
 /// off on one side (the alpaca's left fore foot: its limb path stopped 0.46 units above the
-/// ground, and its digit joints hung 0.38 above it): `fit::reach_the_skin` takes the path tip
+/// ground, and its digit joints hung 0.38 above it): the fit input's reach to the skin (`fit/reach.rs`) takes the path tip
 /// to the skin along the end direction.
 #[test]
 fn every_foot_reaches_the_ground() {
