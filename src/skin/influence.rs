@@ -1,9 +1,10 @@
 //! Regions of influence: which segments influence each voxel (dissertation 5.2.5, 8.3).
 
+use super::neighbourhood::Neighbourhood;
 use super::{SegmentVoxels, SkinError, SkinOptions};
 use crate::distance::DistanceMap;
 use crate::mesh::Mesh;
-use crate::voxel::{Grid, Neighbour, Solid};
+use crate::voxel::{Grid, Solid};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -378,59 +379,6 @@ fn set_bits(words: &mut [u64], first: usize, last: usize) {
             *word = u64::MAX;
         }
         words[b] |= high;
-    }
-}
-
-/// The neighbours of a voxel in one connectivity: linear index deltas away from the grid
-/// border, checked offsets on it (padding keeps mesh voxels off the border, so the slow path
-/// is rare).
-struct Neighbourhood {
-    grid: Grid,
-    neighbours: &'static [Neighbour],
-    deltas: Vec<isize>,
-}
-
-impl Neighbourhood {
-    fn new(grid: Grid, neighbours: &'static [Neighbour]) -> Self {
-        let [nx, ny, _] = grid.dims.map(|d| d as isize);
-        let deltas = neighbours
-            .iter()
-            .map(|n| {
-                let [ox, oy, oz] = n.offset.map(|o| o as isize);
-                ox + nx * (oy + ny * oz)
-            })
-            .collect();
-        Self {
-            grid,
-            neighbours,
-            deltas,
-        }
-    }
-
-    /// Calls `f` with each neighbour index of voxel `u`, in the connectivity's order.
-    #[inline]
-    fn for_each(&self, u: usize, mut f: impl FnMut(usize)) {
-        let [x, y, z] = self.grid.coords(u);
-        let [nx, ny, nz] = self.grid.dims;
-        if x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz {
-            for &d in &self.deltas {
-                f(u.wrapping_add_signed(d));
-            }
-        } else {
-            for n in self.neighbours {
-                if let Some(w) = self.grid.offset([x, y, z], n.offset) {
-                    f(w);
-                }
-            }
-        }
-    }
-
-    /// Whether `pred` holds for some neighbour of voxel `u`.
-    #[inline]
-    fn any(&self, u: usize, mut pred: impl FnMut(usize) -> bool) -> bool {
-        let mut found = false;
-        self.for_each(u, |w| found = found || pred(w));
-        found
     }
 }
 
