@@ -99,7 +99,22 @@ pub fn influence(
     if lists.iter().all(Vec::is_empty) {
         return Err(SkinError::NoInfluence);
     }
+    let (mut set_of, mut interner, covered) = covered_sets(&grid, &lists);
+    let state = propagation_targets(solid, mesh, &set_of);
+    let around = Neighbourhood::new(grid, options.connectivity.neighbours());
+    propagate(&around, &state, &mut set_of, &mut interner);
+    Ok(Influence {
+        grid,
+        set_of,
+        sets: interner.sets,
+        covered,
+    })
+}
 
+/// The interned influence set of every voxel the spheres cover (`lists`: per segment, its
+/// covered voxels ascending), `NONE` elsewhere, with the interner and the number of covered
+/// voxels.
+fn covered_sets(grid: &Grid, lists: &[Vec<u32>]) -> (Vec<u32>, Interner, usize) {
     // Each voxel's set grows segment by segment (ascending), through memoised transitions
     // (set, segment) -> set, in slabs of consecutive voxels (in parallel, each with its own
     // numbering); then the sets are renumbered in order of first appearance in voxel order,
@@ -158,6 +173,13 @@ pub fn influence(
         }
     }
 
+    (set_of, interner, covered)
+}
+
+/// Propagation state per voxel: `OPEN` for the uncovered voxels that are interior, on the
+/// surface or hold a vertex of `mesh`, `BLOCKED` for the rest.
+fn propagation_targets(solid: &Solid, mesh: &Mesh, set_of: &[u32]) -> Vec<AtomicU8> {
+    let grid = solid.grid;
     // Propagation state per voxel: OPEN for targets no layer has reached yet (uncovered
     // voxels that are interior, on the surface or hold a vertex), BLOCKED for the rest. A
     // voxel is TAKEN when it is queued into a layer, by exactly one thread.
@@ -182,10 +204,22 @@ pub fn influence(
         }
     }
 
-    let around = Neighbourhood::new(grid, options.connectivity.neighbours());
+    state
+}
+
+/// Breadth-first propagation, layer by layer, from the labelled voxels into the `OPEN` ones:
+/// a voxel reached in a layer receives the union of the sets of its already-labelled
+/// neighbours.
+fn propagate(
+    around: &Neighbourhood,
+    state: &[AtomicU8],
+    set_of: &mut [u32],
+    interner: &mut Interner,
+) {
+    let grid_len = set_of.len();
     // The first layer is found from the unlabelled side: the covered voxels are most of the
     // interior, the uncovered targets a thin shell, so scanning the shell is far cheaper.
-    let mut next: Vec<usize> = (0..grid.len())
+    let mut next: Vec<usize> = (0..grid_len)
         .into_par_iter()
         .with_min_len(4096)
         .filter(|&u| {
@@ -260,12 +294,6 @@ pub fn influence(
         }
         next = grown;
     }
-    Ok(Influence {
-        grid,
-        set_of,
-        sets: interner.sets,
-        covered,
-    })
 }
 
 /// Per segment, the interior voxels inside its chain voxels' spheres, ascending.

@@ -2,7 +2,7 @@
 //! rounds of diffusion between face neighbours.
 
 use super::field::Field;
-use super::rows::{Mixer, Row, NONE};
+use super::rows::{blend_few, Mixer, Row, NONE};
 use super::LABELS;
 use crate::skin::SkinOptions;
 use crate::voxel::{Connectivity, Grid};
@@ -128,105 +128,67 @@ fn links(field: &Field, grid: &Grid, voxels: &[usize], slot: &[u32]) -> Vec<[u32
         .collect()
 }
 
-/// The diffusion of `rows` between `linked` neighbours equivalent to `iterations` rounds of
-/// moving every row halfway towards the mean of its face neighbours' (a lazy random walk,
-/// variance `iterations / 6` voxels² along each axis), done as three passes of a Gaussian of
-/// that variance, one along each axis, each followed by pruning to four joints
-/// ([`Mixer::pruned`]). A pass follows the links from each voxel along its axis, so weights
-/// do not cross where the links stop (a gap between two parts, the figure's surface) and the
-/// kernel is renormalised over the voxels it reaches. Three passes of about `6 sqrt(variance)`
-/// taps each cost a tenth of the rounds (`iterations` × 7 rows) at the default.
+/// `iterations` rounds of diffusion of `rows` between `linked` neighbours: each row moves
+/// halfway towards the mean of its neighbours' and is pruned to four joints
+/// ([`Mixer::pruned`]). The blend between bones then spreads over a few voxels wherever the
+/// bones meet (the crotch between the thighs, the armpit), at the same width on any
+/// tessellation: the weight field has no steeper slope than the voxels allow, which a fine
+/// mesh's short edges would otherwise stretch.
 ///
-/// The blend between bones then spreads over a few voxels wherever the bones meet (the
-/// crotch between the thighs, the armpit), at the same width on any tessellation: the
-/// weight field has no steeper slope than the voxels allow, which a fine mesh's short edges
-/// would otherwise stretch.
+/// Each round reads the previous round's rows and writes into a second buffer (no
+/// allocation per round); a row whose neighbours all equal it stays, and one whose
+/// neighbours have its joints or together at most four is blended without the general
+/// mix-and-prune ([`Row::blend_same_joints`], [`blend_few`]).
 fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], iterations: usize) {
-    let kernel = gaussian(iterations as f64 / 6.0);
     let mut next = vec![Row::EMPTY; rows.len()];
-    for axis in 0..3 {
-        let [down, up] = axis_links(axis);
+    for _ in 0..iterations {
         let current: &[Row] = rows;
         next.par_iter_mut()
             .enumerate()
             .with_min_len(256)
             .for_each_init(Mixer::default, |mixer, (v, out)| {
-                *out = line_row(current, linked, v, [down, up], &kernel, mixer);
+                *out = diffused_row(current, &linked[v], v, mixer);
             });
         std::mem::swap(rows, &mut next);
     }
 }
 
-/// The taps of a discrete Gaussian of `variance` (voxels²) from the centre outwards,
-/// unnormalised (centre 1), out to three standard deviations.
-fn gaussian(variance: f64) -> Vec<f64> {
-    let reach = (3.0 * variance.sqrt()).ceil() as usize;
-    (0..=reach)
-        .map(|k| (-((k * k) as f64) / (2.0 * variance)).exp())
-        .collect()
-}
-
-/// The indices into a voxel's links of its face neighbours below and above it along `axis`.
-fn axis_links(axis: usize) -> [usize; 2] {
-    let mut out = [0; 2];
-    for (k, nb) in Connectivity::Six.neighbours().iter().enumerate() {
-        if nb.offset[axis] != 0 {
-            out[usize::from(nb.offset[axis] > 0)] = k;
-        }
-    }
-    out
-}
-
-/// One pass of [`diffuse`] at row `v`: the `kernel`-weighted sum of the rows reached from `v`
-/// along the links `directions` (at most `kernel.len() - 1` steps each way), pruned.
+/// One round of [`diffuse`] at row `v`.
 #[inline]
-fn line_row(
-    rows: &[Row],
-    linked: &[[u32; 6]],
-    v: usize,
-    directions: [usize; 2],
-    kernel: &[f64],
-    mixer: &mut Mixer,
-) -> Row {
+fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) -> Row {
     let own = &rows[v];
-    // The taps reached: (row, kernel weight).
-    let mut taps = [(0u32, 0f64); 2 * MAX_REACH];
     let mut count = 0;
     let mut agree = true;
     let mut same_joints = true;
-    for direction in directions {
-        let mut at = v;
-        for &weight in kernel.iter().skip(1).take(MAX_REACH) {
-            let next = linked[at][direction];
-            if next == NONE {
-                break;
-            }
-            at = next as usize;
-            let row = &rows[at];
-            agree &= row == own;
-            same_joints &= row.joints == own.joints;
-            taps[count] = (next, weight);
-            count += 1;
-        }
+    for &u in linked.iter().filter(|&&u| u != NONE) {
+        let row = &rows[u as usize];
+        count += 1;
+        agree &= row == own;
+        same_joints &= row.joints == own.joints;
     }
+    // Where every neighbour agrees (most of a limb's core), the mean is the row.
     if agree {
         return *own;
     }
-    let taps = &taps[..count];
-    let neighbours = || taps.iter().map(|&(u, weight)| (&rows[u as usize], weight));
+    let share = 0.5 / count as f64;
+    let neighbours = || {
+        linked
+            .iter()
+            .filter(|&&u| u != NONE)
+            .map(|&u| (&rows[u as usize], share))
+    };
     if same_joints {
-        if let Some(row) = own.blend_same_joints(kernel[0], neighbours()) {
+        if let Some(row) = own.blend_same_joints(0.5, neighbours()) {
             return row;
         }
     }
+    if let Some(row) = blend_few(own, 0.5, neighbours()) {
+        return row;
+    }
     mixer.clear();
-    mixer.add_row(own, kernel[0]);
-    for (row, weight) in neighbours() {
-        mixer.add_row(row, weight);
+    mixer.add_row(own, 0.5);
+    for (row, share) in neighbours() {
+        mixer.add_row(row, share);
     }
     mixer.pruned(0.0)
 }
-
-/// Most steps a pass of [`diffuse`] takes each way (`voxel_smoothing_iterations` of 10,000,
-/// the most [`SkinOptions::validate`] allows, needs 123).
-const MAX_REACH: usize = 128;

@@ -74,9 +74,11 @@ struct Labelled {
     lengths: Vec<f32>,
 }
 
-/// Joints remembered per voxel with the shortest distance queued for them so far, so that a
-/// joint is queued again for a voxel only over a shorter path (the Dijkstra's decrease-key).
-/// A joint that finds every slot taken is queued without the check.
+/// Joints remembered per voxel with the earliest bucket they are queued in, so that a joint is
+/// queued again for a voxel only where the entry could leave first (the Dijkstra's
+/// decrease-key; entries of one bucket leave last in, first out, so a later entry of the same
+/// bucket is still queued). Leaves the result exactly as without the check. A joint that
+/// finds every slot taken is queued without it.
 const TENTATIVE: usize = 8;
 
 /// The multi-label Dijkstra: every joint's bone voxels start at distance 0; a step into a
@@ -99,7 +101,7 @@ fn nearest_joints(
     let mut distances = vec![f32::INFINITY; n * LABELS];
     let mut lengths = vec![f32::INFINITY; n * LABELS];
     let mut count = vec![0u8; n];
-    let mut queued = vec![(NONE, f64::INFINITY); n * TENTATIVE];
+    let mut queued = vec![(NONE, usize::MAX); n * TENTATIVE];
     // A bucket queue (Dial's algorithm) over distances rounded down to `BUCKET`: entries
     // leave in distance order up to one bucket's width, each in O(1); within a bucket, in
     // the order pushed, so the result does not depend on timing or threads.
@@ -136,13 +138,12 @@ fn nearest_joints(
                 return;
             }
             let d = d + step.distance * step_cost[m];
+            let bucket = queue.bucket(d);
             let tentative = &mut queued[m * TENTATIVE..(m + 1) * TENTATIVE];
-            match tentative
-                .iter_mut()
-                .find(|e| e.0 == joint || e.0 == NONE)
-            {
-                Some(e) if e.0 == joint && e.1 <= d => return,
-                Some(e) => *e = (joint, d),
+            match tentative.iter_mut().find(|e| e.0 == joint || e.0 == NONE) {
+                // Leaves in an earlier bucket: this entry would only be turned away.
+                Some(e) if e.0 == joint && e.1 < bucket => return,
+                Some(e) => *e = (joint, bucket),
                 None => {}
             }
             queue.push(d, length + step.distance, m as u32, joint);
@@ -193,9 +194,14 @@ struct BucketQueue {
 }
 
 impl BucketQueue {
+    /// The bucket an entry at weighted distance `d` goes into.
+    fn bucket(&self, d: f64) -> usize {
+        ((d / BUCKET) as usize).max(self.current)
+    }
+
     /// Queues `voxel` reached from `joint` at weighted distance `d` by a path `length` long.
     fn push(&mut self, d: f64, length: f64, voxel: u32, joint: u32) {
-        let b = ((d / BUCKET) as usize).max(self.current);
+        let b = self.bucket(d);
         if b >= self.buckets.len() {
             self.buckets.resize_with(b + 1, Vec::new);
         }

@@ -32,7 +32,6 @@
 //! under linear blend skinning, whatever the mesh's tessellation or its number of pieces;
 //! measured with [`check`](super::check): `reports/deformation/`.
 
-
 mod diffusion;
 mod field;
 mod rows;
@@ -46,8 +45,8 @@ use crate::skeleton::{JointId, Skeleton};
 use crate::voxel::Solid;
 use diffusion::smoothed_voxel_weights;
 use field::field;
-use rows::{Mixer, Row};
 use rayon::prelude::*;
+use rows::{Mixer, Row};
 use surface::{corners, smooth, spread_to_unreached, vertex_rows, Adjacency};
 
 /// Nearest joints kept per interior voxel: the four influences a vertex may keep, and one
@@ -152,11 +151,11 @@ mod tests {
     use super::*;
     use crate::distance::edt;
     use crate::skeleton::canonical::{Canonical, Side};
-    use glam::DVec3;
     use crate::skeleton::Joint;
     use crate::skin::check::{check_deformation, sweep, SweepKind};
     use crate::skin::{deform, skin_from_bones};
     use crate::voxel::{voxelize, VoxelOptions, VoxelSize};
+    use glam::DVec3;
     use std::collections::BTreeMap;
 
     /// A leg: a finely ringed tube from y = 0 to y = 2, hip at the top, knee in the middle,
@@ -172,9 +171,21 @@ mod tests {
         }
         let skeleton = Skeleton {
             joints: vec![
-                Joint::new(Canonical::Hip(Side::Left).as_str(), None, DVec3::new(0.0, 1.95, 0.0)),
-                Joint::new(Canonical::Knee(Side::Left).as_str(), Some(JointId(0)), DVec3::new(0.0, 1.0, 0.0)),
-                Joint::new(Canonical::Ankle(Side::Left).as_str(), Some(JointId(1)), DVec3::new(0.0, 0.05, 0.0)),
+                Joint::new(
+                    Canonical::Hip(Side::Left).as_str(),
+                    None,
+                    DVec3::new(0.0, 1.95, 0.0),
+                ),
+                Joint::new(
+                    Canonical::Knee(Side::Left).as_str(),
+                    Some(JointId(0)),
+                    DVec3::new(0.0, 1.0, 0.0),
+                ),
+                Joint::new(
+                    Canonical::Ankle(Side::Left).as_str(),
+                    Some(JointId(1)),
+                    DVec3::new(0.0, 0.05, 0.0),
+                ),
             ],
         };
         (mesh, skeleton)

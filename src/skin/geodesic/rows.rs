@@ -72,6 +72,55 @@ impl Row {
     }
 }
 
+/// `keep` times `own` plus each of `others` (row, factor), normalised, when together they
+/// have at most four joints and every sum is positive; `None` otherwise. The same as
+/// [`Mixer::pruned`] of the same sum up to rounding (four joints or fewer have nothing to
+/// subtract), without its search and sort.
+#[inline]
+pub(super) fn blend_few<'a>(
+    own: &Row,
+    keep: f64,
+    others: impl Iterator<Item = (&'a Row, f64)>,
+) -> Option<Row> {
+    let mut row = Row::EMPTY;
+    let mut used = 0;
+    for (j, w) in own.entries() {
+        row.joints[used] = j;
+        row.weights[used] = keep * w;
+        used += 1;
+    }
+    for (other, factor) in others {
+        for (j, w) in other.entries() {
+            match row.joints[..used].iter().position(|&k| k == j) {
+                Some(k) => row.weights[k] += factor * w,
+                None if used < KEPT => {
+                    row.joints[used] = j;
+                    row.weights[used] = factor * w;
+                    used += 1;
+                }
+                None => return None,
+            }
+        }
+    }
+    let sum: f64 = row.weights[..used].iter().sum();
+    if used == 0 || !sum.is_finite() || row.weights[..used].iter().any(|&w| w <= 0.0) {
+        return None;
+    }
+    for w in &mut row.weights[..used] {
+        *w /= sum;
+    }
+    // Joints ascending (insertion sort of at most four).
+    for k in 1..used {
+        let mut at = k;
+        while at > 0 && row.joints[at - 1] > row.joints[at] {
+            row.joints.swap(at - 1, at);
+            row.weights.swap(at - 1, at);
+            at -= 1;
+        }
+    }
+    Some(row)
+}
+
 /// A weighted sum of rows (any number of joints), pruned back to a [`Row`] by
 /// [`Mixer::pruned`]. Reused across voxels and vertices so that mixing allocates nothing.
 #[derive(Debug, Default)]

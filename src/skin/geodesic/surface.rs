@@ -2,7 +2,7 @@
 //! the field did not reach, and smoothed over the mesh's edges.
 
 use super::diffusion::VoxelWeights;
-use super::rows::{Mixer, Row, NONE};
+use super::rows::{blend_few, Mixer, Row, NONE};
 use crate::mesh::Mesh;
 use crate::voxel::Grid;
 use glam::DVec3;
@@ -190,7 +190,11 @@ pub(super) fn smooth(
         .collect();
     let keep: Vec<f64> = (0..rows.len())
         .into_par_iter()
-        .map(|v| 1.0 - shares[adjacency.start[v]..adjacency.start[v + 1]].iter().sum::<f64>())
+        .map(|v| {
+            1.0 - shares[adjacency.start[v]..adjacency.start[v + 1]]
+                .iter()
+                .sum::<f64>()
+        })
         .collect();
     let mut next = vec![Row::EMPTY; rows.len()];
     for _ in 0..iterations {
@@ -214,6 +218,10 @@ pub(super) fn smooth(
                         .map(|(&u, &share)| (&current[u as usize], share))
                 };
                 if let Some(row) = own.blend_same_joints(keep[v], neighbours()) {
+                    *out = row;
+                    return;
+                }
+                if let Some(row) = blend_few(own, keep[v], neighbours()) {
                     *out = row;
                     return;
                 }
