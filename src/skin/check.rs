@@ -11,6 +11,7 @@
 
 use super::SkinError;
 use crate::mesh::Mesh;
+use crate::skeleton::canonical::{Canonical, Side, Tail};
 use crate::skeleton::{JointId, Skeleton};
 use glam::{DAffine3, DQuat, DVec3};
 use rayon::prelude::*;
@@ -90,19 +91,10 @@ impl DeformationCheck {
     }
 }
 
-/// The canonical keys the sweeps turn, with the key of the joint their bone points to.
-const HUMANOID_LIMBS: [(&str, &str); 5] = [
-    ("shoulder", "elbow"),
-    ("elbow", "wrist"),
-    ("wrist", ""),
-    ("hip", "knee"),
-    ("knee", "ankle"),
-];
-
 /// The poses of `kind` for `skeleton`, given its canonical map (`shoulder_L`, `elbow_R`,
-/// `chest`, `tail_base`... → joint) and the figure's `up` and `forward` directions (the
-/// figure's left is `up × forward`). Returns the poses and the names of those the map has no
-/// joint for.
+/// `chest`, `tail_base`... as written in files → joint) and the figure's `up` and `forward`
+/// directions (the figure's left is `up × forward`). Returns the poses and the names of those
+/// the map has no joint for.
 pub fn sweep(
     skeleton: &Skeleton,
     canonical: &BTreeMap<String, JointId>,
@@ -112,13 +104,53 @@ pub fn sweep(
 ) -> (Vec<SweepPose>, Vec<String>) {
     let up = up.normalize_or(DVec3::Y);
     let forward = (forward - up * forward.dot(up)).normalize_or(DVec3::Z);
-    let left = up.cross(forward);
-    let mut poses = Vec::new();
-    let mut missing = Vec::new();
-    let key = |k: &str| canonical.get(k).copied().filter(|j| j.0 < skeleton.len());
-    // The direction of the bone from `joint` (towards the canonical `towards` joint, else its
-    // farthest child).
-    let bone = |joint: JointId, towards: Option<JointId>| -> Option<DVec3> {
+    let mut poser = Poser {
+        skeleton,
+        canonical,
+        up,
+        forward,
+        left: up.cross(forward),
+        poses: Vec::new(),
+        missing: Vec::new(),
+    };
+    for side in Side::BOTH {
+        match kind {
+            SweepKind::Humanoid => poser.humanoid_limbs(side),
+            SweepKind::Animal => poser.animal_limbs(side),
+        }
+    }
+    match kind {
+        SweepKind::Humanoid => poser.humanoid_trunk(),
+        SweepKind::Animal => poser.animal_trunk(),
+    }
+    (poser.poses, poser.missing)
+}
+
+/// The poses of a sweep as they are collected, with the skeleton, its canonical map and the
+/// figure's directions (unit, `left = up × forward`).
+struct Poser<'a> {
+    skeleton: &'a Skeleton,
+    canonical: &'a BTreeMap<String, JointId>,
+    up: DVec3,
+    forward: DVec3,
+    left: DVec3,
+    poses: Vec<SweepPose>,
+    missing: Vec<String>,
+}
+
+impl Poser<'_> {
+    /// The joint of a canonical key, if the map has one in the skeleton.
+    fn key(&self, key: Canonical) -> Option<JointId> {
+        self.canonical
+            .get(key.as_str())
+            .copied()
+            .filter(|j| j.0 < self.skeleton.len())
+    }
+
+    /// The unit direction of the bone from `joint` towards `towards`, else towards its
+    /// farthest child; `None` for a leaf or a zero-length bone.
+    fn bone(&self, joint: JointId, towards: Option<JointId>) -> Option<DVec3> {
+        let skeleton = self.skeleton;
         let start = skeleton.joint(joint).position;
         let end = towards.map(|t| skeleton.joint(t).position).or_else(|| {
             skeleton
@@ -129,135 +161,142 @@ pub fn sweep(
         })?;
         let d = end - start;
         (d.length() > 0.0).then(|| d.normalize())
-    };
-    // A hinge axis perpendicular to the bone and to `plane`, turned so the bone's tip moves
-    // towards `towards`.
-    let hinge = |v: DVec3, plane: DVec3, fallback: DVec3, towards: DVec3| -> DVec3 {
-        let axis = v.cross(plane).try_normalize().unwrap_or(fallback);
-        if axis.cross(v).dot(towards) < 0.0 {
-            -axis
-        } else {
-            axis
-        }
-    };
-    let mut push = |name: String, joint: Option<JointId>, axis: Option<DVec3>, degrees: f64| match (
-        joint, axis,
-    ) {
-        (Some(joint), Some(axis)) => poses.push(SweepPose {
-            name,
-            joint,
-            axis,
-            angle: degrees.to_radians(),
-        }),
-        _ => missing.push(name),
-    };
-    for (side, outward) in [("L", left), ("R", -left)] {
-        let at = |part: &str| key(&format!("{part}_{side}"));
-        match kind {
-            SweepKind::Humanoid => {
-                let [shoulder, elbow, wrist, hip, knee] = HUMANOID_LIMBS.map(|(part, _)| at(part));
-                let dir = |j: Option<JointId>, k: usize| {
-                    let towards = HUMANOID_LIMBS[k].1;
-                    j.and_then(|j| bone(j, (!towards.is_empty()).then(|| at(towards)).flatten()))
-                };
-                let v = dir(shoulder, 0);
-                push(
-                    format!("shoulder raise 80° {side}"),
-                    shoulder,
-                    v.map(|v| hinge(v, up, forward, up)),
-                    80.0,
-                );
-                let v = dir(elbow, 1);
-                push(
-                    format!("elbow flex 90° {side}"),
-                    elbow,
-                    v.map(|v| hinge(v, forward, up, forward)),
-                    90.0,
-                );
-                let twist = match (elbow, wrist) {
-                    (Some(e), Some(w)) => {
-                        (skeleton.joint(w).position - skeleton.joint(e).position).try_normalize()
-                    }
-                    _ => None,
-                };
-                push(format!("wrist twist 90° {side}"), wrist, twist, 90.0);
-                let v = dir(hip, 3);
-                push(
-                    format!("hip flex 60° {side}"),
-                    hip,
-                    v.map(|v| hinge(v, forward, left, forward)),
-                    60.0,
-                );
-                push(
-                    format!("hip abduct 45° {side}"),
-                    hip,
-                    v.map(|v| hinge(v, outward, forward, outward)),
-                    45.0,
-                );
-                let v = dir(knee, 4);
-                push(
-                    format!("knee bend 90° {side}"),
-                    knee,
-                    v.map(|v| hinge(v, forward, left, -forward)),
-                    90.0,
-                );
-            }
-            SweepKind::Animal => {
-                for (part, towards, name, degrees, back) in [
-                    ("shoulder", "elbow", "fore leg swing", 45.0, false),
-                    ("hip", "knee", "hind leg swing", 45.0, false),
-                    ("elbow", "wrist", "elbow flex", 60.0, false),
-                    ("knee", "ankle", "knee flex", 60.0, true),
-                ] {
-                    let joint = at(part);
-                    let v = joint.and_then(|j| bone(j, at(towards)));
-                    let towards = if back { -forward } else { forward };
-                    push(
-                        format!("{name} {degrees}° {side}"),
-                        joint,
-                        v.map(|v| hinge(v, forward, left, towards)),
-                        degrees,
-                    );
-                }
-            }
+    }
+
+    /// Adds the pose `name` (turning `joint` by `degrees` about `axis`), or notes it missing
+    /// when the joint or the axis is unknown.
+    fn push(&mut self, name: String, joint: Option<JointId>, axis: Option<DVec3>, degrees: f64) {
+        match (joint, axis) {
+            (Some(joint), Some(axis)) => self.poses.push(SweepPose {
+                name,
+                joint,
+                axis,
+                angle: degrees.to_radians(),
+            }),
+            _ => self.missing.push(name),
         }
     }
-    match kind {
-        SweepKind::Humanoid => {
-            push(
-                "chest twist 30°".into(),
-                key("chest").or_else(|| key("spine")),
-                Some(up),
-                30.0,
-            );
-            push("neck twist 30°".into(), key("neck"), Some(up), 30.0);
-        }
-        SweepKind::Animal => {
-            let neck = key("neck");
-            let v = neck.and_then(|j| bone(j, key("head")));
-            push(
-                "neck down 35°".into(),
-                neck,
-                v.map(|v| hinge(v, up, left, -up)),
-                35.0,
-            );
-            push(
-                "spine twist 20°".into(),
-                key("chest").or_else(|| key("spine")),
-                Some(forward),
-                20.0,
-            );
-            let tail = key("tail_base");
-            let v = tail.and_then(|j| bone(j, None));
-            push(
-                "tail raise 40°".into(),
-                tail,
-                v.map(|v| hinge(v, up, left, up)),
-                40.0,
+
+    /// Shoulder raise, elbow flex, wrist twist, hip flex, hip abduct and knee bend of one side.
+    fn humanoid_limbs(&mut self, side: Side) {
+        let (up, forward, left) = (self.up, self.forward, self.left);
+        let outward = left * side.sign();
+        let s = side.letter();
+        let shoulder = self.key(Canonical::Shoulder(side));
+        let elbow = self.key(Canonical::Elbow(side));
+        let wrist = self.key(Canonical::Wrist(side));
+        let hip = self.key(Canonical::Hip(side));
+        let knee = self.key(Canonical::Knee(side));
+        let ankle = self.key(Canonical::Ankle(side));
+        let v = shoulder.and_then(|j| self.bone(j, elbow));
+        let axis = v.map(|v| hinge(v, up, forward, up));
+        self.push(format!("shoulder raise 80° {s}"), shoulder, axis, 80.0);
+        let v = elbow.and_then(|j| self.bone(j, wrist));
+        let axis = v.map(|v| hinge(v, forward, up, forward));
+        self.push(format!("elbow flex 90° {s}"), elbow, axis, 90.0);
+        let twist = match (elbow, wrist) {
+            (Some(e), Some(w)) => {
+                (self.skeleton.joint(w).position - self.skeleton.joint(e).position).try_normalize()
+            }
+            _ => None,
+        };
+        self.push(format!("wrist twist 90° {s}"), wrist, twist, 90.0);
+        let v = hip.and_then(|j| self.bone(j, knee));
+        let axis = v.map(|v| hinge(v, forward, left, forward));
+        self.push(format!("hip flex 60° {s}"), hip, axis, 60.0);
+        let axis = v.map(|v| hinge(v, outward, forward, outward));
+        self.push(format!("hip abduct 45° {s}"), hip, axis, 45.0);
+        let v = knee.and_then(|j| self.bone(j, ankle));
+        let axis = v.map(|v| hinge(v, forward, left, -forward));
+        self.push(format!("knee bend 90° {s}"), knee, axis, 90.0);
+    }
+
+    /// Chest twist and neck twist.
+    fn humanoid_trunk(&mut self) {
+        let chest = self
+            .key(Canonical::Chest)
+            .or_else(|| self.key(Canonical::Spine));
+        self.push("chest twist 30°".into(), chest, Some(self.up), 30.0);
+        let neck = self.key(Canonical::Neck);
+        self.push("neck twist 30°".into(), neck, Some(self.up), 30.0);
+    }
+
+    /// Fore and hind leg swings, elbow and knee flex of one side.
+    fn animal_limbs(&mut self, side: Side) {
+        type Key = fn(Side) -> Canonical;
+        let limbs: [(Key, Key, &str, f64, bool); 4] = [
+            (
+                Canonical::Shoulder,
+                Canonical::Elbow,
+                "fore leg swing",
+                45.0,
+                false,
+            ),
+            (
+                Canonical::Hip,
+                Canonical::Knee,
+                "hind leg swing",
+                45.0,
+                false,
+            ),
+            (
+                Canonical::Elbow,
+                Canonical::Wrist,
+                "elbow flex",
+                60.0,
+                false,
+            ),
+            (Canonical::Knee, Canonical::Ankle, "knee flex", 60.0, true),
+        ];
+        for (part, towards, name, degrees, back) in limbs {
+            let joint = self.key(part(side));
+            let v = joint.and_then(|j| self.bone(j, self.key(towards(side))));
+            let towards = if back { -self.forward } else { self.forward };
+            let axis = v.map(|v| hinge(v, self.forward, self.left, towards));
+            self.push(
+                format!("{name} {degrees}° {}", side.letter()),
+                joint,
+                axis,
+                degrees,
             );
         }
     }
-    (poses, missing)
+
+    /// Neck down, spine twist and tail raise.
+    fn animal_trunk(&mut self) {
+        let (up, forward, left) = (self.up, self.forward, self.left);
+        let neck = self.key(Canonical::Neck);
+        let v = neck.and_then(|j| self.bone(j, self.key(Canonical::Head)));
+        self.push(
+            "neck down 35°".into(),
+            neck,
+            v.map(|v| hinge(v, up, left, -up)),
+            35.0,
+        );
+        let chest = self
+            .key(Canonical::Chest)
+            .or_else(|| self.key(Canonical::Spine));
+        self.push("spine twist 20°".into(), chest, Some(forward), 20.0);
+        let tail = self.key(Canonical::Tail(Tail::Base));
+        let v = tail.and_then(|j| self.bone(j, None));
+        self.push(
+            "tail raise 40°".into(),
+            tail,
+            v.map(|v| hinge(v, up, left, up)),
+            40.0,
+        );
+    }
+}
+
+/// A hinge axis perpendicular to the bone direction `v` and to `plane` (`fallback` when they
+/// are parallel), turned so the bone's tip moves towards `towards`.
+fn hinge(v: DVec3, plane: DVec3, fallback: DVec3, towards: DVec3) -> DVec3 {
+    let axis = v.cross(plane).try_normalize().unwrap_or(fallback);
+    if axis.cross(v).dot(towards) < 0.0 {
+        -axis
+    } else {
+        axis
+    }
 }
 
 /// World-space skinning matrices of one sweep pose: the joint's subtree turned about the
@@ -376,6 +415,7 @@ pub fn check_deformation(
 mod tests {
     use super::*;
     use crate::skeleton::Joint;
+    use Side::Left;
 
     /// A vertical tube from y = 0 to y = 2 around two bones meeting at y = 1.
     fn tube() -> (Mesh, Skeleton) {
@@ -383,9 +423,21 @@ mod tests {
         let mesh = Mesh::lathe(DVec3::new(0.0, 1.0, 0.0), 1.0, &rings, -1.0, 16);
         let skeleton = Skeleton {
             joints: vec![
-                Joint::new("hip_L", None, DVec3::new(0.0, 2.0, 0.0)),
-                Joint::new("knee_L", Some(JointId(0)), DVec3::new(0.0, 1.0, 0.0)),
-                Joint::new("ankle_L", Some(JointId(1)), DVec3::new(0.0, 0.0, 0.0)),
+                Joint::new(
+                    Canonical::Hip(Left).as_str(),
+                    None,
+                    DVec3::new(0.0, 2.0, 0.0),
+                ),
+                Joint::new(
+                    Canonical::Knee(Left).as_str(),
+                    Some(JointId(0)),
+                    DVec3::new(0.0, 1.0, 0.0),
+                ),
+                Joint::new(
+                    Canonical::Ankle(Left).as_str(),
+                    Some(JointId(1)),
+                    DVec3::new(0.0, 0.0, 0.0),
+                ),
             ],
         };
         (mesh, skeleton)

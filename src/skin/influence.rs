@@ -1,9 +1,10 @@
 //! Regions of influence: which segments influence each voxel (dissertation 5.2.5, 8.3).
 
+use super::neighbourhood::Neighbourhood;
 use super::{SegmentVoxels, SkinError, SkinOptions};
 use crate::distance::DistanceMap;
 use crate::mesh::Mesh;
-use crate::voxel::{Grid, Neighbour, Solid};
+use crate::voxel::{Grid, Solid};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -98,7 +99,22 @@ pub fn influence(
     if lists.iter().all(Vec::is_empty) {
         return Err(SkinError::NoInfluence);
     }
+    let (mut set_of, mut interner, covered) = covered_sets(&grid, &lists);
+    let state = propagation_targets(solid, mesh, &set_of);
+    let around = Neighbourhood::new(grid, options.connectivity.neighbours());
+    propagate(&around, &state, &mut set_of, &mut interner);
+    Ok(Influence {
+        grid,
+        set_of,
+        sets: interner.sets,
+        covered,
+    })
+}
 
+/// The interned influence set of every voxel the spheres cover (`lists`: per segment, its
+/// covered voxels ascending), `NONE` elsewhere, with the interner and the number of covered
+/// voxels.
+fn covered_sets(grid: &Grid, lists: &[Vec<u32>]) -> (Vec<u32>, Interner, usize) {
     // Each voxel's set grows segment by segment (ascending), through memoised transitions
     // (set, segment) -> set, in slabs of consecutive voxels (in parallel, each with its own
     // numbering); then the sets are renumbered in order of first appearance in voxel order,
@@ -157,6 +173,13 @@ pub fn influence(
         }
     }
 
+    (set_of, interner, covered)
+}
+
+/// Propagation state per voxel: `OPEN` for the uncovered voxels that are interior, on the
+/// surface or hold a vertex of `mesh`, `BLOCKED` for the rest.
+fn propagation_targets(solid: &Solid, mesh: &Mesh, set_of: &[u32]) -> Vec<AtomicU8> {
+    let grid = solid.grid;
     // Propagation state per voxel: OPEN for targets no layer has reached yet (uncovered
     // voxels that are interior, on the surface or hold a vertex), BLOCKED for the rest. A
     // voxel is TAKEN when it is queued into a layer, by exactly one thread.
@@ -181,10 +204,22 @@ pub fn influence(
         }
     }
 
-    let around = Neighbourhood::new(grid, options.connectivity.neighbours());
+    state
+}
+
+/// Breadth-first propagation, layer by layer, from the labelled voxels into the `OPEN` ones:
+/// a voxel reached in a layer receives the union of the sets of its already-labelled
+/// neighbours.
+fn propagate(
+    around: &Neighbourhood,
+    state: &[AtomicU8],
+    set_of: &mut [u32],
+    interner: &mut Interner,
+) {
+    let grid_len = set_of.len();
     // The first layer is found from the unlabelled side: the covered voxels are most of the
     // interior, the uncovered targets a thin shell, so scanning the shell is far cheaper.
-    let mut next: Vec<usize> = (0..grid.len())
+    let mut next: Vec<usize> = (0..grid_len)
         .into_par_iter()
         .with_min_len(4096)
         .filter(|&u| {
@@ -259,12 +294,6 @@ pub fn influence(
         }
         next = grown;
     }
-    Ok(Influence {
-        grid,
-        set_of,
-        sets: interner.sets,
-        covered,
-    })
 }
 
 /// Per segment, the interior voxels inside its chain voxels' spheres, ascending.
@@ -378,59 +407,6 @@ fn set_bits(words: &mut [u64], first: usize, last: usize) {
             *word = u64::MAX;
         }
         words[b] |= high;
-    }
-}
-
-/// The neighbours of a voxel in one connectivity: linear index deltas away from the grid
-/// border, checked offsets on it (padding keeps mesh voxels off the border, so the slow path
-/// is rare).
-struct Neighbourhood {
-    grid: Grid,
-    neighbours: &'static [Neighbour],
-    deltas: Vec<isize>,
-}
-
-impl Neighbourhood {
-    fn new(grid: Grid, neighbours: &'static [Neighbour]) -> Self {
-        let [nx, ny, _] = grid.dims.map(|d| d as isize);
-        let deltas = neighbours
-            .iter()
-            .map(|n| {
-                let [ox, oy, oz] = n.offset.map(|o| o as isize);
-                ox + nx * (oy + ny * oz)
-            })
-            .collect();
-        Self {
-            grid,
-            neighbours,
-            deltas,
-        }
-    }
-
-    /// Calls `f` with each neighbour index of voxel `u`, in the connectivity's order.
-    #[inline]
-    fn for_each(&self, u: usize, mut f: impl FnMut(usize)) {
-        let [x, y, z] = self.grid.coords(u);
-        let [nx, ny, nz] = self.grid.dims;
-        if x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz {
-            for &d in &self.deltas {
-                f(u.wrapping_add_signed(d));
-            }
-        } else {
-            for n in self.neighbours {
-                if let Some(w) = self.grid.offset([x, y, z], n.offset) {
-                    f(w);
-                }
-            }
-        }
-    }
-
-    /// Whether `pred` holds for some neighbour of voxel `u`.
-    #[inline]
-    fn any(&self, u: usize, mut pred: impl FnMut(usize) -> bool) -> bool {
-        let mut found = false;
-        self.for_each(u, |w| found = found || pred(w));
-        found
     }
 }
 

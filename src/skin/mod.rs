@@ -49,6 +49,7 @@ mod error;
 mod geodesic;
 mod given;
 mod influence;
+mod neighbourhood;
 mod options;
 mod placement;
 mod segments;

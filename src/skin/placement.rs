@@ -154,8 +154,36 @@ pub fn placement(
                 })
         })
         .collect();
+    let empty_bones = bones_crossing_empty_space(skeleton, solid, &deforming, &outside, options);
+    let warnings = placement_warnings(
+        skeleton,
+        &outside,
+        &zero_length,
+        &empty_bones,
+        deforming.len(),
+    );
+    Ok(Placement {
+        size_ratio,
+        outside,
+        zero_length,
+        empty_bones,
+        warnings,
+    })
+}
+
+/// The bones between two deforming joints inside the figure whose longest stretch outside
+/// is at least [`PlacementOptions::empty_min_voxels`] and
+/// [`PlacementOptions::empty_share`] of their length: `(parent, child, share outside)`.
+fn bones_crossing_empty_space(
+    skeleton: &Skeleton,
+    solid: &Solid,
+    deforming: &[JointId],
+    outside: &[JointId],
+    options: &PlacementOptions,
+) -> Vec<(JointId, JointId, f64)> {
+    let voxel = solid.grid.voxel_size;
     let mut empty_bones = Vec::new();
-    for &child in &deforming {
+    for &child in deforming {
         let Some(parent) = skeleton.joint(child).parent else {
             continue;
         };
@@ -172,15 +200,26 @@ pub fn placement(
             empty_bones.push((parent, child, run / length));
         }
     }
+    empty_bones
+}
+
+/// One warning per kind of placement problem, naming the joints.
+fn placement_warnings(
+    skeleton: &Skeleton,
+    outside: &[JointId],
+    zero_length: &[JointId],
+    empty_bones: &[(JointId, JointId, f64)],
+    deforming: usize,
+) -> Vec<SkinWarning> {
     let name = |j: JointId| skeleton.joint(j).name.clone();
     let mut warnings = Vec::new();
     if !outside.is_empty() {
         warnings.push(SkinWarning::JointsOutside {
             joints: outside.iter().map(|&j| name(j)).collect(),
-            deforming: deforming.len(),
+            deforming,
         });
     }
-    for &j in &zero_length {
+    for &j in zero_length {
         if let Some(p) = skeleton.joint(j).parent {
             warnings.push(SkinWarning::ZeroLengthBone {
                 parent: name(p),
@@ -188,20 +227,14 @@ pub fn placement(
             });
         }
     }
-    for &(parent, child, share) in &empty_bones {
+    for &(parent, child, share) in empty_bones {
         warnings.push(SkinWarning::BoneOutside {
             parent: name(parent),
             joint: name(child),
             share,
         });
     }
-    Ok(Placement {
-        size_ratio,
-        outside,
-        zero_length,
-        empty_bones,
-        warnings,
-    })
+    warnings
 }
 
 impl PlacementOptions {

@@ -1,0 +1,194 @@
+//! The weights of the voxels: the geodesic falloff of each voxel's nearest joints, then
+//! rounds of diffusion between face neighbours.
+
+use super::field::Field;
+use super::rows::{blend_few, Mixer, Row, NONE};
+use super::LABELS;
+use crate::skin::SkinOptions;
+use crate::voxel::{Connectivity, Grid};
+use rayon::prelude::*;
+
+/// The weight rows of the interior voxels and of the voxels around the vertices, smoothed
+/// through the figure.
+pub(super) struct VoxelWeights {
+    /// Grid voxel → row, `NONE` for voxels without weights.
+    pub slot: Vec<u32>,
+    /// One row per weighted voxel.
+    pub rows: Vec<Row>,
+}
+
+/// The weights of every interior voxel and of every `needed` voxel (one flag per grid voxel:
+/// those around a vertex) from the geodesic field ([`voxel_row`]), then
+/// [`SkinOptions::voxel_smoothing_iterations`] rounds of diffusion ([`diffuse`]).
+pub(super) fn smoothed_voxel_weights(
+    field: &Field,
+    grid: &Grid,
+    needed: &[bool],
+    options: &SkinOptions,
+) -> VoxelWeights {
+    let mut slot = vec![NONE; grid.len()];
+    let mut voxels: Vec<usize> = field.interior.clone();
+    voxels.extend(
+        (0..grid.len())
+            .filter(|&i| field.nearest[i] != NONE && field.compact[i] == NONE && needed[i]),
+    );
+    for (k, &index) in voxels.iter().enumerate() {
+        slot[index] = k as u32;
+    }
+    let mut rows: Vec<Row> = voxels
+        .par_iter()
+        .map_init(Mixer::default, |mixer, &index| {
+            voxel_row(field, grid, index, options, mixer)
+        })
+        .collect();
+    if options.voxel_smoothing_iterations > 0 {
+        let linked = links(field, grid, &voxels, &slot);
+        diffuse(&mut rows, &linked, options.voxel_smoothing_iterations);
+    }
+    VoxelWeights { slot, rows }
+}
+
+/// The weights of the grid voxel `index`: those of its nearest interior voxel, with the
+/// distance between the two centres added to every geodesic distance; a joint's weight is
+/// [`falloff`] of its distance, tapered linearly to zero where its path is
+/// [`SkinOptions::blend_ratio`] times as long as the nearest joint's, pruned to four joints.
+fn voxel_row(
+    field: &Field,
+    grid: &Grid,
+    index: usize,
+    options: &SkinOptions,
+    mixer: &mut Mixer,
+) -> Row {
+    mixer.clear();
+    let c = field.nearest[index];
+    if c == NONE {
+        return Row::EMPTY;
+    }
+    let extra = if field.compact[index] == NONE {
+        let here = grid.coords(index);
+        let there = grid.coords(field.interior[c as usize]);
+        let d: f64 = (0..3)
+            .map(|a| (here[a] as f64 - there[a] as f64).powi(2))
+            .sum();
+        d.sqrt()
+    } else {
+        0.0
+    };
+    let blend_ratio = options.blend_ratio;
+    let slot = c as usize * LABELS;
+    for k in 0..LABELS {
+        let joint = field.labels[slot + k];
+        if joint == NONE {
+            break;
+        }
+        let d = f64::from(field.distances[slot + k]) + extra;
+        // Joints whose path is `blend_ratio` times as long as the nearest joint's get nothing,
+        // fading linearly from the nearest's length.
+        let ratio = (f64::from(field.lengths[slot + k]) + extra)
+            / (f64::from(field.lengths[slot]) + extra).max(0.5);
+        let taper = ((blend_ratio - ratio) / (blend_ratio - 1.0)).clamp(0.0, 1.0);
+        if taper > 0.0 {
+            mixer.add(joint, taper * falloff(d, options.falloff));
+        }
+    }
+    mixer.pruned(0.0)
+}
+
+/// The weight of a joint at geodesic distance `d` (voxel units), before normalisation.
+fn falloff(d: f64, power: f64) -> f64 {
+    d.max(0.5).powf(-power)
+}
+
+/// Per weighted voxel (`voxels`, grid indices), the rows (`slot`) of its face neighbours
+/// that diffusion links it to, `NONE` for the rest: two voxels outside the figure, or one
+/// outside and one inside, are linked only where their nearest interior voxels touch, so
+/// weights do not cross a gap between two parts (an arm hanging beside the torso).
+fn links(field: &Field, grid: &Grid, voxels: &[usize], slot: &[u32]) -> Vec<[u32; 6]> {
+    voxels
+        .par_iter()
+        .map(|&index| {
+            let coords = grid.coords(index);
+            let home = grid.coords(field.interior[field.nearest[index] as usize]);
+            let mut out = [NONE; 6];
+            for (slot_out, nb) in out.iter_mut().zip(Connectivity::Six.neighbours()) {
+                let Some(next) = grid.offset(coords, nb.offset) else {
+                    continue;
+                };
+                let s = slot[next];
+                if s == NONE {
+                    continue;
+                }
+                let there = grid.coords(field.interior[field.nearest[next] as usize]);
+                if (0..3).all(|a| home[a].abs_diff(there[a]) <= 1) {
+                    *slot_out = s;
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// `iterations` rounds of diffusion of `rows` between `linked` neighbours: each row moves
+/// halfway towards the mean of its neighbours' and is pruned to four joints
+/// ([`Mixer::pruned`]). The blend between bones then spreads over a few voxels wherever the
+/// bones meet (the crotch between the thighs, the armpit), at the same width on any
+/// tessellation: the weight field has no steeper slope than the voxels allow, which a fine
+/// mesh's short edges would otherwise stretch.
+///
+/// Each round reads the previous round's rows and writes into a second buffer (no
+/// allocation per round); a row whose neighbours all equal it stays, and one whose
+/// neighbours have its joints or together at most four is blended without the general
+/// mix-and-prune ([`Row::blend_same_joints`], [`blend_few`]).
+fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], iterations: usize) {
+    let mut next = vec![Row::EMPTY; rows.len()];
+    for _ in 0..iterations {
+        let current: &[Row] = rows;
+        next.par_iter_mut()
+            .enumerate()
+            .with_min_len(256)
+            .for_each_init(Mixer::default, |mixer, (v, out)| {
+                *out = diffused_row(current, &linked[v], v, mixer);
+            });
+        std::mem::swap(rows, &mut next);
+    }
+}
+
+/// One round of [`diffuse`] at row `v`.
+#[inline]
+fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) -> Row {
+    let own = &rows[v];
+    let mut count = 0;
+    let mut agree = true;
+    let mut same_joints = true;
+    for &u in linked.iter().filter(|&&u| u != NONE) {
+        let row = &rows[u as usize];
+        count += 1;
+        agree &= row == own;
+        same_joints &= row.joints == own.joints;
+    }
+    // Where every neighbour agrees (most of a limb's core), the mean is the row.
+    if agree {
+        return *own;
+    }
+    let share = 0.5 / count as f64;
+    let neighbours = || {
+        linked
+            .iter()
+            .filter(|&&u| u != NONE)
+            .map(|&u| (&rows[u as usize], share))
+    };
+    if same_joints {
+        if let Some(row) = own.blend_same_joints(0.5, neighbours()) {
+            return row;
+        }
+    }
+    if let Some(row) = blend_few(own, 0.5, neighbours()) {
+        return row;
+    }
+    mixer.clear();
+    mixer.add_row(own, 0.5);
+    for (row, share) in neighbours() {
+        mixer.add_row(row, share);
+    }
+    mixer.pruned(0.0)
+}

@@ -1,0 +1,286 @@
+//! Sparse weight rows: at most four `(joint, weight)` per voxel or vertex, and the kernel that
+//! mixes rows and prunes the mix back to four joints without a jump.
+
+use super::LABELS;
+
+/// No joint / no voxel.
+pub(super) const NONE: u32 = u32::MAX;
+
+/// Joints a [`Row`] holds: the four influences a vertex may keep.
+pub(super) const KEPT: usize = LABELS - 1;
+
+/// The weights of one voxel or vertex: at most [`KEPT`] joints, ascending, [`NONE`] (weight 0)
+/// in the unused slots after the used ones.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Row {
+    /// Joint ids, ascending, then [`NONE`].
+    pub joints: [u32; KEPT],
+    /// Their weights.
+    pub weights: [f64; KEPT],
+}
+
+impl Row {
+    /// A row without joints.
+    pub const EMPTY: Row = Row {
+        joints: [NONE; KEPT],
+        weights: [0.0; KEPT],
+    };
+
+    /// Whether the row has no joint.
+    pub fn is_empty(&self) -> bool {
+        self.joints[0] == NONE
+    }
+
+    /// The used `(joint, weight)` entries, joints ascending.
+    pub fn entries(&self) -> impl Iterator<Item = (u32, f64)> + '_ {
+        self.joints
+            .iter()
+            .zip(&self.weights)
+            .take_while(|(&j, _)| j != NONE)
+            .map(|(&j, &w)| (j, w))
+    }
+
+    /// `keep` times this row plus `share` times each of `others`, normalised, when every
+    /// one of `others` has this row's joints and every sum is positive; `None` otherwise.
+    /// The same as [`Mixer::pruned`] of the same sum (up to rounding: fewer than five joints
+    /// have nothing to subtract), without the search and sort.
+    #[inline]
+    pub fn blend_same_joints<'a>(
+        &self,
+        keep: f64,
+        others: impl Iterator<Item = (&'a Row, f64)>,
+    ) -> Option<Row> {
+        let mut weights = self.weights.map(|w| keep * w);
+        for (row, share) in others {
+            if row.joints != self.joints {
+                return None;
+            }
+            for (w, x) in weights.iter_mut().zip(&row.weights) {
+                *w += share * x;
+            }
+        }
+        let used = self.joints.iter().take_while(|&&j| j != NONE).count();
+        let sum: f64 = weights[..used].iter().sum();
+        if used == 0 || !sum.is_finite() || weights[..used].iter().any(|&w| w <= 0.0) {
+            return None;
+        }
+        let mut row = *self;
+        for (out, w) in row.weights[..used].iter_mut().zip(&weights) {
+            *out = w / sum;
+        }
+        Some(row)
+    }
+}
+
+/// `keep` times `own` plus each of `others` (row, factor), normalised, when together they
+/// have at most four joints and every sum is positive; `None` otherwise. The same as
+/// [`Mixer::pruned`] of the same sum up to rounding (four joints or fewer have nothing to
+/// subtract), without its search and sort.
+#[inline]
+pub(super) fn blend_few<'a>(
+    own: &Row,
+    keep: f64,
+    others: impl Iterator<Item = (&'a Row, f64)>,
+) -> Option<Row> {
+    let mut row = Row::EMPTY;
+    let mut used = 0;
+    for (j, w) in own.entries() {
+        row.joints[used] = j;
+        row.weights[used] = keep * w;
+        used += 1;
+    }
+    for (other, factor) in others {
+        for (j, w) in other.entries() {
+            match row.joints[..used].iter().position(|&k| k == j) {
+                Some(k) => row.weights[k] += factor * w,
+                None if used < KEPT => {
+                    row.joints[used] = j;
+                    row.weights[used] = factor * w;
+                    used += 1;
+                }
+                None => return None,
+            }
+        }
+    }
+    let sum: f64 = row.weights[..used].iter().sum();
+    if used == 0 || !sum.is_finite() || row.weights[..used].iter().any(|&w| w <= 0.0) {
+        return None;
+    }
+    for w in &mut row.weights[..used] {
+        *w /= sum;
+    }
+    // Joints ascending (insertion sort of at most four).
+    for k in 1..used {
+        let mut at = k;
+        while at > 0 && row.joints[at - 1] > row.joints[at] {
+            row.joints.swap(at - 1, at);
+            row.weights.swap(at - 1, at);
+            at -= 1;
+        }
+    }
+    Some(row)
+}
+
+/// A weighted sum of rows (any number of joints), pruned back to a [`Row`] by
+/// [`Mixer::pruned`]. Reused across voxels and vertices so that mixing allocates nothing.
+#[derive(Debug, Default)]
+pub(super) struct Mixer {
+    joints: Vec<u32>,
+    weights: Vec<f64>,
+}
+
+impl Mixer {
+    /// Empties the sum.
+    #[inline]
+    pub fn clear(&mut self) {
+        self.joints.clear();
+        self.weights.clear();
+    }
+
+    /// Adds `weight` to `joint`'s sum.
+    #[inline]
+    pub fn add(&mut self, joint: u32, weight: f64) {
+        match self.joints.iter().position(|&j| j == joint) {
+            Some(k) => self.weights[k] += weight,
+            None => {
+                self.joints.push(joint);
+                self.weights.push(weight);
+            }
+        }
+    }
+
+    /// Adds `factor` times every entry of `row`.
+    #[inline]
+    pub fn add_row(&mut self, row: &Row, factor: f64) {
+        for (j, w) in row.entries() {
+            self.add(j, factor * w);
+        }
+    }
+
+    /// The sum pruned to four joints: keeps the [`LABELS`] largest (ties: lower joint id),
+    /// subtracts the smallest of them (or `cut`, whichever is larger, but never more than the
+    /// largest) from the others, so that a joint whose rank crosses the cut enters or leaves
+    /// with weight zero, drops what is left at zero and normalises. When every kept weight
+    /// ties with the cut, the kept joints share equally.
+    pub fn pruned(&self, cut: f64) -> Row {
+        // The LABELS largest, largest first: insertion into a short sorted list.
+        let mut top = [usize::MAX; LABELS];
+        let mut count = 0;
+        let before = |a: usize, b: usize| {
+            self.weights[a]
+                .total_cmp(&self.weights[b])
+                .reverse()
+                .then(self.joints[a].cmp(&self.joints[b]))
+                .is_lt()
+        };
+        for k in 0..self.joints.len() {
+            let mut at = count;
+            while at > 0 && before(k, top[at - 1]) {
+                at -= 1;
+            }
+            if at < LABELS {
+                let end = count.min(LABELS - 1);
+                top.copy_within(at..end, at + 1);
+                top[at] = k;
+                count = (count + 1).min(LABELS);
+            }
+        }
+        if count == 0 {
+            return Row::EMPTY;
+        }
+        let floor = if count == LABELS {
+            self.weights[top[LABELS - 1]]
+        } else {
+            0.0
+        }
+        .max(cut.min(self.weights[top[0]]));
+        let kept = count.min(KEPT);
+        let mut entries = [(NONE, 0.0f64); KEPT];
+        let mut sum = 0.0;
+        for (slot, &k) in entries.iter_mut().zip(&top[..kept]) {
+            let w = (self.weights[k] - floor).max(0.0);
+            *slot = (self.joints[k], w);
+            sum += w;
+        }
+        let mut used = kept;
+        if sum > 0.0 && sum.is_finite() {
+            used = 0;
+            for k in 0..kept {
+                if entries[k].1 > 0.0 {
+                    entries[used] = (entries[k].0, entries[k].1 / sum);
+                    used += 1;
+                }
+            }
+        } else {
+            let share = 1.0 / kept as f64;
+            for entry in &mut entries[..kept] {
+                entry.1 = share;
+            }
+        }
+        let entries = &mut entries[..used];
+        entries.sort_unstable_by_key(|e| e.0);
+        let mut row = Row::EMPTY;
+        for (k, &(j, w)) in entries.iter().enumerate() {
+            row.joints[k] = j;
+            row.weights[k] = w;
+        }
+        row
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The pruning rule written plainly (sort, cut, normalise), to check [`Mixer::pruned`].
+    fn pruned_by_sorting(mut weights: Vec<(u32, f64)>, cut: f64) -> Vec<(u32, f64)> {
+        weights.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+        let floor = if weights.len() >= LABELS {
+            weights[LABELS - 1].1
+        } else {
+            0.0
+        }
+        .max(cut.min(weights.first().map_or(0.0, |w| w.1)));
+        weights.truncate(KEPT);
+        let mut sum = 0.0;
+        for w in weights.iter_mut() {
+            w.1 = (w.1 - floor).max(0.0);
+            sum += w.1;
+        }
+        if sum > 0.0 && sum.is_finite() {
+            weights.retain(|w| w.1 > 0.0);
+            for w in weights.iter_mut() {
+                w.1 /= sum;
+            }
+        } else {
+            let share = 1.0 / weights.len().max(1) as f64;
+            for w in weights.iter_mut() {
+                w.1 = share;
+            }
+        }
+        weights.sort_by_key(|w| w.0);
+        weights
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn pruning_matches_the_sorting_rule(
+            entries in proptest::collection::vec((0u32..12, 0.0f64..1.0), 0..20),
+            cut in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.0f64..0.3],
+        ) {
+            let mut mixer = Mixer::default();
+            for &(j, w) in &entries {
+                mixer.add(j, w);
+            }
+            let mut summed: Vec<(u32, f64)> = Vec::new();
+            for &(j, w) in &entries {
+                match summed.iter_mut().find(|e| e.0 == j) {
+                    Some(e) => e.1 += w,
+                    None => summed.push((j, w)),
+                }
+            }
+            let row: Vec<(u32, f64)> = mixer.pruned(cut).entries().collect();
+            proptest::prop_assert_eq!(row, pruned_by_sorting(summed, cut));
+        }
+    }
+}

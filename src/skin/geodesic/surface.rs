@@ -1,0 +1,237 @@
+//! The weights of the mesh's vertices: sampled from the voxel weights, spread to the vertices
+//! the field did not reach, and smoothed over the mesh's edges.
+
+use super::diffusion::VoxelWeights;
+use super::rows::{blend_few, Mixer, Row, NONE};
+use crate::mesh::Mesh;
+use crate::voxel::Grid;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::collections::VecDeque;
+
+/// The eight voxels whose centres surround `p` (clamped to the grid) and their trilinear
+/// factors.
+pub(super) fn corners(grid: &Grid, p: DVec3) -> [(usize, f64); 8] {
+    let g = grid.to_voxel(p) - DVec3::splat(0.5);
+    let mut base = [0usize; 3];
+    let mut t = [0f64; 3];
+    for a in 0..3 {
+        let top = grid.dims[a].saturating_sub(1) as f64;
+        let x = if g[a].is_finite() {
+            g[a].clamp(0.0, top)
+        } else {
+            0.0
+        };
+        let b = x.floor().min((top - 1.0).max(0.0));
+        base[a] = b as usize;
+        t[a] = (x - b).clamp(0.0, 1.0);
+    }
+    let mut out = [(0usize, 0f64); 8];
+    for (k, slot) in out.iter_mut().enumerate() {
+        let mut coords = base;
+        let mut factor = 1.0;
+        for a in 0..3 {
+            let up = (k >> a) & 1 == 1;
+            if up && coords[a] + 1 < grid.dims[a] {
+                coords[a] += 1;
+            }
+            factor *= if up { t[a] } else { 1.0 - t[a] };
+        }
+        *slot = (grid.index(coords), factor);
+    }
+    out
+}
+
+/// The weights of every vertex: the trilinear blend of the weight rows of the eight voxel
+/// centres around it (clamped to the grid), pruned to four joints; empty where none of the
+/// eight has weights.
+pub(super) fn vertex_rows(voxels: &VoxelWeights, grid: &Grid, mesh: &Mesh) -> Vec<Row> {
+    mesh.positions
+        .par_iter()
+        .map_init(Mixer::default, |mixer, &p| {
+            mixer.clear();
+            for (index, factor) in corners(grid, p) {
+                if factor <= 0.0 {
+                    continue;
+                }
+                let s = voxels.slot[index];
+                if s != NONE {
+                    mixer.add_row(&voxels.rows[s as usize], factor);
+                }
+            }
+            mixer.pruned(0.0)
+        })
+        .collect()
+}
+
+/// The mesh's vertex adjacency (compressed rows, each vertex's neighbours ascending).
+pub(super) struct Adjacency {
+    start: Vec<usize>,
+    adjacent: Vec<u32>,
+}
+
+impl Adjacency {
+    /// The vertices joined to each vertex by a triangle edge (degenerate edges left out).
+    pub fn new(mesh: &Mesh) -> Self {
+        let n = mesh.positions.len();
+        // Every triangle corner names its two other vertices: count, place, then sort and
+        // deduplicate each vertex's list.
+        let mut start = vec![0usize; n + 1];
+        for t in &mesh.triangles {
+            for k in 0..3 {
+                let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                start[a as usize + 1] += usize::from(a != b) + usize::from(a != c);
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut listed = vec![0u32; start[n]];
+        for t in &mesh.triangles {
+            for k in 0..3 {
+                let a = t[k];
+                for b in [t[(k + 1) % 3], t[(k + 2) % 3]] {
+                    if a != b {
+                        listed[fill[a as usize]] = b;
+                        fill[a as usize] += 1;
+                    }
+                }
+            }
+        }
+        let mut lists: Vec<&mut [u32]> = Vec::with_capacity(n);
+        let mut rest = listed.as_mut_slice();
+        for v in 0..n {
+            let (head, tail) = rest.split_at_mut(start[v + 1] - start[v]);
+            lists.push(head);
+            rest = tail;
+        }
+        let lengths: Vec<usize> = lists
+            .into_par_iter()
+            .with_min_len(4096)
+            .map(|list| {
+                list.sort_unstable();
+                let mut kept = 0;
+                for k in 0..list.len() {
+                    if k == 0 || list[k] != list[kept - 1] {
+                        list[kept] = list[k];
+                        kept += 1;
+                    }
+                }
+                kept
+            })
+            .collect();
+        let mut adjacent = Vec::with_capacity(lengths.iter().sum());
+        let mut compact_start = Vec::with_capacity(n + 1);
+        compact_start.push(0);
+        for (v, &kept) in lengths.iter().enumerate() {
+            adjacent.extend_from_slice(&listed[start[v]..start[v] + kept]);
+            compact_start.push(adjacent.len());
+        }
+        Self {
+            start: compact_start,
+            adjacent,
+        }
+    }
+
+    /// The neighbours of vertex `v`, ascending.
+    pub fn around(&self, v: usize) -> &[u32] {
+        &self.adjacent[self.start[v]..self.start[v + 1]]
+    }
+}
+
+/// Gives every vertex with an empty row the row of the nearest vertex with weights along the
+/// mesh's edges (breadth-first, in vertex order); vertices of a piece without any weighted
+/// vertex stay empty.
+pub(super) fn spread_to_unreached(rows: &mut [Row], adjacency: &Adjacency) {
+    if rows.iter().all(|r| !r.is_empty()) {
+        return;
+    }
+    let mut queue: VecDeque<u32> = (0..rows.len() as u32)
+        .filter(|&v| !rows[v as usize].is_empty())
+        .collect();
+    while let Some(v) = queue.pop_front() {
+        for &u in adjacency.around(v as usize) {
+            if rows[u as usize].is_empty() {
+                rows[u as usize] = rows[v as usize];
+                queue.push_back(u);
+            }
+        }
+    }
+}
+
+/// `iterations` rounds of Laplacian smoothing of `rows` over the mesh's edges: each vertex's
+/// weights move towards its neighbours' by half their mean difference, each edge's share
+/// scaled by (voxel size `h` / edge length)² so that meshes coarser than the voxels are barely
+/// smoothed, then pruned to four joints ([`Mixer::pruned`]). Removes what is left of the voxel
+/// scale in the weight field; separate pieces smooth within themselves.
+pub(super) fn smooth(
+    mesh: &Mesh,
+    adjacency: &Adjacency,
+    rows: &mut Vec<Row>,
+    iterations: usize,
+    h: f64,
+) {
+    if iterations == 0 {
+        return;
+    }
+    // Each edge's share, fixed over the iterations, and what the vertex keeps of its own.
+    let shares: Vec<f64> = (0..rows.len())
+        .into_par_iter()
+        .flat_map_iter(|v| {
+            let around = adjacency.around(v);
+            let p = mesh.positions[v];
+            let scale = 0.5 / around.len().max(1) as f64;
+            around.iter().map(move |&u| {
+                let len2 = p.distance_squared(mesh.positions[u as usize]);
+                scale * (h * h / len2.max(f64::MIN_POSITIVE)).min(1.0)
+            })
+        })
+        .collect();
+    let keep: Vec<f64> = (0..rows.len())
+        .into_par_iter()
+        .map(|v| {
+            1.0 - shares[adjacency.start[v]..adjacency.start[v + 1]]
+                .iter()
+                .sum::<f64>()
+        })
+        .collect();
+    let mut next = vec![Row::EMPTY; rows.len()];
+    for _ in 0..iterations {
+        let current: &[Row] = rows;
+        next.par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .for_each_init(Mixer::default, |mixer, (v, out)| {
+                let range = adjacency.start[v]..adjacency.start[v + 1];
+                let own = &current[v];
+                let around = &adjacency.adjacent[range.clone()];
+                // Where every neighbour has the same weights the mean is the row.
+                if around.iter().all(|&u| current[u as usize] == *own) {
+                    *out = *own;
+                    return;
+                }
+                let neighbours = || {
+                    around
+                        .iter()
+                        .zip(&shares[range.clone()])
+                        .map(|(&u, &share)| (&current[u as usize], share))
+                };
+                if let Some(row) = own.blend_same_joints(keep[v], neighbours()) {
+                    *out = row;
+                    return;
+                }
+                if let Some(row) = blend_few(own, keep[v], neighbours()) {
+                    *out = row;
+                    return;
+                }
+                mixer.clear();
+                mixer.add_row(own, keep[v]);
+                for (row, share) in neighbours() {
+                    mixer.add_row(row, share);
+                }
+                *out = mixer.pruned(0.0);
+            });
+        std::mem::swap(rows, &mut next);
+    }
+}
