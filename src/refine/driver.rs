@@ -280,7 +280,8 @@ fn head(
     let near_head = rough
         .at(Canonical::Head)
         .unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
-    match head_slices(mesh, frame, near_head, options) {
+    let shoulders = rough.pair_height(frame, Canonical::Shoulder);
+    match head_slices(mesh, frame, near_head, shoulders, options) {
         Some(slices) => {
             if let Some(f) = frame_from_head(frame, &slices, frame.forward) {
                 *frame = f;

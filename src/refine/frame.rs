@@ -76,15 +76,21 @@ pub struct HeadSlices {
 
 /// Slices the head from the top of `frame` downwards (seed 004, 3.1). `near` is a point of the
 /// rough skeleton inside the head, used to pick the head's loop where a slice has several
-/// (hands raised above the head). `None` when no head-like sequence of slices is found.
+/// (hands raised above the head). The slices go down `head_max_depth` of the height, or to
+/// `shoulders` (the rough shoulder joints' height) when that is lower: a helmet or a
+/// cartoon's big head reaches further down than a human head, but no head reaches below the
+/// shoulders. `None` when no head-like sequence of slices is found.
 pub fn head_slices(
     mesh: &Mesh,
     frame: &BodyFrame,
     near: DVec3,
+    shoulders: Option<f64>,
     options: &RefineOptions,
 ) -> Option<HeadSlices> {
     let step = options.head_slice_step * frame.height();
-    let max_slices = (options.head_max_depth / options.head_slice_step).ceil() as usize;
+    let depth = shoulders.map_or(0.0, |s| frame.top - s);
+    let depth = depth.max(options.head_max_depth * frame.height());
+    let max_slices = (depth / step).ceil() as usize;
     let turn_cos = options.head_turn_degrees.to_radians().cos();
     let mut slices: Vec<SliceLoop> = Vec::new();
     let mut largest: Option<(usize, f64, DVec3, f64)> = None; // index, diameter, axis, elongation

@@ -98,6 +98,7 @@ fn neck_top(
     let mut previous = first.centroid()?;
     let mut h = frame.h(*first.points.first()?);
     let lowest = h - (options.head_max_depth + options.head_neck_search) * frame.height();
+    let lowest = shoulders.map_or(lowest, |s| lowest.min(s));
     // (height, major diameter, centroid), top down.
     let mut column: Vec<(f64, f64, DVec3)> = Vec::new();
     while h > lowest {

@@ -63,14 +63,20 @@ pub fn armpit(
 }
 
 /// The line through the arm's slices between arc lengths `from` and `to` (the upper arm): a
-/// point on it and its distal unit direction.
+/// point on it and its distal unit direction. `None` unless at least three slices there span
+/// half of that arc: the trace leaves a gap around its seed (the first sphere slices each way
+/// lie a sphere radius from it), and two slices beside the gap give a line in any direction.
 pub fn upper_arm_line(arm: &LimbProfile, from: f64, to: f64) -> Option<(DVec3, DVec3)> {
-    let points: Vec<DVec3> = arm
+    let inside: Vec<_> = arm
         .slices
         .iter()
         .filter(|s| s.arc >= from && s.arc <= to)
-        .map(|s| s.centre)
         .collect();
+    let (first, last) = (inside.first()?, inside.last()?);
+    if inside.len() < 3 || last.arc - first.arc < 0.5 * (to - from) {
+        return None;
+    }
+    let points: Vec<DVec3> = inside.iter().map(|s| s.centre).collect();
     fit_line(&points)
 }
 
