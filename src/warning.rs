@@ -307,6 +307,7 @@ fn refine_code(w: &RefineWarning) -> &'static str {
         RefineWarning::NoElbow(_) => "no_elbow",
         RefineWarning::NoTorsoSilhouette => "no_torso_silhouette",
         RefineWarning::NoHipSlice => "no_hip_slice",
+        RefineWarning::CrotchHidden { .. } => "crotch_hidden",
         RefineWarning::LegJointsMissing(_) => "leg_joints_missing",
         RefineWarning::LegNotSliced(_) => "leg_not_sliced",
         RefineWarning::NoAnkle(_) => "no_ankle",

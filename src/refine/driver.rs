@@ -226,7 +226,7 @@ fn refine_with(
     }
 
     // 3.3 Hips and pelvis.
-    hips_and_pelvis(
+    let crotch_hidden = hips_and_pelvis(
         &scene,
         &rough,
         torso.as_ref(),
@@ -237,7 +237,14 @@ fn refine_with(
 
     // 3.3 Legs.
     for side in Side::BOTH {
-        leg(&scene, &rough, side, &mut found, &mut warnings);
+        leg(
+            &scene,
+            &rough,
+            side,
+            crotch_hidden,
+            &mut found,
+            &mut warnings,
+        );
     }
 
     // 3.2 Spine and neck.
@@ -438,7 +445,9 @@ fn median_centre(scene: &Scene, rough: &Rough, head_point: Option<DVec3>) -> DVe
 }
 
 /// Places both hips and the pelvis from a transverse slice at hip height (above the crotch's
-/// leg split when the torso silhouette was found, else the rough hips' mean height `hips_h`).
+/// leg split when the torso silhouette was found, by proportion when clothing hides the
+/// crotch, else the rough hips' mean height `hips_h`). Returns whether clothing hides the
+/// crotch.
 fn hips_and_pelvis(
     scene: &Scene,
     rough: &Rough,
@@ -446,7 +455,7 @@ fn hips_and_pelvis(
     hips_h: Option<f64>,
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
-) {
+) -> bool {
     let Scene {
         mesh,
         frame,
@@ -461,7 +470,18 @@ fn hips_and_pelvis(
         (Some(l), Some(r)) => 1.5 * l.distance(r),
         _ => 0.15 * height,
     };
+    let knees = rough.pair_height(&frame, Canonical::Knee);
+    let crotch_hidden = torso.is_some_and(|t| knees.is_some_and(|k| frame.h(t.crotch) < k));
     let hip_height = match torso {
+        // The median silhouette runs down past the knees: a skirt, robe or long coat hides
+        // the crotch, and the hips go where the arm's length puts them.
+        Some(_) if crotch_hidden => {
+            let from_arms = hips_from_arms(rough, found, &frame, knees);
+            warnings.push(RefineWarning::CrotchHidden {
+                placed: from_arms.is_some(),
+            });
+            from_arms.or(hips_h)
+        }
         Some(t) => {
             let bottom = frame.h(t.crotch);
             let split = leg_split_height(
@@ -493,6 +513,42 @@ fn hips_and_pelvis(
         }
         None => warnings.push(RefineWarning::NoHipSlice),
     }
+    crotch_hidden
+}
+
+/// The trunk from the shoulder joints down to the hip joints is this many times as long as the
+/// arm from shoulder to wrist: 0.288 / 0.332 of the height in Drillis and Contini's segment
+/// proportions (shoulder at 0.818, hip at 0.530; upper arm 0.186, forearm 0.146), about 0.9.
+pub(super) const TRUNK_PER_ARM: f64 = 0.9;
+
+/// The hips' height from the proportions when clothing hides the crotch: the shoulders' height
+/// less [`TRUNK_PER_ARM`] times the mean arm length (shoulder, elbow, wrist as refined, else
+/// rough). `None` without a complete arm, or when that height is not between the rough knees
+/// and the shoulders.
+fn hips_from_arms(
+    rough: &Rough,
+    found: &Found,
+    frame: &BodyFrame,
+    knees: Option<f64>,
+) -> Option<f64> {
+    let at = |key: Canonical| found.get(&key).copied().or_else(|| rough.at(key));
+    let arms: Vec<(f64, f64)> = Side::BOTH
+        .iter()
+        .filter_map(|&side| {
+            let s = at(Canonical::Shoulder(side))?;
+            let e = at(Canonical::Elbow(side))?;
+            let w = at(Canonical::Wrist(side))?;
+            Some((frame.h(s), s.distance(e) + e.distance(w)))
+        })
+        .collect();
+    if arms.is_empty() {
+        return None;
+    }
+    let n = arms.len() as f64;
+    let shoulders = arms.iter().map(|a| a.0).sum::<f64>() / n;
+    let arm = arms.iter().map(|a| a.1).sum::<f64>() / n;
+    let h = shoulders - TRUNK_PER_ARM * arm;
+    (h < shoulders && knees.is_none_or(|k| h > k)).then_some(h)
 }
 
 /// The refined positions that stay near the rough ones, as carry targets (every refined key's
@@ -540,12 +596,27 @@ fn accepted(
 /// test. The head counts only its move across the body while it stays on the axial chain
 /// between the rough neck and the top of the figure: the fit places it by template ratios along
 /// the head part, the slices at the neck's top, and a big or hatted head puts the two far apart
-/// along the same axis.
+/// along the same axis. Hips and pelvis likewise while they stay between the rough knees and
+/// shoulders, and knees between the rough ankles and shoulders: the rough ones sit where the
+/// leg labels begin, which a skirt, a coat or a backpack moves up or down the trunk, and the
+/// knee follows the hip.
 fn shift(rough: &Rough, frame: &BodyFrame, key: Canonical, from: DVec3, to: DVec3) -> f64 {
     let across = |d: DVec3| (d - frame.up * d.dot(frame.up)).length();
     match (key, rough.at(Canonical::Neck)) {
         (Canonical::Head, Some(neck)) if (frame.h(neck)..=frame.top).contains(&frame.h(to)) => {
             across(to - from)
+        }
+        (Canonical::Hip(_) | Canonical::Pelvis | Canonical::Knee(_), _) => {
+            let below = match key {
+                Canonical::Knee(_) => Canonical::Ankle,
+                _ => Canonical::Knee,
+            };
+            let floor = rough.pair_height(frame, below);
+            let shoulders = rough.pair_height(frame, Canonical::Shoulder);
+            match (floor, shoulders) {
+                (Some(k), Some(s)) if (k..s).contains(&frame.h(to)) => across(to - from),
+                _ => from.distance(to),
+            }
         }
         _ => from.distance(to),
     }

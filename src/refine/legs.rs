@@ -10,11 +10,14 @@ use crate::skeleton::{Canonical, Side};
 const SOLE_REACH: f64 = 0.06;
 
 /// Places the ankle and knee of `side` into `found` (from the refined hip when there is one),
-/// or warns.
+/// or warns. With the crotch hidden by clothing the thigh's slices run through the skirt, so
+/// the knee goes at `leg_ratio` of the way from hip to ankle, inside the leg's slice there
+/// when that slice is the leg's own.
 pub(super) fn leg(
     scene: &Scene,
     rough: &Rough,
     side: Side,
+    crotch_hidden: bool,
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
 ) {
@@ -23,7 +26,7 @@ pub(super) fn leg(
         frame,
         height,
         options,
-        ..
+        centre,
     } = *scene;
     let frame = &frame;
     let hip = found
@@ -69,17 +72,47 @@ pub(super) fn leg(
         None => warnings.push(RefineWarning::NoAnkle(side)),
     }
     let distal = found.get(&Canonical::Ankle(side)).copied().unwrap_or(ank);
-    let knee = match bend(&profile, hip, distal, options.leg_ratio, step, options) {
-        Some((k, BendRule::Ratio)) => options.knee_depth.map_or(Some(k), |depth| {
-            let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
-            transverse_point(mesh, frame, k, h, depth).or(Some(k))
-        }),
-        other => other.map(|(k, _)| k),
+    let by_ratio = || {
+        let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+        let line = frame.at_height(hip.lerp(distal, options.leg_ratio), h);
+        let depth = options.knee_depth.unwrap_or(0.5);
+        let own = transverse_point(mesh, frame, frame.at_height(knee, h), h, depth)
+            .filter(|p| (*p - centre).dot(frame.left) * side.sign() > 0.0);
+        Some(own.unwrap_or(line))
+    };
+    let knee = if crotch_hidden {
+        by_ratio()
+    } else {
+        bend_knee(&profile, hip, distal, step, scene)
     };
     match knee {
         Some(k) => {
             found.insert(Canonical::Knee(side), k);
         }
         None => warnings.push(RefineWarning::NoKnee(side)),
+    }
+}
+
+/// The knee on the leg's centroid curve (the bend, else `leg_ratio` of the way down).
+fn bend_knee(
+    profile: &super::limb::LimbProfile,
+    hip: glam::DVec3,
+    distal: glam::DVec3,
+    step: f64,
+    scene: &Scene,
+) -> Option<glam::DVec3> {
+    let Scene {
+        mesh,
+        frame,
+        options,
+        ..
+    } = *scene;
+    let frame = &frame;
+    match bend(profile, hip, distal, options.leg_ratio, step, options) {
+        Some((k, BendRule::Ratio)) => options.knee_depth.map_or(Some(k), |depth| {
+            let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+            transverse_point(mesh, frame, k, h, depth).or(Some(k))
+        }),
+        other => other.map(|(k, _)| k),
     }
 }

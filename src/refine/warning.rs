@@ -29,6 +29,12 @@ pub enum RefineWarning {
     NoTorsoSilhouette,
     /// No transverse slice at hip height.
     NoHipSlice,
+    /// The median silhouette runs down past the knees (a skirt, robe or long coat hides the
+    /// crotch): the hips' height comes from the arm length when `placed`, else it stays rough.
+    CrotchHidden {
+        /// Whether the arms gave the hips' height.
+        placed: bool,
+    },
     /// Hip, knee or ankle of this side is not in the rough skeleton.
     LegJointsMissing(Side),
     /// This side's leg could not be sliced.
@@ -66,6 +72,10 @@ impl RefineWarning {
             Self::NoElbow(s) => vec![C::Elbow(s)],
             Self::NoTorsoSilhouette => vec![C::Neck],
             Self::NoHipSlice => vec![C::Hip(Side::Left), C::Hip(Side::Right), C::Pelvis],
+            Self::CrotchHidden { placed: true } => Vec::new(),
+            Self::CrotchHidden { placed: false } => {
+                vec![C::Hip(Side::Left), C::Hip(Side::Right), C::Pelvis]
+            }
             Self::LegJointsMissing(s) | Self::LegNotSliced(s) => vec![C::Knee(s), C::Ankle(s)],
             Self::NoAnkle(s) => vec![C::Ankle(s)],
             Self::NoKnee(s) => vec![C::Knee(s)],
@@ -120,6 +130,17 @@ impl fmt::Display for RefineWarning {
             Self::NoTorsoSilhouette => write!(
                 f,
                 "neck: no torso silhouette in the median plane (torso not upright?)"
+            ),
+            Self::CrotchHidden { placed: true } => write!(
+                f,
+                "hips: clothing hides the crotch (the median silhouette runs below the knees); \
+                 hips placed by proportion, {} times the arm's length below the shoulders",
+                super::driver::TRUNK_PER_ARM
+            ),
+            Self::CrotchHidden { placed: false } => write!(
+                f,
+                "hips: clothing hides the crotch (the median silhouette runs below the knees) \
+                 and the arms give no length; hips kept where the legs' labels begin"
             ),
             Self::NoHipSlice => write!(
                 f,
