@@ -8,7 +8,9 @@ use super::head::head_joint;
 use super::legs::leg;
 use super::limb_joints::centre_in_depth;
 use super::spine::{spine, Spine};
-use super::torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
+use super::torso::{
+    hips, leg_split_height, legs_apart_below, torso_points, TorsoBounds, TorsoPoints,
+};
 use super::{RefineError, RefineOptions, RefineWarning};
 use crate::fit::{assign_trunk_keys, Fit};
 use crate::mesh::{slice_plane_outer, Mesh};
@@ -471,7 +473,12 @@ fn hips_and_pelvis(
         _ => 0.15 * height,
     };
     let knees = rough.pair_height(&frame, Canonical::Knee);
-    let crotch_hidden = torso.is_some_and(|t| knees.is_some_and(|k| frame.h(t.crotch) < k));
+    // Hidden only when the legs show apart below the knees: a blob's silhouette also ends low.
+    let crotch_hidden = torso.is_some_and(|t| {
+        knees.is_some_and(|k| {
+            frame.h(t.crotch) < k && legs_apart_below(mesh, &frame, centre, k, reach)
+        })
+    });
     let hip_height = match torso {
         // The median silhouette runs down past the knees: a skirt, robe or long coat hides
         // the crotch, and the hips go where the arm's length puts them.

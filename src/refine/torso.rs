@@ -192,6 +192,31 @@ fn legs_apart(mesh: &Mesh, frame: &BodyFrame, centre: DVec3, h: f64, reach: f64)
     perimeters.len() >= 2 && perimeters[1] >= 0.5 * perimeters[0]
 }
 
+/// Whether the legs stand apart anywhere below height `top`: a transverse slice at one of
+/// eight heights between the figure's lowest point and `top` cuts two comparable loops (see
+/// [`legs_apart`]). A skirt or gown hides the crotch but shows the legs or feet apart below
+/// the knees; a blob or a sack shows none.
+pub fn legs_apart_below(
+    mesh: &Mesh,
+    frame: &BodyFrame,
+    centre: DVec3,
+    top: f64,
+    reach: f64,
+) -> bool {
+    let bottom = mesh
+        .positions
+        .iter()
+        .map(|&v| frame.h(v))
+        .fold(f64::INFINITY, f64::min);
+    if bottom.is_nan() || bottom >= top {
+        return false;
+    }
+    (1..=8).any(|i| {
+        let h = bottom + (top - bottom) * f64::from(i) / 9.0;
+        legs_apart(mesh, frame, centre, h, reach)
+    })
+}
+
 /// Height of the crotch as the top of the gap between the legs: the highest height, going up
 /// from `from` (where the legs must be apart) towards `to`, below which every transverse slice
 /// cuts the legs into two loops of comparable length; found by steps of `step` then
