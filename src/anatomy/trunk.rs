@@ -1,6 +1,7 @@
 //! The trunk of the level graph and the figure class its slope gives (dissertation ch.7.3.3).
 
 use super::{FigureClass, Frame, LevelGraph, RuleOptions};
+use crate::math::{major_axis_by_iteration, point_covariance};
 use crate::medial::MedialSurface;
 use glam::DVec3;
 
@@ -86,28 +87,12 @@ pub(super) fn trunk(
     }
 }
 
-/// Principal axis (unit) of `points` by power iteration on their covariance, deterministic.
+/// Principal axis (unit) of `points`: the major axis of their covariance
+/// ([`major_axis_by_iteration`]); zero for fewer than two points or no spread.
 fn principal_axis(points: &[DVec3]) -> DVec3 {
     if points.len() < 2 {
         return DVec3::ZERO;
     }
-    let mean = points.iter().sum::<DVec3>() / points.len() as f64;
-    let mut cov = [[0.0f64; 3]; 3];
-    for p in points {
-        let d = (*p - mean).to_array();
-        for i in 0..3 {
-            for j in 0..3 {
-                cov[i][j] += d[i] * d[j];
-            }
-        }
-    }
-    let m = glam::DMat3::from_cols_array_2d(&cov);
-    let mut v = DVec3::new(1.0, 0.7, 0.3).normalize();
-    for _ in 0..100 {
-        match (m * v).try_normalize() {
-            Some(next) => v = next,
-            None => return DVec3::ZERO,
-        }
-    }
-    v
+    let (_, covariance) = point_covariance(points);
+    major_axis_by_iteration(covariance).unwrap_or(DVec3::ZERO)
 }
