@@ -27,6 +27,7 @@ mod frames;
 mod from_labels;
 mod input;
 mod limbs;
+mod input_warning;
 mod options;
 mod polyline;
 mod probe;
@@ -35,6 +36,7 @@ mod reach;
 pub use ears::{ears, EarOptions};
 pub use error::{FitError, FitWarning};
 pub use from_labels::{fit_input, FitInputOptions};
+pub use input_warning::FitInputWarning;
 pub use input::{
     voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, EarInput, FitInput, LimbInput,
     Side,

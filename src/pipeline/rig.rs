@@ -14,7 +14,7 @@ use crate::paths::{path_tree, PathOptions};
 use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
-use crate::template::{apply_preset, Preset, Template};
+use crate::template::{apply_preset, ExpectedPart, Preset, Template};
 use crate::voxel::{boundary_mesh, voxelize, Solid, VoxelOptions};
 use crate::warning::Warning;
 
@@ -289,7 +289,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
-    let missing = missing_parts(&template.name, &labelling);
+    let missing = missing_parts(&template, &labelling);
     Ok(Rig {
         missing,
         fit,
@@ -314,11 +314,10 @@ fn refine_surface(mesh: &Mesh, solid: &Solid, options: &RefineOptions) -> Option
     (!one_shell).then(|| boundary_mesh(solid, options.joined_smoothing))
 }
 
-/// The body parts a built-in template expects that `labelling` lacks: the humanoid's head,
-/// arms and legs; the quadruped's head and fore and hind legs; the winged figure's head, wings
-/// and legs (each paired part with its side, e.g. `arm R`, `fore leg L`). Empty for other
-/// templates.
-pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
+/// The body parts `template` expects ([`Template::expects`], the `expects` list of its
+/// header) that `labelling` lacks, in the template's order, each paired part with its side
+/// (`head`, `arm R`, `fore leg L`, ...). Empty for a template that declares none.
+pub fn missing_parts(template: &Template, labelling: &Labelling) -> Vec<String> {
     use crate::anatomy::{LimbPair, Side};
     let has = |label: Label, side: Option<Side>, pair: Option<LimbPair>| {
         labelling.parts.iter().any(|p| {
@@ -327,28 +326,28 @@ pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
                 && (pair.is_none() || p.limb_pair == pair)
         })
     };
-    let sides = [(Some(Side::Left), "L"), (Some(Side::Right), "R")];
-    let mut expected: Vec<(Label, Option<Side>, Option<LimbPair>, String)> =
-        vec![(Label::Head, None, None, "head".to_string())];
-    let paired: &[(Label, Option<LimbPair>, &str)] = match template {
-        "humanoid" => &[(Label::Arm, None, "arm"), (Label::Leg, None, "leg")],
-        "quadruped" => &[
-            (Label::Leg, Some(LimbPair::Fore), "fore leg"),
-            (Label::Leg, Some(LimbPair::Hind), "hind leg"),
-        ],
-        "winged" => &[(Label::Wing, None, "wing"), (Label::Leg, None, "leg")],
-        _ => return Vec::new(),
-    };
-    for &(label, pair, name) in paired {
-        for (side, s) in sides {
-            expected.push((label, side, pair, format!("{name} {s}")));
+    let mut missing = Vec::new();
+    for &part in &template.expects {
+        let (label, pair, name) = match part {
+            ExpectedPart::Head => {
+                if !has(Label::Head, None, None) {
+                    missing.push(Label::Head.name().to_string());
+                }
+                continue;
+            }
+            ExpectedPart::Arms => (Label::Arm, None, "arm"),
+            ExpectedPart::Legs => (Label::Leg, None, "leg"),
+            ExpectedPart::ForeLegs => (Label::Leg, Some(LimbPair::Fore), "fore leg"),
+            ExpectedPart::HindLegs => (Label::Leg, Some(LimbPair::Hind), "hind leg"),
+            ExpectedPart::Wings => (Label::Wing, None, "wing"),
+        };
+        for side in Side::BOTH {
+            if !has(label, Some(side), pair) {
+                missing.push(format!("{name} {}", side.letter()));
+            }
         }
     }
-    expected
-        .into_iter()
-        .filter(|(label, side, pair, _)| !has(*label, *side, *pair))
-        .map(|(_, _, _, name)| name)
-        .collect()
+    missing
 }
 
 /// What [`rig`] fits to a labelled figure.
