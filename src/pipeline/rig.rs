@@ -14,7 +14,7 @@ use crate::paths::{path_tree, PathOptions};
 use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
-use crate::template::{apply_preset, ExpectedPart, Preset, Template};
+use crate::template::{ExpectedPart, Preset, Template};
 use crate::voxel::{boundary_mesh, voxelize, Solid, VoxelOptions};
 use crate::warning::Warning;
 
@@ -246,33 +246,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().cloned().map(Warning::Fit));
     lap.lap("fit", &mut timings);
-    let joined = (options.refine.in_rig && template.refinement.is_some())
-        .then(|| refine_surface(mesh, &solid, &options.refine))
-        .flatten();
-    let refined = options.refine.in_rig.then(|| {
-        refine_fit(
-            joined.as_ref().unwrap_or(mesh),
-            &fit,
-            &template,
-            input.up,
-            input.forward,
-            &options.refine,
-        )
-    });
-    if let Some(refined) = refined.flatten() {
-        match refined {
-            Ok(refined) => {
-                fit.skeleton = refined.skeleton;
-                fit.canonical = refined.canonical;
-                warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
-            }
-            Err(e) => warnings.push(
-                RigWarning::RefineFailed {
-                    error: e.to_string(),
-                }
-                .into(),
-            ),
-        }
+    if refine_stage(mesh, &solid, &template, &input, &options.refine, &mut fit, &mut warnings) {
         lap.lap("refine", &mut timings);
     }
     if options.refine.symmetry {
@@ -284,8 +258,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         }
         lap.lap("symmetry", &mut timings);
     }
-    apply_preset(&mut fit.skeleton, &fit.canonical, options.fit.preset)
-        .map_err(|e| FitError::Preset(e.to_string()))?;
+    fit.name_joints(options.fit.preset)?;
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
@@ -301,6 +274,47 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         timings,
         warnings,
     })
+}
+
+/// The refinement the template declares ([`refine_fit`]; `options.in_rig: false` skips it):
+/// `fit` takes the refined skeleton and canonical map, `warnings` the refinement's warnings
+/// (or its failure). Returns whether it ran.
+fn refine_stage(
+    mesh: &Mesh,
+    solid: &Solid,
+    template: &Template,
+    input: &FitInput,
+    options: &RefineOptions,
+    fit: &mut Fit,
+    warnings: &mut Vec<Warning>,
+) -> bool {
+    if !options.in_rig {
+        return false;
+    }
+    let joined = template
+        .refinement
+        .is_some()
+        .then(|| refine_surface(mesh, solid, options))
+        .flatten();
+    let surface = joined.as_ref().unwrap_or(mesh);
+    let Some(refined) = refine_fit(surface, fit, template, input.up, input.forward, options)
+    else {
+        return false;
+    };
+    match refined {
+        Ok(refined) => {
+            fit.skeleton = refined.skeleton;
+            fit.canonical = refined.canonical;
+            warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
+        }
+        Err(e) => warnings.push(
+            RigWarning::RefineFailed {
+                error: e.to_string(),
+            }
+            .into(),
+        ),
+    }
+    true
 }
 
 /// The surface the slicing refinement cuts: the input itself when it is one closed shell, else
