@@ -292,9 +292,10 @@ impl Rules<'_> {
             .fold(Reach::EMPTY, |r, s| r.union(s.reach));
         let score = |s: usize| -> f64 {
             let reach = &self.sections[s].reach;
-            let up = (reach.highest - all.lowest) / (all.highest - all.lowest).max(f64::MIN_POSITIVE);
-            let fw =
-                (reach.foremost - all.hindmost) / (all.foremost - all.hindmost).max(f64::MIN_POSITIVE);
+            let up =
+                (reach.highest - all.lowest) / (all.highest - all.lowest).max(f64::MIN_POSITIVE);
+            let fw = (reach.foremost - all.hindmost)
+                / (all.foremost - all.hindmost).max(f64::MIN_POSITIVE);
             match self.figure {
                 FigureClass::HumanLike => up,
                 FigureClass::AnimalLike => fw,

@@ -23,16 +23,56 @@ fn stick_figure() -> Skeleton {
             joint(Canonical::Chest.as_str(), Some(0), [0.0, 1.3, 0.0]),
             joint(Canonical::Neck.as_str(), Some(1), [0.0, 1.5, 0.0]),
             joint(Canonical::Head.as_str(), Some(2), [0.0, 1.8, 0.0]),
-            joint(Canonical::Shoulder(Side::Left).as_str(), Some(1), [0.2, 1.45, 0.0]),
-            joint(Canonical::Elbow(Side::Left).as_str(), Some(4), [0.45, 1.2, 0.0]),
-            joint(Canonical::Shoulder(Side::Right).as_str(), Some(1), [-0.2, 1.45, 0.0]),
-            joint(Canonical::Elbow(Side::Right).as_str(), Some(6), [-0.45, 1.2, 0.0]),
-            joint(Canonical::Hip(Side::Left).as_str(), Some(0), [0.1, 0.95, 0.0]),
-            joint(Canonical::Knee(Side::Left).as_str(), Some(8), [0.1, 0.5, 0.0]),
-            joint(Canonical::Ankle(Side::Left).as_str(), Some(9), [0.1, 0.0, 0.0]),
-            joint(Canonical::Hip(Side::Right).as_str(), Some(0), [-0.1, 0.95, 0.0]),
-            joint(Canonical::Knee(Side::Right).as_str(), Some(11), [-0.1, 0.5, 0.0]),
-            joint(Canonical::Ankle(Side::Right).as_str(), Some(12), [-0.1, 0.0, 0.0]),
+            joint(
+                Canonical::Shoulder(Side::Left).as_str(),
+                Some(1),
+                [0.2, 1.45, 0.0],
+            ),
+            joint(
+                Canonical::Elbow(Side::Left).as_str(),
+                Some(4),
+                [0.45, 1.2, 0.0],
+            ),
+            joint(
+                Canonical::Shoulder(Side::Right).as_str(),
+                Some(1),
+                [-0.2, 1.45, 0.0],
+            ),
+            joint(
+                Canonical::Elbow(Side::Right).as_str(),
+                Some(6),
+                [-0.45, 1.2, 0.0],
+            ),
+            joint(
+                Canonical::Hip(Side::Left).as_str(),
+                Some(0),
+                [0.1, 0.95, 0.0],
+            ),
+            joint(
+                Canonical::Knee(Side::Left).as_str(),
+                Some(8),
+                [0.1, 0.5, 0.0],
+            ),
+            joint(
+                Canonical::Ankle(Side::Left).as_str(),
+                Some(9),
+                [0.1, 0.0, 0.0],
+            ),
+            joint(
+                Canonical::Hip(Side::Right).as_str(),
+                Some(0),
+                [-0.1, 0.95, 0.0],
+            ),
+            joint(
+                Canonical::Knee(Side::Right).as_str(),
+                Some(11),
+                [-0.1, 0.5, 0.0],
+            ),
+            joint(
+                Canonical::Ankle(Side::Right).as_str(),
+                Some(12),
+                [-0.1, 0.0, 0.0],
+            ),
         ],
     }
 }
@@ -302,11 +342,15 @@ fn deforming_filter_reparents() {
     }
     let mut r = rig(s);
     r.canonical.insert("root_control".into(), JointId(0));
-    r.canonical.insert(Canonical::Head.as_str().into(), JointId(4));
+    r.canonical
+        .insert(Canonical::Head.as_str().into(), JointId(4));
     let d = r.deforming();
     assert_eq!(d.skeleton, stick_figure());
     assert_eq!(d.canonical.len(), 1);
-    assert_eq!(d.canonical_joint(Canonical::Head.as_str()).unwrap().name, Canonical::Head.as_str());
+    assert_eq!(
+        d.canonical_joint(Canonical::Head.as_str()).unwrap().name,
+        Canonical::Head.as_str()
+    );
 }
 
 const BVH: &str = "HIERARCHY
@@ -407,7 +451,10 @@ fn skelfit_json_with_names_and_indices() {
     assert_eq!(r.model, "fit");
     assert_eq!(r.skeleton.joints[2].parent, Some(JointId(1)));
     assert!(!r.skeleton.joints[2].deform);
-    assert_eq!(r.canonical_joint(Canonical::Spine.as_str()).unwrap().name, "spine_01");
+    assert_eq!(
+        r.canonical_joint(Canonical::Spine.as_str()).unwrap().name,
+        "spine_01"
+    );
 }
 
 #[test]
@@ -430,10 +477,7 @@ fn invalid_json_skeletons_are_errors() {
             r#"{"joints": [{"name": "a", "parent": 0, "position": [0,0,0]}]}"#,
             "parents must come before",
         ),
-        (
-            head_to_nothing.as_str(),
-            "does not exist",
-        ),
+        (head_to_nothing.as_str(), "does not exist"),
         (r#"{"format": "other-v2", "joints": []}"#, "other-v2"),
         (r#"{"joints": "#, "not a valid json"),
     ];
@@ -462,7 +506,11 @@ fn bundled_presets_are_valid() {
     let presets = parse_presets().unwrap();
     assert_eq!(presets.len(), 5);
     for p in &presets {
-        assert!(p.joints.contains_key(Canonical::Pelvis.as_str()), "{}", p.preset);
+        assert!(
+            p.joints.contains_key(Canonical::Pelvis.as_str()),
+            "{}",
+            p.preset
+        );
         assert!(p.joints.keys().all(|k| is_canonical_key(k)));
     }
     assert_eq!(
@@ -532,7 +580,14 @@ fn presets_are_detected() {
     let c = correspond(&rig(mixamo), &rig(unity)).unwrap();
     assert_eq!(c.method, MatchMethod::Canonical);
     let keys: Vec<&str> = c.pairs.iter().map(|p| p.key.as_str()).collect();
-    assert_eq!(keys, [Canonical::Pelvis.as_str(), Canonical::Spine.as_str(), Canonical::Shoulder(Side::Left).as_str()]);
+    assert_eq!(
+        keys,
+        [
+            Canonical::Pelvis.as_str(),
+            Canonical::Spine.as_str(),
+            Canonical::Shoulder(Side::Left).as_str()
+        ]
+    );
     assert_eq!(
         c.reference_naming,
         CanonicalSource::Preset("unity_humanoid".into())
@@ -778,7 +833,10 @@ fn anatomy_table_lists_missing_core_joints_and_parts() {
         missing_parts: vec!["arm R".into()],
     });
     result.core = Some(CoreError {
-        mapped: vec![Canonical::Pelvis.as_str().into(), Canonical::Shoulder(Side::Right).as_str().into()],
+        mapped: vec![
+            Canonical::Pelvis.as_str().into(),
+            Canonical::Shoulder(Side::Right).as_str().into(),
+        ],
         paired: 1,
         mean: 0.02,
         mean_percent: 1.25,
@@ -810,13 +868,19 @@ fn anatomy_table_lists_missing_core_joints_and_parts() {
     assert_eq!(cell(0, "real"), "yes");
     assert_eq!(cell(0, "core %"), "1.25");
     assert_eq!(cell(0, "core paired"), "1/2");
-    assert_eq!(cell(0, "missing core joints"), Canonical::Shoulder(Side::Right).as_str());
+    assert_eq!(
+        cell(0, "missing core joints"),
+        Canonical::Shoulder(Side::Right).as_str()
+    );
     assert_eq!(cell(1, "missing core joints"), "none");
     assert_eq!(cell(0, "missing parts"), "arm R");
     assert_eq!(cell(0, "warnings"), "3");
     let top = cell(0, "top warnings");
     assert!(top.ends_with("… · second"), "{top}");
-    assert_eq!(bench_table(&results).rows[0][14], Canonical::Shoulder(Side::Right).as_str());
+    assert_eq!(
+        bench_table(&results).rows[0][14],
+        Canonical::Shoulder(Side::Right).as_str()
+    );
     let all = core_summary(&results, &|_| true).unwrap();
     assert_eq!((all.models, all.with_missing), (2, 1));
     assert!((all.percent.median - 2.25).abs() < 1e-12);

@@ -325,7 +325,11 @@ fn unpaired_limbs(
 }
 
 /// A warning per limb shorter than `min_limb_slenderness` times its median radius.
-fn stub_warnings(limbs: &[LimbInput], options: &FitInputOptions, warnings: &mut Vec<FitInputWarning>) {
+fn stub_warnings(
+    limbs: &[LimbInput],
+    options: &FitInputOptions,
+    warnings: &mut Vec<FitInputWarning>,
+) {
     for limb in limbs {
         let length: f64 = limb.path.windows(2).map(|w| w[0].distance(w[1])).sum();
         let mut radii = limb.radii.clone();

@@ -26,8 +26,8 @@ mod error;
 mod frames;
 mod from_labels;
 mod input;
-mod limbs;
 mod input_warning;
+mod limbs;
 mod options;
 mod polyline;
 mod probe;
@@ -36,11 +36,11 @@ mod reach;
 pub use ears::{ears, EarOptions};
 pub use error::{FitError, FitWarning};
 pub use from_labels::{fit_input, FitInputOptions};
-pub use input_warning::FitInputWarning;
 pub use input::{
     voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, EarInput, FitInput, LimbInput,
     Side,
 };
+pub use input_warning::FitInputWarning;
 pub use options::{BendSnap, FitOptions};
 pub use reach::ReachOptions;
 

@@ -246,7 +246,15 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().cloned().map(Warning::Fit));
     lap.lap("fit", &mut timings);
-    if refine_stage(mesh, &solid, &template, &input, &options.refine, &mut fit, &mut warnings) {
+    if refine_stage(
+        mesh,
+        &solid,
+        &template,
+        &input,
+        &options.refine,
+        &mut fit,
+        &mut warnings,
+    ) {
         lap.lap("refine", &mut timings);
     }
     if options.refine.symmetry {
@@ -297,8 +305,7 @@ fn refine_stage(
         .then(|| refine_surface(mesh, solid, options))
         .flatten();
     let surface = joined.as_ref().unwrap_or(mesh);
-    let Some(refined) = refine_fit(surface, fit, template, input.up, input.forward, options)
-    else {
+    let Some(refined) = refine_fit(surface, fit, template, input.up, input.forward, options) else {
         return false;
     };
     match refined {

@@ -174,7 +174,8 @@ mod tests {
 
     fn skeleton() -> Skeleton {
         let mut s = Skeleton::default();
-        s.joints.push(Joint::new(Canonical::Pelvis.as_str(), None, DVec3::ZERO));
+        s.joints
+            .push(Joint::new(Canonical::Pelvis.as_str(), None, DVec3::ZERO));
         s.joints.push(Joint::new(
             "hand_L",
             Some(JointId(0)),

@@ -94,7 +94,10 @@ fn dofs_follow_the_anatomy() {
 fn canonical_keys_cover_the_reference_set() {
     for name in ["humanoid", "quadruped"] {
         let t = Template::builtin(name).unwrap();
-        let mut keys: Vec<String> = vec![Canonical::Spine.as_str().into(), Canonical::Chest.as_str().into()];
+        let mut keys: Vec<String> = vec![
+            Canonical::Spine.as_str().into(),
+            Canonical::Chest.as_str().into(),
+        ];
         for j in &t.joints {
             if let Some(c) = &j.canonical {
                 if j.side {

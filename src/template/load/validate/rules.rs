@@ -59,9 +59,11 @@ fn expected_parts(raw: Vec<Spanned<String>>, p: &mut Problems) -> Vec<ExpectedPa
     for (k, name) in raw.iter().enumerate() {
         let path = format!("template.expects[{k}]");
         match ExpectedPart::parse(name.get_ref()) {
-            Some(part) if out.contains(&part) => {
-                p.push(path, &name.span(), format!("{name:?} is listed twice", name = name.get_ref()))
-            }
+            Some(part) if out.contains(&part) => p.push(
+                path,
+                &name.span(),
+                format!("{name:?} is listed twice", name = name.get_ref()),
+            ),
             Some(part) => out.push(part),
             None => {
                 let known: Vec<&str> = ExpectedPart::ALL.iter().map(|p| p.as_str()).collect();
