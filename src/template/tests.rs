@@ -1,5 +1,5 @@
 use super::*;
-use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
+use crate::skeleton::canonical::{is_canonical_key, Tail, CANONICAL_KEYS};
 use crate::skeleton::{Canonical, Joint, JointId, LocalAxis, Side, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
