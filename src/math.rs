@@ -7,5 +7,7 @@ mod pca;
 mod smoothing;
 
 pub use douglas_peucker::{douglas_peucker, douglas_peucker_closed, point_segment_distance};
-pub(crate) use pca::{point_covariance, principal_axes, principal_axis_2d};
+pub(crate) use pca::{
+    major_axis_by_iteration, point_covariance, principal_axes, principal_axis_2d,
+};
 pub(crate) use smoothing::{moving_average, Ends};

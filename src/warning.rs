@@ -8,7 +8,7 @@
 use crate::anatomy::AnatomyWarning;
 use crate::bones::BoneWarning;
 use crate::eval::EvalWarning;
-use crate::fit::FitWarning;
+use crate::fit::{FitInputWarning, FitWarning};
 use crate::general::GeneralWarning;
 use crate::medial::MedialWarning;
 use crate::paths::PathWarning;
@@ -62,9 +62,8 @@ pub enum Warning {
     General(GeneralWarning),
     /// The level graph, orientation and body-part labels.
     Anatomy(AnatomyWarning),
-    /// The paths between the labelled parts that the fit takes
-    /// ([`crate::fit::fit_input`], which still words its warnings as sentences).
-    FitInput(String),
+    /// The paths between the labelled parts that the fit takes ([`crate::fit::fit_input`]).
+    FitInput(FitInputWarning),
     /// The template fit.
     Fit(FitWarning),
     /// The slicing refinement of humanoid joints.
@@ -125,7 +124,7 @@ impl Warning {
             Self::Paths(w) => w.severity(),
             Self::General(w) => w.severity(),
             Self::Anatomy(w) => w.severity(),
-            Self::FitInput(_) => Severity::Degraded,
+            Self::FitInput(w) => w.severity(),
             Self::Fit(w) => fit_severity(w),
             Self::Refine(w) => w.severity(),
             Self::Skin(w) => skin_severity(w),
@@ -143,7 +142,7 @@ impl Warning {
             Self::Paths(w) => w.code(),
             Self::General(w) => w.code(),
             Self::Anatomy(w) => w.code(),
-            Self::FitInput(_) => "path",
+            Self::FitInput(w) => w.code(),
             Self::Fit(w) => fit_code(w),
             Self::Refine(w) => refine_code(w),
             Self::Skin(w) => skin_code(w),
@@ -172,7 +171,7 @@ impl fmt::Display for Warning {
             Self::Paths(w) => w.fmt(f),
             Self::General(w) => w.fmt(f),
             Self::Anatomy(w) => w.fmt(f),
-            Self::FitInput(message) => f.write_str(message),
+            Self::FitInput(w) => w.fmt(f),
             Self::Fit(w) => w.fmt(f),
             // The refinement's sentences name joints, not the stage: say which stage it was.
             Self::Refine(w) => write!(f, "refine: {w}"),
@@ -207,6 +206,7 @@ wrap!(
     Paths(PathWarning),
     General(GeneralWarning),
     Anatomy(AnatomyWarning),
+    FitInput(FitInputWarning),
     Fit(FitWarning),
     Refine(RefineWarning),
     Skin(SkinWarning),

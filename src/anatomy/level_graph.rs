@@ -53,9 +53,62 @@ pub struct LevelVertex {
     /// Inscribed radius (mesh units) of the DMS voxel of the piece nearest its centroid.
     pub radius: f64,
     /// Reach of the vertex's region of the figure (its DMS voxels and, when a solid is given,
-    /// the interior voxels nearest to them): highest and lowest projection on up, highest and
-    /// lowest on forward, mesh units.
-    pub reach: [f64; 4],
+    /// the interior voxels nearest to them), mesh units.
+    pub reach: Reach,
+}
+
+/// How far a region reaches along up and forward: its highest and lowest projection on up and
+/// its foremost and hindmost projection on forward, mesh units. Serialized as the array
+/// `[highest, lowest, foremost, hindmost]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(into = "[f64; 4]")]
+pub struct Reach {
+    /// Highest projection on up.
+    pub highest: f64,
+    /// Lowest projection on up.
+    pub lowest: f64,
+    /// Highest projection on forward.
+    pub foremost: f64,
+    /// Lowest projection on forward.
+    pub hindmost: f64,
+}
+
+impl Reach {
+    /// The reach of an empty region: every bound at its identity (`-inf` for a maximum, `inf`
+    /// for a minimum).
+    pub const EMPTY: Reach = Reach {
+        highest: f64::NEG_INFINITY,
+        lowest: f64::INFINITY,
+        foremost: f64::NEG_INFINITY,
+        hindmost: f64::INFINITY,
+    };
+
+    /// The reach of both regions.
+    pub fn union(self, other: Reach) -> Reach {
+        Reach {
+            highest: self.highest.max(other.highest),
+            lowest: self.lowest.min(other.lowest),
+            foremost: self.foremost.max(other.foremost),
+            hindmost: self.hindmost.min(other.hindmost),
+        }
+    }
+
+    /// This reach grown to a point whose projections on up and forward are `up` and
+    /// `forward`.
+    fn with(self, up: f64, forward: f64) -> Reach {
+        Reach {
+            highest: self.highest.max(up),
+            lowest: self.lowest.min(up),
+            foremost: self.foremost.max(forward),
+            hindmost: self.hindmost.min(forward),
+        }
+    }
+}
+
+impl From<Reach> for [f64; 4] {
+    fn from(r: Reach) -> Self {
+        [r.highest, r.lowest, r.foremost, r.hindmost]
+    }
 }
 
 /// The level graph of a DMS (ch.7.3.1): a tree whose root holds the heart.
@@ -277,7 +330,12 @@ impl Merging {
             major_junction: false,
             marks: Marks::default(),
             radius: 0.0,
-            reach: [0.0; 4],
+            reach: Reach {
+                highest: 0.0,
+                lowest: 0.0,
+                foremost: 0.0,
+                hindmost: 0.0,
+            },
         });
     }
 }
@@ -307,20 +365,9 @@ fn add_reaches(
         }
     }
     for (v, region) in vertices.iter_mut().zip(&regions) {
-        let mut reach = [
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-        ];
+        let mut reach = Reach::EMPTY;
         for c in region {
-            let (u, f) = (c.dot(frame.up), c.dot(frame.forward));
-            reach = [
-                reach[0].max(u),
-                reach[1].min(u),
-                reach[2].max(f),
-                reach[3].min(f),
-            ];
+            reach = reach.with(c.dot(frame.up), c.dot(frame.forward));
         }
         v.reach = reach;
         extents.mark(&mut v.marks, reach);
@@ -421,7 +468,7 @@ fn mark_vertices(
             let c = surface.centre(p);
             let u = c.dot(frame.up);
             let f = c.dot(frame.forward);
-            extents.mark(&mut marks, [u, u, f, f]);
+            extents.mark(&mut marks, Reach::EMPTY.with(u, f));
             let d = c.distance_squared(v.centroid);
             if d < nearest_d {
                 (nearest, nearest_d) = (p, d);
@@ -456,14 +503,14 @@ struct Extents {
 }
 
 impl Extents {
-    /// Marks up, down, forward and backward where `[highest, lowest, foremost, hindmost]`
-    /// projections lie within the fraction of the ends.
-    fn mark(&self, marks: &mut Marks, reach: [f64; 4]) {
+    /// Marks up, down, forward and backward where the reach's highest, lowest, foremost and
+    /// hindmost projections lie within the fraction of the ends.
+    fn mark(&self, marks: &mut Marks, reach: Reach) {
         let ((up_lo, up_hi), (fw_lo, fw_hi), e) = (self.up, self.forward, self.fraction);
-        marks.up |= reach[0] >= up_hi - e * (up_hi - up_lo);
-        marks.down |= reach[1] <= up_lo + e * (up_hi - up_lo);
-        marks.forward |= reach[2] >= fw_hi - e * (fw_hi - fw_lo);
-        marks.backward |= reach[3] <= fw_lo + e * (fw_hi - fw_lo);
+        marks.up |= reach.highest >= up_hi - e * (up_hi - up_lo);
+        marks.down |= reach.lowest <= up_lo + e * (up_hi - up_lo);
+        marks.forward |= reach.foremost >= fw_hi - e * (fw_hi - fw_lo);
+        marks.backward |= reach.hindmost <= fw_lo + e * (fw_hi - fw_lo);
     }
 }
 

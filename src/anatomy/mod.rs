@@ -7,7 +7,8 @@
 //!   junctions; extreme up/down/forward/backward and linear/rounded cross-section marks
 //!   (ch.7.3.1-7.3.2);
 //! - [`label_graph`] (`rules.rs`): the trunk from the major junctions and its slope
-//!   (human-like/animal-like), legs, wings, tail, head, arms, leftovers (ch.7.3.3);
+//!   (human-like/animal-like, `trunk.rs`), the sections hanging off it (`sections.rs`), then
+//!   legs, wings, tail (`tail.rs`), head, arms, leftovers (ch.7.3.3), a phase per function;
 //! - [`Overrides`] (`overrides.rs`): a JSON file of user corrections;
 //! - `build.rs`: parts with girdles and digits; `neck.rs`: the trunk pieces between the
 //!   pectoral limbs' and the head's junctions, which the per-vertex labels give to the head;
@@ -48,17 +49,20 @@ mod parts;
 mod project;
 mod reference;
 mod rules;
+mod sections;
+mod tail;
+mod trunk;
 mod warning;
 
 pub use bone_labels::label_vertices_by_bones;
 pub use error::AnatomyError;
 pub use frame::{parse_direction, Frame};
-pub use level_graph::{level_graph, LevelGraph, LevelVertex, Marks, NO_VERTEX};
+pub use level_graph::{level_graph, LevelGraph, LevelVertex, Marks, Reach, NO_VERTEX};
 pub use options::{Forward, LabelOptions, LabelPipelineOptions, LevelOptions, RuleOptions, Up};
 pub use orient::{find_up, UpChoice, UpScore};
 pub use output::{labels_json, labels_ply, labels_svg, part_colour};
 pub use overrides::{Overrides, SectionOverride};
-pub use parts::{FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
+pub use parts::{Extremes, FigureClass, Label, Labelling, LimbPair, Part, Section, Side};
 pub use project::NO_PART;
 pub use reference::{
     agreement, best_regions, girdle_limbs, joint_regions, part_region, skeleton_regions,

@@ -126,28 +126,16 @@ pub struct RuleOptions {
     /// attachment. Default 0.6.
     pub digit_start: f64,
     /// Give the neck to the head in the per-voxel and per-mesh-vertex labels
-    /// ([`Labelling::mesh_parts`](super::Labelling::mesh_parts)): the trunk's level-graph
-    /// vertices from the head's junction down to the nearest pectoral limb's junction (arms,
-    /// wings, fore legs), with the trunk pieces hanging from them, are labelled head there. The
-    /// parts themselves (and the anatomical fit) keep them in the trunk. Default true: the neck
-    /// belongs to the head region of a rig (ch.6: cervical vertebrae between the pectoral
-    /// girdle and the skull); measured per-vertex agreement with the reference rigs rose from
-    /// 74.0 % to 95.0 % on CesiumMan (hair behind its head is a protrusion merged into the
-    /// trunk beyond the arms' junction) and from 88.1 % to 91.1 % on the triceratops, and is
-    /// unchanged on the other reference models (their heads join at the arms' junction).
+    /// ([`Labelling::mesh_parts`](super::Labelling::mesh_parts)): the trunk's vertices from the
+    /// head's junction down to the nearest pectoral limb's (with the pieces hanging from them).
+    /// Parts and the fit keep them in the trunk. Default true (ch.6: the cervical vertebrae
+    /// belong to the head region; per-vertex agreement on CesiumMan 74.0 → 95.0 %).
     pub neck_in_head: bool,
-    /// In the per-voxel and per-mesh-vertex labels, DMS voxels of arms and fore legs whose
-    /// centre lies within this multiple of a trunk DMS voxel's inscribed radius of that voxel
-    /// count as trunk (a pectoral limb's section starts where its DMS piece separates from the
-    /// trunk's, inside the chest; the shoulder girdle belongs to the trunk, ch.6). The parts and
-    /// the anatomical fit are unchanged. In `[0, 1]`; 0 turns it off. Default 0.4: measured
-    /// per-vertex agreement with the reference rigs (0 → 0.4) wolf 91.4 → 92.7 %, deer 92.6 →
-    /// 93.2 %, horse 94.2 → 94.6 %, alpaca 93.9 → 94.0 %, CesiumMan 95.0 → 95.5 %, MakeHuman
-    /// bodies unchanged or up to +0.2; the triceratops, whose reference counts its girdle bones
-    /// as legs, 91.1 → 90.7 %. Larger multiples cut deeper (0.7: wolf 93.1, deer 94.1, horse
-    /// 95.4 %) but take the upper arm and the reference's higher limb roots of the fox and the
-    /// triceratops (88.6 and 90.1 %); applied to the hind legs too it loses the haunches, which
-    /// the reference rigs give to the hind limbs.
+    /// In the per-voxel and per-mesh-vertex labels, DMS voxels of arms and fore legs within
+    /// this multiple of a trunk DMS voxel's inscribed radius count as trunk (the shoulder
+    /// girdle belongs to the trunk, ch.6); parts and the fit are unchanged. In `[0, 1]`; 0
+    /// turns it off. Default 0.4 (per-vertex agreement on the quadrupeds +0.1 to +1.3 points,
+    /// wolf 91.4 → 92.7 %; larger multiples take the upper arm).
     pub pectoral_root_scale: f64,
 }
 

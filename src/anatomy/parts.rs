@@ -1,6 +1,6 @@
 //! Body-part vocabulary and the labelling result.
 
-use super::{Frame, LevelGraph};
+use super::{Frame, LevelGraph, Marks, Reach};
 use crate::voxel::Grid;
 use crate::warning::Warning;
 use glam::DVec3;
@@ -110,14 +110,47 @@ pub struct Section {
     pub length: f64,
     /// Mean of the section's DMS voxel centres, mesh units.
     pub mean: DVec3,
-    /// Highest and lowest projection of its voxels on up; highest and lowest on forward.
-    pub reach: [f64; 4],
-    /// OR of its vertices' marks: up, down, forward, backward.
-    pub extreme: [bool; 4],
+    /// How far its vertices' regions reach along up and forward.
+    pub reach: Reach,
+    /// Which extremes of the figure its vertices reach (OR of their direction marks).
+    pub extreme: Extremes,
     /// Fraction of its significant vertices with a linear cross-section.
     pub linear_fraction: f64,
     /// Whether every vertex is insignificant.
     pub insignificant: bool,
+}
+
+/// Which extremes of the figure a region reaches: the OR of its vertices' direction
+/// [`Marks`]. Serialized as the array `[up, down, forward, backward]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(into = "[bool; 4]")]
+pub struct Extremes {
+    /// The top of the figure along up.
+    pub up: bool,
+    /// The bottom along up.
+    pub down: bool,
+    /// The front along forward.
+    pub forward: bool,
+    /// The back along forward.
+    pub backward: bool,
+}
+
+impl Extremes {
+    /// These extremes and the direction marks of `marks`.
+    pub fn with(self, marks: Marks) -> Extremes {
+        Extremes {
+            up: self.up | marks.up,
+            down: self.down | marks.down,
+            forward: self.forward | marks.forward,
+            backward: self.backward | marks.backward,
+        }
+    }
+}
+
+impl From<Extremes> for [bool; 4] {
+    fn from(e: Extremes) -> Self {
+        [e.up, e.down, e.forward, e.backward]
+    }
 }
 
 /// One labelled body part.

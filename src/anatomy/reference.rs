@@ -628,7 +628,7 @@ mod tests {
     fn girdle_rig() -> (Skeleton, BTreeMap<String, JointId>) {
         let names = [
             (Canonical::Pelvis.as_str(), None),
-            ("spine", Some(0)),
+            (Canonical::Spine.as_str(), Some(0)),
             ("clavicle_l", Some(1)),
             ("upperarm_l", Some(2)),
             ("forearm_l", Some(3)),
@@ -636,7 +636,7 @@ mod tests {
             ("UpperArm.R", Some(5)),
             ("thigh_l", Some(0)),
             ("Hips", Some(0)),
-            ("neck", Some(1)),
+            (Canonical::Neck.as_str(), Some(1)),
         ];
         let skeleton = Skeleton {
             joints: names

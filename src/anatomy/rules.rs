@@ -1,8 +1,12 @@
 //! Labelling the level graph (dissertation ch.7.3.3): trunk, legs, wings, tail, head, arms,
 //! leftovers.
 
+use super::sections::sections;
+use super::tail::TailRule;
+use super::trunk::trunk;
 use super::{
-    AnatomyWarning, FigureClass, Frame, Label, LevelGraph, LimbPair, RuleOptions, Section, Side,
+    AnatomyWarning, FigureClass, Frame, Label, LevelGraph, LimbPair, Reach, RuleOptions, Section,
+    Side,
 };
 use crate::medial::MedialSurface;
 use glam::DVec3;
@@ -20,7 +24,8 @@ pub struct Assignment {
     pub partner: Option<usize>,
 }
 
-const UNLABELLED: Assignment = Assignment {
+/// A section merged into the trunk (no label yet).
+pub(super) const UNLABELLED: Assignment = Assignment {
     label: None,
     side: None,
     limb_pair: None,
@@ -44,111 +49,6 @@ pub struct Draft {
     pub assignments: Vec<Assignment>,
     /// What could not be identified.
     pub warnings: Vec<AnatomyWarning>,
-}
-
-/// Sections of `graph` given its trunk vertices: every non-trunk child of a trunk vertex roots
-/// one section.
-pub fn sections(graph: &LevelGraph, surface: &MedialSurface, trunk: &[bool]) -> Vec<Section> {
-    let mut out = Vec::new();
-    for t in 0..graph.vertices.len() {
-        if !trunk[t] {
-            continue;
-        }
-        for &c in &graph.vertices[t].children {
-            if trunk[c] {
-                continue;
-            }
-            let vertices = graph.subtree(c);
-            let mut count = 0usize;
-            let mut sum = DVec3::ZERO;
-            let mut reach = [
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-            ];
-            let mut extreme = [false; 4];
-            let (mut best, mut best_h) = (DVec3::ZERO, f64::NEG_INFINITY);
-            let (mut significant, mut linear) = (0usize, 0usize);
-            for &v in &vertices {
-                let lv = &graph.vertices[v];
-                let m = lv.marks;
-                for (e, b) in extreme
-                    .iter_mut()
-                    .zip([m.up, m.down, m.forward, m.backward])
-                {
-                    *e |= b;
-                }
-                if !lv.insignificant {
-                    significant += 1;
-                    linear += usize::from(m.linear);
-                }
-                let r = lv.reach;
-                reach = [
-                    reach[0].max(r[0]),
-                    reach[1].min(r[1]),
-                    reach[2].max(r[2]),
-                    reach[3].min(r[3]),
-                ];
-                for &p in &lv.voxels {
-                    let x = surface.centre(p);
-                    count += 1;
-                    sum += x;
-                    let h = graph.heart_values[p];
-                    if h > best_h {
-                        (best, best_h) = (x, h);
-                    }
-                }
-            }
-            let top = &graph.vertices[c];
-            out.push(Section {
-                top: c,
-                attachment_vertex: t,
-                voxels: count,
-                weight: top.weight,
-                attachment: top.centroid,
-                distal: best,
-                length: best.distance(graph.vertices[t].centroid),
-                mean: sum / count.max(1) as f64,
-                reach,
-                extreme,
-                linear_fraction: if significant > 0 {
-                    linear as f64 / significant as f64
-                } else {
-                    0.0
-                },
-                insignificant: top.insignificant,
-                vertices,
-            });
-        }
-    }
-    out
-}
-
-/// Principal axis (unit) of `points` by power iteration on their covariance, deterministic.
-fn principal_axis(points: &[DVec3]) -> DVec3 {
-    if points.len() < 2 {
-        return DVec3::ZERO;
-    }
-    let mean = points.iter().sum::<DVec3>() / points.len() as f64;
-    let mut cov = [[0.0f64; 3]; 3];
-    for p in points {
-        let d = (*p - mean).to_array();
-        for i in 0..3 {
-            for j in 0..3 {
-                cov[i][j] += d[i] * d[j];
-            }
-        }
-    }
-    let m = glam::DMat3::from_cols_array_2d(&cov);
-    let mut v = DVec3::new(1.0, 0.7, 0.3).normalize();
-    for _ in 0..100 {
-        match (m * v).try_normalize() {
-            Some(next) => v = next,
-            None => return DVec3::ZERO,
-        }
-    }
-    v
 }
 
 /// Greedy pairing of `items` (section indices) by attachment distance: the closest pair first.
@@ -201,364 +101,322 @@ fn sides(a: usize, b: usize, sections: &[Section], frame: &Frame) -> [(usize, Si
     }
 }
 
-/// What the tail rule looks at.
-struct TailContext<'a> {
-    graph: &'a LevelGraph,
-    sections: &'a [Section],
-    frame: &'a Frame,
-    figure: FigureClass,
-    trunk_points: &'a [DVec3],
-    /// Leg pairs, most anterior first.
-    pairs: &'a [(usize, usize)],
-    /// Farthest a tail may join the trunk from the posterior pair, mesh units.
-    limit: f64,
-    /// Shortest tail, mesh units.
-    min_length: f64,
-}
-
-impl TailContext<'_> {
-    fn attachment(&self, s: usize) -> DVec3 {
-        self.graph.vertices[self.sections[s].attachment_vertex].centroid
-    }
-
-    /// The tail: of `candidates` (unlabelled sections) and the unpaired legs, the one reaching
-    /// farthest back, when it extends rearward, is long enough, and roots at the pelvic end of
-    /// the trunk: within the distance limit of the posterior pair's attachments and nearer to
-    /// them than to the anterior end of the trunk (the fore pair's attachments, else the
-    /// trunk's highest point for a human-like figure, its most forward point otherwise). A
-    /// tail is the spine's continuation past the pelvis, so a protrusion from the upper back
-    /// (a backpack, a head leaning back) or a shoulder (a T-posed arm) is never one.
-    fn assign(
-        &self,
-        assign: &mut [Assignment],
-        single_legs: &mut Vec<usize>,
-        candidates: &[usize],
-    ) {
-        let (sections, frame) = (self.sections, self.frame);
-        let mut candidates: Vec<usize> = candidates.to_vec();
-        candidates.extend(single_legs.iter().copied());
-        candidates.sort_by(|&a, &b| {
-            sections[a].reach[3]
-                .total_cmp(&sections[b].reach[3])
-                .then(a.cmp(&b))
-        });
-        let Some(&t) = candidates.first() else {
-            return;
-        };
-        let s = &sections[t];
-        let attach = self.attachment(t);
-        let mid = |&(a, b): &(usize, usize)| (self.attachment(a) + self.attachment(b)) / 2.0;
-        let posterior = self.pairs.last().map(mid);
-        let anterior = if self.pairs.len() >= 2 {
-            self.pairs.first().map(mid)
-        } else {
-            let towards = match self.figure {
-                FigureClass::HumanLike => frame.up,
-                _ => frame.forward,
-            };
-            self.trunk_points
-                .iter()
-                .copied()
-                .max_by(|a, b| a.dot(towards).total_cmp(&b.dot(towards)))
-        };
-        let rearward = s.distal.dot(frame.forward) < attach.dot(frame.forward);
-        let near = posterior.is_none_or(|p| p.distance(attach) <= self.limit);
-        let pelvic_end = match (posterior, anterior) {
-            (Some(p), Some(a)) => p.distance(attach) < a.distance(attach),
-            _ => true,
-        };
-        let long = s.length >= self.min_length;
-        if s.extreme[3] && rearward && near && pelvic_end && long {
-            assign[t] = Assignment {
-                label: Some(Label::Tail),
-                ..UNLABELLED
-            };
-            single_legs.retain(|&l| l != t);
-        }
-    }
-}
-
-/// Labels the level graph (ch.7.3.3). `trunk_centre` is used for the side of unpaired limbs.
+/// Labels the level graph (ch.7.3.3), a phase per step: the trunk and the figure class
+/// ([`trunk`]), the sections hanging off the trunk ([`sections`]), then legs, wings, the tail
+/// (an animal's before the head, a human-like figure's after the head and the arms), the head,
+/// arms, lone arms, unpaired legs, and the leftovers merged into the trunk.
 pub fn label_graph(
     graph: &LevelGraph,
     surface: &MedialSurface,
     frame: &Frame,
     options: &RuleOptions,
 ) -> Draft {
+    let trunk = trunk(graph, surface, frame, options);
     let mut warnings = Vec::new();
-    let n = graph.vertices.len();
-    let radius = graph.heart_radius.max(f64::MIN_POSITIVE);
-    // The trunk: the major junctions, the root, and the tree paths joining them.
-    let mut trunk = vec![false; n];
-    if n > 0 {
-        trunk[graph.root] = true;
-    }
-    let junctions: Vec<usize> = (0..n)
-        .filter(|&v| graph.vertices[v].major_junction)
-        .collect();
-    for &j in &junctions {
-        for a in graph.ancestors(j) {
-            if trunk[a] {
-                break;
-            }
-            trunk[a] = true;
-        }
-    }
-    if junctions.is_empty() {
+    if !trunk.has_junction {
         warnings.push(AnatomyWarning::NoMajorJunction);
     }
-    let trunk_points: Vec<DVec3> = (0..n)
-        .filter(|&v| trunk[v])
-        .flat_map(|v| graph.vertices[v].voxels.iter().map(|&p| surface.centre(p)))
-        .collect();
-    let trunk_axis = principal_axis(&trunk_points);
-    let trunk_angle = if trunk_axis == DVec3::ZERO {
-        f64::NAN
-    } else {
-        trunk_axis.dot(frame.up).abs().min(1.0).acos().to_degrees()
-    };
-    let figure = if junctions.is_empty() || trunk_angle.is_nan() {
-        FigureClass::Unknown
-    } else if trunk_angle <= options.vertical_angle {
-        FigureClass::HumanLike
-    } else if trunk_angle >= options.horizontal_angle {
-        FigureClass::AnimalLike
-    } else {
-        FigureClass::Unknown
-    };
-    let sections = sections(graph, surface, &trunk);
-    let mut assign = vec![UNLABELLED; sections.len()];
-    let significant: Vec<usize> = (0..sections.len())
-        .filter(|&s| !sections[s].insignificant)
-        .collect();
-    let unlabelled = |assign: &[Assignment]| -> Vec<usize> {
-        significant
-            .iter()
-            .copied()
-            .filter(|&s| assign[s].label.is_none())
-            .collect()
+    let sections = sections(graph, surface, &trunk.vertices);
+    let mut rules = Rules {
+        graph,
+        sections: &sections,
+        frame,
+        options,
+        figure: trunk.figure,
+        radius: graph.heart_radius.max(f64::MIN_POSITIVE),
+        significant: (0..sections.len())
+            .filter(|&s| !sections[s].insignificant)
+            .collect(),
+        assign: vec![UNLABELLED; sections.len()],
+        warnings,
     };
 
-    // Legs: sections reaching the bottom of the figure, paired by where they join the trunk.
-    let legs: Vec<usize> = unlabelled(&assign)
-        .into_iter()
-        .filter(|&s| sections[s].extreme[1])
-        .collect();
-    let (leg_pairs, mut single_legs) = pair_up(&legs, &sections, graph, f64::INFINITY);
-    // Fore/hind: with two or more pairs the most anterior pair is fore, the others hind.
-    let anterior = |s: usize| -> f64 {
-        let a = graph.vertices[sections[s].attachment_vertex].centroid;
-        match figure {
-            FigureClass::HumanLike => a.dot(frame.up),
-            _ => a.dot(frame.forward),
-        }
+    let mut legs = rules.legs();
+    rules.wings();
+    // Tail: an animal's before the head (its tail may reach as high as its head); a human-like
+    // figure's after the head and the arms, which it may never take (a T-posed arm reaching
+    // back, a head leaning back).
+    let tail = TailRule {
+        graph,
+        sections: &sections,
+        frame,
+        figure: trunk.figure,
+        trunk_points: &trunk.points,
+        pairs: &legs.pairs,
+        limit: options.tail_distance * rules.radius,
+        min_length: options.tail_length * rules.radius,
     };
-    let mut ordered = leg_pairs.clone();
-    ordered.sort_by(|x, y| {
-        (anterior(y.0) + anterior(y.1)).total_cmp(&(anterior(x.0) + anterior(x.1)))
-    });
-    for (k, &(a, b)) in ordered.iter().enumerate() {
-        let pair = if ordered.len() >= 2 && k == 0 {
-            LimbPair::Fore
-        } else {
-            LimbPair::Hind
-        };
-        for (s, side) in sides(a, b, &sections, frame) {
-            assign[s] = Assignment {
-                label: Some(Label::Leg),
+    let human_like = trunk.figure == FigureClass::HumanLike;
+    if !human_like {
+        rules.tail(&tail, &mut legs.single);
+    }
+    rules.head(trunk.has_junction);
+    let arms = rules.arms();
+    let centre = trunk.centre();
+    if human_like {
+        rules.tail(&tail, &mut legs.single);
+        rules.lone_arms(&arms, centre);
+    }
+    rules.unpaired_legs(&legs, centre);
+    rules.leg_warnings(&legs, trunk.has_junction);
+    rules.leftovers();
+
+    let Rules {
+        assign, warnings, ..
+    } = rules;
+    Draft {
+        figure: trunk.figure,
+        trunk_axis: trunk.axis,
+        trunk_angle: trunk.angle,
+        trunk: trunk.vertices,
+        sections,
+        assignments: assign,
+        warnings,
+    }
+}
+
+/// The labelled legs.
+struct Legs {
+    /// Leg pairs, most anterior first.
+    pairs: Vec<(usize, usize)>,
+    /// Legs without a partner.
+    single: Vec<usize>,
+}
+
+/// The labelling in progress: the sections, one assignment per section, the warnings.
+struct Rules<'a> {
+    graph: &'a LevelGraph,
+    sections: &'a [Section],
+    frame: &'a Frame,
+    options: &'a RuleOptions,
+    figure: FigureClass,
+    /// The heart radius (mesh units, positive): the unit of the length thresholds.
+    radius: f64,
+    /// The significant sections.
+    significant: Vec<usize>,
+    assign: Vec<Assignment>,
+    warnings: Vec<AnatomyWarning>,
+}
+
+impl Rules<'_> {
+    /// The significant sections without a label yet.
+    fn unlabelled(&self) -> Vec<usize> {
+        self.significant
+            .iter()
+            .copied()
+            .filter(|&s| self.assign[s].label.is_none())
+            .collect()
+    }
+
+    /// Labels both sections of a pair, left and right by [`sides`].
+    fn label_pair(&mut self, (a, b): (usize, usize), label: Label, pair: LimbPair) {
+        for (s, side) in sides(a, b, self.sections, self.frame) {
+            self.assign[s] = Assignment {
+                label: Some(label),
                 side: Some(side),
                 limb_pair: Some(pair),
                 partner: Some(if s == a { b } else { a }),
             };
         }
     }
-    for &s in &single_legs {
-        assign[s] = Assignment {
-            label: Some(Label::Leg),
-            ..UNLABELLED
-        };
+
+    /// Projection of a section's attachment vertex on the figure's anterior direction (up for
+    /// a human-like figure, forward otherwise).
+    fn anterior(&self, s: usize) -> f64 {
+        let a = self.graph.vertices[self.sections[s].attachment_vertex].centroid;
+        match self.figure {
+            FigureClass::HumanLike => a.dot(self.frame.up),
+            _ => a.dot(self.frame.forward),
+        }
     }
 
-    // Wings: mostly linear cross-sections, in pairs.
-    let wings: Vec<usize> = unlabelled(&assign)
-        .into_iter()
-        .filter(|&s| {
-            sections[s].linear_fraction >= options.wing_fraction
-                && sections[s].length >= options.limb_length * radius
-        })
-        .collect();
-    let (wing_pairs, _) = pair_up(&wings, &sections, graph, f64::INFINITY);
-    for &(a, b) in &wing_pairs {
-        for (s, side) in sides(a, b, &sections, frame) {
-            assign[s] = Assignment {
-                label: Some(Label::Wing),
-                side: Some(side),
-                limb_pair: Some(LimbPair::Fore),
-                partner: Some(if s == a { b } else { a }),
+    /// Legs: sections reaching the bottom of the figure, paired by where they join the trunk.
+    /// With two or more pairs the most anterior pair is fore, the others hind.
+    fn legs(&mut self) -> Legs {
+        let legs: Vec<usize> = self
+            .unlabelled()
+            .into_iter()
+            .filter(|&s| self.sections[s].extreme.down)
+            .collect();
+        let (mut pairs, single) = pair_up(&legs, self.sections, self.graph, f64::INFINITY);
+        pairs.sort_by(|x, y| {
+            (self.anterior(y.0) + self.anterior(y.1))
+                .total_cmp(&(self.anterior(x.0) + self.anterior(x.1)))
+        });
+        for (k, &pair) in pairs.iter().enumerate() {
+            let limb_pair = if pairs.len() >= 2 && k == 0 {
+                LimbPair::Fore
+            } else {
+                LimbPair::Hind
             };
+            self.label_pair(pair, Label::Leg, limb_pair);
         }
-    }
-
-    // Tail: an animal's before the head (its tail may reach as high as its head); a human-like
-    // figure's after the head and the arms, which it may never take (a T-posed arm reaching
-    // back, a head leaning back).
-    let tail_context = TailContext {
-        graph,
-        sections: &sections,
-        frame,
-        figure,
-        trunk_points: &trunk_points,
-        pairs: &ordered,
-        limit: options.tail_distance * radius,
-        min_length: options.tail_length * radius,
-    };
-    if figure != FigureClass::HumanLike {
-        let candidates = unlabelled(&assign);
-        tail_context.assign(&mut assign, &mut single_legs, &candidates);
-    }
-
-    // Head: upward extreme (human-like), forward extreme (animal-like), else both.
-    let (up_lo, up_hi, fw_lo, fw_hi) = sections.iter().fold(
-        (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), s| {
-            (
-                a.min(s.reach[1]),
-                b.max(s.reach[0]),
-                c.min(s.reach[3]),
-                d.max(s.reach[2]),
-            )
-        },
-    );
-    let score = |s: usize| -> f64 {
-        let sec = &sections[s];
-        let up = (sec.reach[0] - up_lo) / (up_hi - up_lo).max(f64::MIN_POSITIVE);
-        let fw = (sec.reach[2] - fw_lo) / (fw_hi - fw_lo).max(f64::MIN_POSITIVE);
-        match figure {
-            FigureClass::HumanLike => up,
-            FigureClass::AnimalLike => fw,
-            FigureClass::Unknown => up + fw,
-        }
-    };
-    let head = unlabelled(&assign)
-        .into_iter()
-        .max_by(|&a, &b| score(a).total_cmp(&score(b)).then(b.cmp(&a)));
-    match head {
-        Some(h) if !junctions.is_empty() => {
-            assign[h] = Assignment {
-                label: Some(Label::Head),
+        for &s in &single {
+            self.assign[s] = Assignment {
+                label: Some(Label::Leg),
                 ..UNLABELLED
-            }
-        }
-        _ => warnings.push(AnatomyWarning::NoHead),
-    }
-
-    // Arms: remaining long sections joining the trunk at about the same place, in pairs.
-    let arms: Vec<usize> = unlabelled(&assign)
-        .into_iter()
-        .filter(|&s| sections[s].length >= options.limb_length * radius)
-        .collect();
-    let (arm_pairs, _) = pair_up(&arms, &sections, graph, options.pair_distance * radius);
-    for &(a, b) in &arm_pairs {
-        for (s, side) in sides(a, b, &sections, frame) {
-            assign[s] = Assignment {
-                label: Some(Label::Arm),
-                side: Some(side),
-                limb_pair: Some(LimbPair::Fore),
-                partner: Some(if s == a { b } else { a }),
             };
         }
+        Legs { pairs, single }
     }
 
-    if figure == FigureClass::HumanLike {
-        let candidates = unlabelled(&assign);
-        tail_context.assign(&mut assign, &mut single_legs, &candidates);
+    /// Wings: long sections with mostly linear cross-sections, in pairs.
+    fn wings(&mut self) {
+        let (options, radius) = (self.options, self.radius);
+        let wings: Vec<usize> = self
+            .unlabelled()
+            .into_iter()
+            .filter(|&s| {
+                self.sections[s].linear_fraction >= options.wing_fraction
+                    && self.sections[s].length >= options.limb_length * radius
+            })
+            .collect();
+        let (pairs, _) = pair_up(&wings, self.sections, self.graph, f64::INFINITY);
+        for pair in pairs {
+            self.label_pair(pair, Label::Wing, LimbPair::Fore);
+        }
     }
 
-    let centre = if trunk_points.is_empty() {
-        DVec3::ZERO
-    } else {
-        trunk_points.iter().sum::<DVec3>() / trunk_points.len() as f64
-    };
-    let side_of = |s: usize| {
-        if (sections[s].mean - centre).dot(frame.left) >= 0.0 {
+    /// The tail among the unlabelled sections and the unpaired legs ([`TailRule::assign`]).
+    fn tail(&mut self, rule: &TailRule, single_legs: &mut Vec<usize>) {
+        let candidates = self.unlabelled();
+        rule.assign(&mut self.assign, single_legs, &candidates);
+    }
+
+    /// Head: the unlabelled section reaching farthest up (human-like), forward (animal-like),
+    /// else both; none without a major junction.
+    fn head(&mut self, has_junction: bool) {
+        let all = self
+            .sections
+            .iter()
+            .fold(Reach::EMPTY, |r, s| r.union(s.reach));
+        let score = |s: usize| -> f64 {
+            let reach = &self.sections[s].reach;
+            let up =
+                (reach.highest - all.lowest) / (all.highest - all.lowest).max(f64::MIN_POSITIVE);
+            let fw = (reach.foremost - all.hindmost)
+                / (all.foremost - all.hindmost).max(f64::MIN_POSITIVE);
+            match self.figure {
+                FigureClass::HumanLike => up,
+                FigureClass::AnimalLike => fw,
+                FigureClass::Unknown => up + fw,
+            }
+        };
+        let head = self
+            .unlabelled()
+            .into_iter()
+            .max_by(|&a, &b| score(a).total_cmp(&score(b)).then(b.cmp(&a)));
+        match head {
+            Some(h) if has_junction => {
+                self.assign[h] = Assignment {
+                    label: Some(Label::Head),
+                    ..UNLABELLED
+                }
+            }
+            _ => self.warnings.push(AnatomyWarning::NoHead),
+        }
+    }
+
+    /// Arms: remaining long sections joining the trunk at about the same place, in pairs.
+    /// Returns the long sections (the candidates, paired or not).
+    fn arms(&mut self) -> Vec<usize> {
+        let (options, radius) = (self.options, self.radius);
+        let arms: Vec<usize> = self
+            .unlabelled()
+            .into_iter()
+            .filter(|&s| self.sections[s].length >= options.limb_length * radius)
+            .collect();
+        let (pairs, _) = pair_up(
+            &arms,
+            self.sections,
+            self.graph,
+            options.pair_distance * radius,
+        );
+        for pair in pairs {
+            self.label_pair(pair, Label::Arm, LimbPair::Fore);
+        }
+        arms
+    }
+
+    /// Left or right of the trunk's centre line (through `centre`).
+    fn side_of(&self, s: usize, centre: DVec3) -> Side {
+        if (self.sections[s].mean - centre).dot(self.frame.left) >= 0.0 {
             Side::Left
         } else {
             Side::Right
         }
-    };
-    // A lone arm of a human-like figure: a long section left unpaired that joins the upper
-    // half of the trunk (its partner is missing, or too far away to pair).
-    if figure == FigureClass::HumanLike {
-        for s in arms {
-            if assign[s].label.is_none()
-                && sections[s].attachment.dot(frame.up) > centre.dot(frame.up)
+    }
+
+    /// A lone arm of a human-like figure: a long section (of `arms`) left unpaired that joins
+    /// the upper half of the trunk (its partner is missing, or too far away to pair).
+    fn lone_arms(&mut self, arms: &[usize], centre: DVec3) {
+        for &s in arms {
+            if self.assign[s].label.is_none()
+                && self.sections[s].attachment.dot(self.frame.up) > centre.dot(self.frame.up)
             {
-                let side = side_of(s);
-                assign[s] = Assignment {
+                let side = self.side_of(s, centre);
+                self.assign[s] = Assignment {
                     label: Some(Label::Arm),
                     side: Some(side),
                     limb_pair: Some(LimbPair::Fore),
                     partner: None,
                 };
-                warnings.push(AnatomyWarning::SingleArm { section: s, side });
+                self.warnings
+                    .push(AnatomyWarning::SingleArm { section: s, side });
             }
         }
     }
 
-    // Unpaired legs: side from the trunk's centre line, pair from the nearest leg pair.
-    for &s in &single_legs {
-        assign[s].side = Some(side_of(s));
-        let nearest = ordered.iter().min_by(|x, y| {
-            let dx = sections[x.0].attachment.distance(sections[s].attachment);
-            let dy = sections[y.0].attachment.distance(sections[s].attachment);
-            dx.total_cmp(&dy)
-        });
-        assign[s].limb_pair = nearest
-            .and_then(|&(a, _)| assign[a].limb_pair)
-            .or(Some(LimbPair::Hind));
-    }
-    let leg_count = assign
-        .iter()
-        .filter(|a| a.label == Some(Label::Leg))
-        .count();
-    if leg_count % 2 == 1 {
-        warnings.push(AnatomyWarning::OddLegs {
-            legs: leg_count,
-            unpaired: single_legs.len(),
-        });
-    }
-    if ordered.len() > 2 {
-        warnings.push(AnatomyWarning::TooManyLegPairs {
-            pairs: ordered.len(),
-        });
-    }
-    if leg_count == 0 && !junctions.is_empty() {
-        warnings.push(AnatomyWarning::NoLegs);
-    }
-
-    // Leftovers: merged into the trunk; long ones are named for the user.
-    for s in unlabelled(&assign) {
-        if sections[s].length >= options.leftover_length * radius {
-            let d = sections[s].distal;
-            warnings.push(AnatomyWarning::UnidentifiedProtrusion {
-                section: s,
-                voxels: sections[s].voxels,
-                reach: d,
+    /// Unpaired legs: side from the trunk's centre line, girdle from the nearest leg pair.
+    fn unpaired_legs(&mut self, legs: &Legs, centre: DVec3) {
+        let sections = self.sections;
+        for &s in &legs.single {
+            self.assign[s].side = Some(self.side_of(s, centre));
+            let nearest = legs.pairs.iter().min_by(|x, y| {
+                let dx = sections[x.0].attachment.distance(sections[s].attachment);
+                let dy = sections[y.0].attachment.distance(sections[s].attachment);
+                dx.total_cmp(&dy)
             });
+            self.assign[s].limb_pair = nearest
+                .and_then(|&(a, _)| self.assign[a].limb_pair)
+                .or(Some(LimbPair::Hind));
         }
     }
-    Draft {
-        figure,
-        trunk_axis,
-        trunk_angle,
-        trunk,
-        sections,
-        assignments: assign,
-        warnings,
+
+    /// Warnings for an odd number of legs, more than two leg pairs, or no legs.
+    fn leg_warnings(&mut self, legs: &Legs, has_junction: bool) {
+        let leg_count = self
+            .assign
+            .iter()
+            .filter(|a| a.label == Some(Label::Leg))
+            .count();
+        if leg_count % 2 == 1 {
+            self.warnings.push(AnatomyWarning::OddLegs {
+                legs: leg_count,
+                unpaired: legs.single.len(),
+            });
+        }
+        if legs.pairs.len() > 2 {
+            self.warnings.push(AnatomyWarning::TooManyLegPairs {
+                pairs: legs.pairs.len(),
+            });
+        }
+        if leg_count == 0 && has_junction {
+            self.warnings.push(AnatomyWarning::NoLegs);
+        }
+    }
+
+    /// Leftovers stay merged into the trunk; long ones are named for the user.
+    fn leftovers(&mut self) {
+        for s in self.unlabelled() {
+            let section = &self.sections[s];
+            if section.length >= self.options.leftover_length * self.radius {
+                self.warnings.push(AnatomyWarning::UnidentifiedProtrusion {
+                    section: s,
+                    voxels: section.voxels,
+                    reach: section.distal,
+                });
+            }
+        }
     }
 }

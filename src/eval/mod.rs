@@ -37,7 +37,7 @@
 //!     deform: true,
 //!     ..Default::default()
 //! };
-//! let reference = Skeleton { joints: vec![joint("root", None, 1.0), joint("neck", Some(0), 1.5), joint("head", Some(1), 1.7)] };
+//! let reference = Skeleton { joints: vec![joint("root", None, 1.0), joint("mid", Some(0), 1.5), joint("tip", Some(1), 1.7)] };
 //! let mut predicted = reference.clone();
 //! predicted.joints[2].position.z += 0.01;
 //! let result = evaluate(
@@ -47,7 +47,7 @@
 //!     &EvalOptions::default(),
 //! )
 //! .unwrap();
-//! assert_eq!(result.worst_joint, "head");
+//! assert_eq!(result.worst_joint, "tip");
 //! assert!((result.summary.max - 0.01).abs() < 1e-12);
 //! ```
 

@@ -1,7 +1,7 @@
 //! Unit tests of the eval stage against analytic skeletons and brute force.
 
 use super::*;
-use crate::skeleton::{Joint, JointId, Skeleton};
+use crate::skeleton::{Canonical, Joint, JointId, Side, Skeleton};
 use glam::DVec3;
 use std::path::Path;
 
@@ -19,20 +19,60 @@ fn joint(name: &str, parent: Option<usize>, p: [f64; 3]) -> Joint {
 fn stick_figure() -> Skeleton {
     Skeleton {
         joints: vec![
-            joint("pelvis", None, [0.0, 1.0, 0.0]),
-            joint("chest", Some(0), [0.0, 1.3, 0.0]),
-            joint("neck", Some(1), [0.0, 1.5, 0.0]),
-            joint("head", Some(2), [0.0, 1.8, 0.0]),
-            joint("shoulder_L", Some(1), [0.2, 1.45, 0.0]),
-            joint("elbow_L", Some(4), [0.45, 1.2, 0.0]),
-            joint("shoulder_R", Some(1), [-0.2, 1.45, 0.0]),
-            joint("elbow_R", Some(6), [-0.45, 1.2, 0.0]),
-            joint("hip_L", Some(0), [0.1, 0.95, 0.0]),
-            joint("knee_L", Some(8), [0.1, 0.5, 0.0]),
-            joint("ankle_L", Some(9), [0.1, 0.0, 0.0]),
-            joint("hip_R", Some(0), [-0.1, 0.95, 0.0]),
-            joint("knee_R", Some(11), [-0.1, 0.5, 0.0]),
-            joint("ankle_R", Some(12), [-0.1, 0.0, 0.0]),
+            joint(Canonical::Pelvis.as_str(), None, [0.0, 1.0, 0.0]),
+            joint(Canonical::Chest.as_str(), Some(0), [0.0, 1.3, 0.0]),
+            joint(Canonical::Neck.as_str(), Some(1), [0.0, 1.5, 0.0]),
+            joint(Canonical::Head.as_str(), Some(2), [0.0, 1.8, 0.0]),
+            joint(
+                Canonical::Shoulder(Side::Left).as_str(),
+                Some(1),
+                [0.2, 1.45, 0.0],
+            ),
+            joint(
+                Canonical::Elbow(Side::Left).as_str(),
+                Some(4),
+                [0.45, 1.2, 0.0],
+            ),
+            joint(
+                Canonical::Shoulder(Side::Right).as_str(),
+                Some(1),
+                [-0.2, 1.45, 0.0],
+            ),
+            joint(
+                Canonical::Elbow(Side::Right).as_str(),
+                Some(6),
+                [-0.45, 1.2, 0.0],
+            ),
+            joint(
+                Canonical::Hip(Side::Left).as_str(),
+                Some(0),
+                [0.1, 0.95, 0.0],
+            ),
+            joint(
+                Canonical::Knee(Side::Left).as_str(),
+                Some(8),
+                [0.1, 0.5, 0.0],
+            ),
+            joint(
+                Canonical::Ankle(Side::Left).as_str(),
+                Some(9),
+                [0.1, 0.0, 0.0],
+            ),
+            joint(
+                Canonical::Hip(Side::Right).as_str(),
+                Some(0),
+                [-0.1, 0.95, 0.0],
+            ),
+            joint(
+                Canonical::Knee(Side::Right).as_str(),
+                Some(11),
+                [-0.1, 0.5, 0.0],
+            ),
+            joint(
+                Canonical::Ankle(Side::Right).as_str(),
+                Some(12),
+                [-0.1, 0.0, 0.0],
+            ),
         ],
     }
 }
@@ -100,7 +140,7 @@ fn single_joint_offset_changes_only_that_joint() {
     let mut p = s.clone();
     p.joints[5].position.y -= 0.1;
     let e = evaluate(&rig(p), &rig(s), None, &EvalOptions::default()).unwrap();
-    assert_eq!(e.worst_joint, "elbow_L");
+    assert_eq!(e.worst_joint, Canonical::Elbow(Side::Left).as_str());
     assert!((e.summary.max - 0.1).abs() < 1e-12);
     assert!((e.summary.mean - 0.1 / 14.0).abs() < 1e-12);
     assert!((e.summary.rms - (0.01f64 / 14.0).sqrt()).abs() < 1e-12);
@@ -302,11 +342,15 @@ fn deforming_filter_reparents() {
     }
     let mut r = rig(s);
     r.canonical.insert("root_control".into(), JointId(0));
-    r.canonical.insert("head".into(), JointId(4));
+    r.canonical
+        .insert(Canonical::Head.as_str().into(), JointId(4));
     let d = r.deforming();
     assert_eq!(d.skeleton, stick_figure());
     assert_eq!(d.canonical.len(), 1);
-    assert_eq!(d.canonical_joint("head").unwrap().name, "head");
+    assert_eq!(
+        d.canonical_joint(Canonical::Head.as_str()).unwrap().name,
+        Canonical::Head.as_str()
+    );
 }
 
 const BVH: &str = "HIERARCHY
@@ -395,21 +439,31 @@ fn bvh_errors_name_the_line() {
 
 #[test]
 fn skelfit_json_with_names_and_indices() {
-    let text = r#"{"joints": [
-        {"name": "pelvis", "parent": null, "position": [0, 1, 0]},
-        {"name": "spine_01", "parent": "pelvis", "position": [0, 1.2, 0]},
+    let (pelvis, spine) = (Canonical::Pelvis.as_str(), Canonical::Spine.as_str());
+    let text = serde_json::json!({"joints": [
+        {"name": pelvis, "parent": null, "position": [0, 1, 0]},
+        {"name": "spine_01", "parent": pelvis, "position": [0, 1.2, 0]},
         {"name": "tip", "parent": 1, "position": [0, 1.4, 0], "deform": false}],
-        "canonical": {"pelvis": "pelvis", "spine": "spine_01"}}"#;
-    let r = parse_json_rig(text, Path::new("out/fit.json")).unwrap();
+        "canonical": {pelvis: pelvis, spine: "spine_01"}})
+    .to_string();
+    let r = parse_json_rig(&text, Path::new("out/fit.json")).unwrap();
     assert_eq!(r.format, RigFormat::Skelfit);
     assert_eq!(r.model, "fit");
     assert_eq!(r.skeleton.joints[2].parent, Some(JointId(1)));
     assert!(!r.skeleton.joints[2].deform);
-    assert_eq!(r.canonical_joint("spine").unwrap().name, "spine_01");
+    assert_eq!(
+        r.canonical_joint(Canonical::Spine.as_str()).unwrap().name,
+        "spine_01"
+    );
 }
 
 #[test]
 fn invalid_json_skeletons_are_errors() {
+    let head_to_nothing = serde_json::json!({
+        "joints": [{"name": "a", "position": [0, 0, 0]}],
+        "canonical": {Canonical::Head.as_str(): "zz"}
+    })
+    .to_string();
     let cases = [
         (
             r#"{"joints": [{"name": "a", "parent": "b", "position": [0,0,0]}, {"name": "b", "position": [0,0,0]}]}"#,
@@ -423,10 +477,7 @@ fn invalid_json_skeletons_are_errors() {
             r#"{"joints": [{"name": "a", "parent": 0, "position": [0,0,0]}]}"#,
             "parents must come before",
         ),
-        (
-            r#"{"joints": [{"name": "a", "position": [0,0,0]}], "canonical": {"head": "zz"}}"#,
-            "does not exist",
-        ),
+        (head_to_nothing.as_str(), "does not exist"),
         (r#"{"format": "other-v2", "joints": []}"#, "other-v2"),
         (r#"{"joints": "#, "not a valid json"),
     ];
@@ -455,19 +506,23 @@ fn bundled_presets_are_valid() {
     let presets = parse_presets().unwrap();
     assert_eq!(presets.len(), 5);
     for p in &presets {
-        assert!(p.joints.contains_key("pelvis"), "{}", p.preset);
+        assert!(
+            p.joints.contains_key(Canonical::Pelvis.as_str()),
+            "{}",
+            p.preset
+        );
         assert!(p.joints.keys().all(|k| is_canonical_key(k)));
     }
     assert_eq!(
-        preset("mixamo").unwrap().joints["shoulder_L"][0],
+        preset("mixamo").unwrap().joints[Canonical::Shoulder(Side::Left).as_str()][0],
         "mixamorig:LeftArm"
     );
     assert_eq!(
-        preset("unity_humanoid").unwrap().joints["shoulder_L"],
+        preset("unity_humanoid").unwrap().joints[Canonical::Shoulder(Side::Left).as_str()],
         ["LeftUpperArm"]
     );
     assert_eq!(
-        preset("makehuman_game_engine").unwrap().joints["shoulder_L"],
+        preset("makehuman_game_engine").unwrap().joints[Canonical::Shoulder(Side::Left).as_str()],
         ["upperarm_l"]
     );
 }
@@ -492,7 +547,7 @@ fn presets_are_detected() {
     ]);
     let (p, map) = detect_preset(&mixamo).unwrap();
     assert_eq!(p.preset, "mixamo");
-    assert_eq!(map["shoulder_L"], JointId(3));
+    assert_eq!(map[Canonical::Shoulder(Side::Left).as_str()], JointId(3));
     // Without the namespace (e.g. a Mixamo BVH) it is still Mixamo (Spine2 = chest) ...
     let bare = named(&["Hips", "Spine", "Spine1", "Spine2", "LeftArm"]);
     assert_eq!(detect_preset(&bare).unwrap().0.preset, "mixamo");
@@ -500,16 +555,16 @@ fn presets_are_detected() {
     let cmu = named(&["Hips", "LowerBack", "Spine", "Spine1", "Neck", "LeftArm"]);
     let (p, map) = detect_preset(&cmu).unwrap();
     assert_eq!(p.preset, "cmu");
-    assert_eq!(map["chest"], JointId(3));
+    assert_eq!(map[Canonical::Chest.as_str()], JointId(3));
     // Other namespaces match loosely.
     let other = named(&["mixamorig1:Hips", "mixamorig1:Spine1", "mixamorig1:Spine2"]);
     assert_eq!(detect_preset(&other).unwrap().0.preset, "mixamo");
     let unity = named(&["Hips", "Spine", "Chest", "LeftUpperArm", "LeftLowerArm"]);
     let (p, map) = detect_preset(&unity).unwrap();
     assert_eq!(p.preset, "unity_humanoid");
-    assert_eq!(map["elbow_L"], JointId(4));
+    assert_eq!(map[Canonical::Elbow(Side::Left).as_str()], JointId(4));
     let game = named(&[
-        "pelvis",
+        Canonical::Pelvis.as_str(),
         "spine_01",
         "spine_02",
         "spine_03",
@@ -525,7 +580,14 @@ fn presets_are_detected() {
     let c = correspond(&rig(mixamo), &rig(unity)).unwrap();
     assert_eq!(c.method, MatchMethod::Canonical);
     let keys: Vec<&str> = c.pairs.iter().map(|p| p.key.as_str()).collect();
-    assert_eq!(keys, ["pelvis", "spine", "shoulder_L"]);
+    assert_eq!(
+        keys,
+        [
+            Canonical::Pelvis.as_str(),
+            Canonical::Spine.as_str(),
+            Canonical::Shoulder(Side::Left).as_str()
+        ]
+    );
     assert_eq!(
         c.reference_naming,
         CanonicalSource::Preset("unity_humanoid".into())
@@ -575,7 +637,7 @@ fn csv_and_json_round_trip() {
     assert_eq!(back.keys.len(), dataset.keys.len());
     assert!((back.pooled_percent.mean - dataset.pooled_percent.mean).abs() < 1e-12);
     assert_eq!(dataset.pooled_percent.count, 28);
-    assert_eq!(dataset.keys[0].key, "pelvis");
+    assert_eq!(dataset.keys[0].key, Canonical::Pelvis.as_str());
     assert_eq!(dataset.keys[0].count, 2);
 }
 
@@ -771,13 +833,16 @@ fn anatomy_table_lists_missing_core_joints_and_parts() {
         missing_parts: vec!["arm R".into()],
     });
     result.core = Some(CoreError {
-        mapped: vec!["pelvis".into(), "shoulder_R".into()],
+        mapped: vec![
+            Canonical::Pelvis.as_str().into(),
+            Canonical::Shoulder(Side::Right).as_str().into(),
+        ],
         paired: 1,
         mean: 0.02,
         mean_percent: 1.25,
         max_percent: 1.25,
-        worst: "pelvis".into(),
-        missing: vec!["shoulder_R".into()],
+        worst: Canonical::Pelvis.as_str().into(),
+        missing: vec![Canonical::Shoulder(Side::Right).as_str().into()],
     });
     let record = |message: String| crate::warning::WarningRecord {
         stage: "fit".into(),
@@ -803,13 +868,19 @@ fn anatomy_table_lists_missing_core_joints_and_parts() {
     assert_eq!(cell(0, "real"), "yes");
     assert_eq!(cell(0, "core %"), "1.25");
     assert_eq!(cell(0, "core paired"), "1/2");
-    assert_eq!(cell(0, "missing core joints"), "shoulder_R");
+    assert_eq!(
+        cell(0, "missing core joints"),
+        Canonical::Shoulder(Side::Right).as_str()
+    );
     assert_eq!(cell(1, "missing core joints"), "none");
     assert_eq!(cell(0, "missing parts"), "arm R");
     assert_eq!(cell(0, "warnings"), "3");
     let top = cell(0, "top warnings");
     assert!(top.ends_with("… · second"), "{top}");
-    assert_eq!(bench_table(&results).rows[0][14], "shoulder_R");
+    assert_eq!(
+        bench_table(&results).rows[0][14],
+        Canonical::Shoulder(Side::Right).as_str()
+    );
     let all = core_summary(&results, &|_| true).unwrap();
     assert_eq!((all.models, all.with_missing), (2, 1));
     assert!((all.percent.median - 2.25).abs() < 1e-12);

@@ -14,7 +14,9 @@
 
 use super::ears::{ears, EarOptions};
 use super::reach::{reach_the_skin, ReachOptions};
-use super::{AxialPath, DigitInput, DorsalProbe, FitError, FitInput, LimbInput, Side};
+use super::{
+    AxialPath, DigitInput, DorsalProbe, FitError, FitInput, FitInputWarning, LimbInput, Side,
+};
 use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part};
 use crate::distance::DistanceMap;
 use crate::medial::MedialSurface;
@@ -94,7 +96,7 @@ impl Default for FitInputOptions {
 /// through `skin` (the figure's inside, e.g. [`crate::voxel::Solid`]; `distance` its distance
 /// map), and the ears when `template` places them (none without a template: the general
 /// control skeleton's fallback). Returns the input and what could not be built (a missing
-/// head, an unreachable limb), as sentences.
+/// head, an unreachable limb).
 ///
 /// Up and forward are the labelling's frame. Paths run through the labelled (largest) DMS
 /// component only.
@@ -108,7 +110,7 @@ pub fn fit_input(
     distance: &DistanceMap,
     template: Option<&Template>,
     options: &FitInputOptions,
-) -> Result<(FitInput, Vec<String>), FitError> {
+) -> Result<(FitInput, Vec<FitInputWarning>), FitError> {
     options.validate()?;
     let (mut input, warnings) = centralised_paths(labelling, surface, options);
     reach_the_skin(&mut input, options, skin, distance);
@@ -120,12 +122,12 @@ pub fn fit_input(
 
 /// Centralised DMS paths between the labelled parts, their free ends extended by
 /// [`FitInputOptions::end_extension`]: the input of [`fit_input`] before the leg tips reach the
-/// skin and without ears, and the sentences saying what could not be built.
+/// skin and without ears, and what could not be built.
 fn centralised_paths(
     labelling: &Labelling,
     surface: &MedialSurface,
     options: &FitInputOptions,
-) -> (FitInput, Vec<String>) {
+) -> (FitInput, Vec<FitInputWarning>) {
     let graph = DmsGraph::new(surface);
     let paths = Paths {
         graph: &graph,
@@ -183,7 +185,7 @@ type Unpaired = (usize, LimbKind, usize);
 /// `symmetric_roots`), the pairs' midpoints, and the limbs without a partner.
 fn paired_limbs(
     paths: &Paths,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<FitInputWarning>,
 ) -> (Vec<LimbInput>, Vec<Midpoint>, Vec<Unpaired>) {
     let (labelling, surface, options) = (paths.labelling, paths.surface, paths.options);
     let parts = &labelling.parts;
@@ -200,10 +202,9 @@ fn paired_limbs(
         };
         let (a, b) = (paths.wrist(l), paths.wrist(r));
         let Some(path) = paths.centralised(a, b) else {
-            warnings.push(format!(
-                "no medial path joins the left and right {}: left out",
-                parts[l].label.name()
-            ));
+            warnings.push(FitInputWarning::UnjoinedPair {
+                label: parts[l].label,
+            });
             continue;
         };
         let mid = paths.midpoint(&path);
@@ -239,7 +240,7 @@ fn paired_limbs(
 fn head_to_tail(
     paths: &Paths,
     midpoints: &[Midpoint],
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<FitInputWarning>,
 ) -> (Vec<usize>, Vec<DVec3>, Vec<f64>) {
     let (labelling, surface) = (paths.labelling, paths.surface);
     let parts = &labelling.parts;
@@ -249,10 +250,7 @@ fn head_to_tail(
             FigureClass::HumanLike => labelling.frame.up,
             _ => labelling.frame.forward,
         };
-        warnings.push(
-            "no head was labelled: the head-to-tail path starts at the figure's top (upright) or front voxel"
-                .to_string(),
-        );
+        warnings.push(FitInputWarning::NoHead);
         paths.extreme(&parts[0], dir)
     });
     let from_head = paths.search(start);
@@ -304,7 +302,7 @@ fn unpaired_limbs(
     axial_positions: &[usize],
     unpaired: Vec<Unpaired>,
     limbs: &mut Vec<LimbInput>,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<FitInputWarning>,
 ) {
     let parts = &paths.labelling.parts;
     let surface = paths.surface;
@@ -313,11 +311,10 @@ fn unpaired_limbs(
         let tip = paths.wrist(part);
         let mut path = to_axis.path_to_source(tip);
         if path.len() < 2 {
-            warnings.push(format!(
-                "the {} {} does not reach the head-to-tail path: left out",
-                side_name(parts[part].side),
-                parts[part].label.name()
-            ));
+            warnings.push(FitInputWarning::UnreachedLimb {
+                side: parts[part].side,
+                label: parts[part].label,
+            });
             continue;
         }
         path.reverse(); // axis first
@@ -328,25 +325,24 @@ fn unpaired_limbs(
 }
 
 /// A warning per limb shorter than `min_limb_slenderness` times its median radius.
-fn stub_warnings(limbs: &[LimbInput], options: &FitInputOptions, warnings: &mut Vec<String>) {
+fn stub_warnings(
+    limbs: &[LimbInput],
+    options: &FitInputOptions,
+    warnings: &mut Vec<FitInputWarning>,
+) {
     for limb in limbs {
         let length: f64 = limb.path.windows(2).map(|w| w[0].distance(w[1])).sum();
         let mut radii = limb.radii.clone();
         radii.sort_by(f64::total_cmp);
         let median = radii.get(radii.len() / 2).copied().unwrap_or(0.0);
         if median > 0.0 && length < options.min_limb_slenderness * median {
-            warnings.push(format!(
-                "the {} {} is only {:.1} times as long as it is thick: a stub rather than a limb; check the labels (skelfit label) or choose another template",
-                limb.side.as_str(),
-                limb.kind.as_str().replace('_', " "),
-                length / median
-            ));
+            warnings.push(FitInputWarning::Stub {
+                side: limb.side,
+                kind: limb.kind,
+                slenderness: length / median,
+            });
         }
     }
-}
-
-fn side_name(side: Option<Side>) -> &'static str {
-    side.map_or("unpaired", Side::as_str)
 }
 
 /// A limb pair: parts of one label and girdle matched left to right along the body.

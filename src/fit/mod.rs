@@ -26,6 +26,7 @@ mod error;
 mod frames;
 mod from_labels;
 mod input;
+mod input_warning;
 mod limbs;
 mod options;
 mod polyline;
@@ -39,11 +40,12 @@ pub use input::{
     voxel_path, AxialPath, AxialSections, DigitInput, DorsalProbe, EarInput, FitInput, LimbInput,
     Side,
 };
+pub use input_warning::FitInputWarning;
 pub use options::{BendSnap, FitOptions};
 pub use reach::ReachOptions;
 
 use crate::skeleton::{Canonical, JointId, Skeleton};
-use crate::template::{apply_preset, Girdle, LimbKind, Template};
+use crate::template::{apply_preset, Girdle, LimbKind, Preset, Template};
 use assemble::assemble;
 use axial::Bounds;
 use glam::DVec3;
@@ -82,6 +84,17 @@ impl Fit {
             .iter()
             .map(|(k, id)| (k.clone(), self.skeleton.joint(*id).name.clone()))
             .collect()
+    }
+
+    /// Names the joints by `preset` from the canonical map (a taken name gets `_2`, `_3`...):
+    /// the fit's last step, which the rig repeats after the refinement has moved the
+    /// canonical keys of a fit made with anatomical names.
+    ///
+    /// # Errors
+    /// [`FitError::Preset`] when the preset file cannot be read.
+    pub fn name_joints(&mut self, preset: Preset) -> Result<(), FitError> {
+        apply_preset(&mut self.skeleton, &self.canonical, preset)
+            .map_err(|e| FitError::Preset(e.to_string()))
     }
 }
 
@@ -191,16 +204,15 @@ pub fn fit_with_probe(
         warnings.push(FitWarning::JawNotInTemplate);
     }
 
-    let (mut skeleton, canonical) =
-        assemble(template, &axial, input, &fitted, &frame, &mut warnings);
-    apply_preset(&mut skeleton, &canonical, options.preset)
-        .map_err(|e| FitError::Preset(e.to_string()))?;
-    Ok(Fit {
+    let (skeleton, canonical) = assemble(template, &axial, input, &fitted, &frame, &mut warnings);
+    let mut fit = Fit {
         skeleton,
         canonical,
         warnings,
         template: template.name.clone(),
-    })
+    };
+    fit.name_joints(options.preset)?;
+    Ok(fit)
 }
 
 /// The head, neck and trunk ends along the axial path (8.1): the input's sections when given,

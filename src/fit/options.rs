@@ -74,19 +74,14 @@ pub struct FitOptions {
     /// (measured, see `reports/rig/`).
     pub root_from_labels: bool,
     /// Inner limb joints (elbow/knee, wrist/ankle, ...) move to the sharpest bend of the limb
-    /// path near their Table 8.1 place (joints are where limbs bend: seed 004 puts knees and
-    /// elbows at the smallest angle and ankles at the largest curvature); `None` keeps Table
-    /// 8.1 alone (dissertation 8.2). Default window 0.15, stencil 0.06, 20 degrees: on the
-    /// seven reference humanoids the 15-joint mean error fell from 34.0 to 30.2 mm (ankles
-    /// from ~45 to ~17 mm), quadruped chamfer distances unchanged within 0.1 %.
+    /// path near their Table 8.1 place (seed 004: joints are where limbs bend); `None` keeps
+    /// Table 8.1 alone (8.2). Default window 0.15, stencil 0.06, 20 degrees (reference
+    /// humanoids' 15-joint mean error 34.0 → 30.2 mm).
     pub snap_to_bend: Option<BendSnap>,
-    /// Head/neck boundary at the narrowest point of the head-to-tail path (smallest
-    /// distance-map radius: the throat below the skull) between these fractions of the way
-    /// from the head tip to the neck/trunk boundary; `None` splits that way by the template's
-    /// `[sections]` fractions (8.1). Default `None`: measured with `Some([0.2, 0.8])`, the
-    /// long-necked alpaca's CD-J2J fell from 5.6 to 4.6 % of body length, but the quadrupeds'
-    /// mean only from 3.98 to 3.88 % and the MakeHuman heads moved 10 mm away from their skull
-    /// base (the narrowest point is mid-neck).
+    /// Head/neck boundary at the narrowest point of the head-to-tail path between these
+    /// fractions of the way from the head tip to the neck/trunk boundary; `None` uses the
+    /// template's `[sections]` fractions (8.1). Default `None` (`Some([0.2, 0.8])` helps only
+    /// long necks: quadruped CD-J2J 3.98 → 3.88 %, MakeHuman heads 10 mm off).
     pub head_at_narrowing: Option<[f64; 2]>,
     /// Human-like shoulders and hips from labelled roots lie on the axis of the upper arm /
     /// thigh, fitted to this central fraction of that segment, at the point nearest the
@@ -100,32 +95,17 @@ pub struct FitOptions {
     /// head-to-tail path (the pelvic girdle's centre, where rigs put the pelvis), 1 on the
     /// dorsal spine. Default 0 (measured on the reference rigs, see `reports/rig/`).
     pub root_dorsal: f64,
-    /// Animal-like knees and elbows where the limb comes free of the trunk: walking down the
-    /// limb path from its labelled root, the first point from which a horizontal ray towards
-    /// the other limb pair (forwards from a hind limb, backwards from a fore limb) leaves the
-    /// figure within this many local path radii: below the flank fold in front of the hind
-    /// leg, below the chest floor behind the fore leg. The knee (stifle, at the front of the
-    /// limb) goes one local radius behind the surface point that ray leaves through; the elbow
-    /// stays on the path there (moved to the olecranon's side the deer's forearms ran outside
-    /// their legs). Only the knee or elbow moves (the hip or shoulder and the joints below keep
-    /// their places) and never towards the trunk. `None` keeps the labelled root (where the
-    /// limb's medial piece leaves the trunk's). Needs the fit's ray probe (`fit_with_probe`).
-    /// Default 3: on the four Quaternius quadrupeds the worse knee's distance from the
-    /// reference stifle fell from 12.0 to 4.8 % of height; the elbows of those and the fox
-    /// from 6.8 to 4.8 % (mean; the alpaca's rose 3.4 → 5.2); `cargo test --release --test it
-    /// quadruped_ -- --nocapture`; thresholds of 2 and 8 radii did worse. The fox's knees
-    /// moved 2 cm away from its reference.
+    /// Animal-like knees and elbows where the limb comes free of the trunk: the first point
+    /// down the limb path from which a horizontal ray towards the other limb pair leaves the
+    /// figure within this many local path radii (the knee then one radius behind that surface
+    /// point, the elbow on the path); only the knee or elbow moves, never towards the trunk.
+    /// `None` keeps the labelled root. Needs the fit's ray probe (`fit_with_probe`). Default 3
+    /// (Quaternius quadrupeds' worse knee 12.0 → 4.8 % of height from the reference stifle).
     pub limb_fold: Option<f64>,
-    /// For templates with the S-shaped neck (animal-like), the trunk's dorsal offset is faded
-    /// out this many vertebral segments before the neck/trunk boundary instead of after it
-    /// (but not behind the foremost girdle, so the scapulae stay on the dorsal spine), so that
-    /// the neck leaves the trunk at the middle of the chest's front (the cervical spine dips
-    /// ventrally to the thoracic inlet) rather than along the top of the back. 0 = dissertation
-    /// 8.1. Default 2: the fox's neck joint moved from 35 to 15 mm from its reference, the
-    /// Quaternius quadrupeds' `neck_01` from 8.8 to 7.4 % of height from their `Neck1`, mean
-    /// CD-B2B over the reference set 1.88 → 1.87 %; the triceratops' neck moved 0.40 → 0.58
-    /// units away (of a 20-unit body). See `reports/rig/` and the test
-    /// `quadruped_necks_leave_the_trunk_at_the_chest_front`.
+    /// For templates with the S-shaped neck, the trunk's dorsal offset fades out this many
+    /// vertebral segments before the neck/trunk boundary (not behind the foremost girdle), so
+    /// the neck leaves the trunk at the chest's front, as the cervical spine does. 0 =
+    /// dissertation 8.1. Default 2 (the fox's neck joint 35 → 15 mm from its reference).
     pub neck_base_drop: f64,
 }
 

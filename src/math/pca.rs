@@ -1,5 +1,6 @@
 //! Principal component analysis: the covariance of a point set, the principal axes of a 3×3
-//! covariance, and the closed-form principal axis of a 2×2 one.
+//! covariance (and its major axis alone by power iteration), and the closed-form principal
+//! axis of a 2×2 one.
 //!
 //! Callers build the covariance that suits their data (a point set, or a curve whose segments
 //! count with their length and exact second moment, `mesh::SliceLoop::principal_axes`) and
@@ -33,6 +34,20 @@ pub(crate) fn principal_axes(covariance: Matrix3<f64>) -> [(f64, DVec3); 3] {
         let c = eigen.eigenvectors.column(k);
         (eigen.eigenvalues[k], DVec3::new(c[0], c[1], c[2]))
     })
+}
+
+/// Major axis (unit) of the symmetric `covariance` by 100 steps of power iteration from
+/// `(1, 0.7, 0.3)`: deterministic in sign (towards the start), `None` when an iterate
+/// vanishes (no spread along the start). The labelling's trunk axis; its angle to up is written
+/// at full precision (labels.json `trunk_angle_deg`), which [`principal_axes`]'
+/// decomposition would move in the last digits.
+pub(crate) fn major_axis_by_iteration(covariance: Matrix3<f64>) -> Option<DVec3> {
+    let m = glam::DMat3::from_cols_slice(covariance.as_slice());
+    let mut v = DVec3::new(1.0, 0.7, 0.3).normalize();
+    for _ in 0..100 {
+        v = (m * v).try_normalize()?;
+    }
+    Some(v)
 }
 
 /// Principal axis of the 2×2 symmetric covariance `(sxx, sxy, syy)` in closed form: the major

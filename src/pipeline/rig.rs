@@ -14,7 +14,7 @@ use crate::paths::{path_tree, PathOptions};
 use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
-use crate::template::{apply_preset, Preset, Template};
+use crate::template::{ExpectedPart, Preset, Template};
 use crate::voxel::{boundary_mesh, voxelize, Solid, VoxelOptions};
 use crate::warning::Warning;
 
@@ -246,33 +246,15 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().cloned().map(Warning::Fit));
     lap.lap("fit", &mut timings);
-    let joined = (options.refine.in_rig && template.refinement.is_some())
-        .then(|| refine_surface(mesh, &solid, &options.refine))
-        .flatten();
-    let refined = options.refine.in_rig.then(|| {
-        refine_fit(
-            joined.as_ref().unwrap_or(mesh),
-            &fit,
-            &template,
-            input.up,
-            input.forward,
-            &options.refine,
-        )
-    });
-    if let Some(refined) = refined.flatten() {
-        match refined {
-            Ok(refined) => {
-                fit.skeleton = refined.skeleton;
-                fit.canonical = refined.canonical;
-                warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
-            }
-            Err(e) => warnings.push(
-                RigWarning::RefineFailed {
-                    error: e.to_string(),
-                }
-                .into(),
-            ),
-        }
+    if refine_stage(
+        mesh,
+        &solid,
+        &template,
+        &input,
+        &options.refine,
+        &mut fit,
+        &mut warnings,
+    ) {
         lap.lap("refine", &mut timings);
     }
     if options.refine.symmetry {
@@ -284,12 +266,11 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         }
         lap.lap("symmetry", &mut timings);
     }
-    apply_preset(&mut fit.skeleton, &fit.canonical, options.fit.preset)
-        .map_err(|e| FitError::Preset(e.to_string()))?;
+    fit.name_joints(options.fit.preset)?;
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
-    let missing = missing_parts(&template.name, &labelling);
+    let missing = missing_parts(&template, &labelling);
     Ok(Rig {
         missing,
         fit,
@@ -303,6 +284,46 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     })
 }
 
+/// The refinement the template declares ([`refine_fit`]; `options.in_rig: false` skips it):
+/// `fit` takes the refined skeleton and canonical map, `warnings` the refinement's warnings
+/// (or its failure). Returns whether it ran.
+fn refine_stage(
+    mesh: &Mesh,
+    solid: &Solid,
+    template: &Template,
+    input: &FitInput,
+    options: &RefineOptions,
+    fit: &mut Fit,
+    warnings: &mut Vec<Warning>,
+) -> bool {
+    if !options.in_rig {
+        return false;
+    }
+    let joined = template
+        .refinement
+        .is_some()
+        .then(|| refine_surface(mesh, solid, options))
+        .flatten();
+    let surface = joined.as_ref().unwrap_or(mesh);
+    let Some(refined) = refine_fit(surface, fit, template, input.up, input.forward, options) else {
+        return false;
+    };
+    match refined {
+        Ok(refined) => {
+            fit.skeleton = refined.skeleton;
+            fit.canonical = refined.canonical;
+            warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
+        }
+        Err(e) => warnings.push(
+            RigWarning::RefineFailed {
+                error: e.to_string(),
+            }
+            .into(),
+        ),
+    }
+    true
+}
+
 /// The surface the slicing refinement cuts: the input itself when it is one closed shell, else
 /// the smoothed boundary of the joined voxel solid ([`boundary_mesh`]). Slices through a figure
 /// of many shells (head, hands, eyes, clothes over a body) are many loops per plane, and the
@@ -314,11 +335,10 @@ fn refine_surface(mesh: &Mesh, solid: &Solid, options: &RefineOptions) -> Option
     (!one_shell).then(|| boundary_mesh(solid, options.joined_smoothing))
 }
 
-/// The body parts a built-in template expects that `labelling` lacks: the humanoid's head,
-/// arms and legs; the quadruped's head and fore and hind legs; the winged figure's head, wings
-/// and legs (each paired part with its side, e.g. `arm R`, `fore leg L`). Empty for other
-/// templates.
-pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
+/// The body parts `template` expects ([`Template::expects`], the `expects` list of its
+/// header) that `labelling` lacks, in the template's order, each paired part with its side
+/// (`head`, `arm R`, `fore leg L`, ...). Empty for a template that declares none.
+pub fn missing_parts(template: &Template, labelling: &Labelling) -> Vec<String> {
     use crate::anatomy::{LimbPair, Side};
     let has = |label: Label, side: Option<Side>, pair: Option<LimbPair>| {
         labelling.parts.iter().any(|p| {
@@ -327,28 +347,28 @@ pub fn missing_parts(template: &str, labelling: &Labelling) -> Vec<String> {
                 && (pair.is_none() || p.limb_pair == pair)
         })
     };
-    let sides = [(Some(Side::Left), "L"), (Some(Side::Right), "R")];
-    let mut expected: Vec<(Label, Option<Side>, Option<LimbPair>, String)> =
-        vec![(Label::Head, None, None, "head".to_string())];
-    let paired: &[(Label, Option<LimbPair>, &str)] = match template {
-        "humanoid" => &[(Label::Arm, None, "arm"), (Label::Leg, None, "leg")],
-        "quadruped" => &[
-            (Label::Leg, Some(LimbPair::Fore), "fore leg"),
-            (Label::Leg, Some(LimbPair::Hind), "hind leg"),
-        ],
-        "winged" => &[(Label::Wing, None, "wing"), (Label::Leg, None, "leg")],
-        _ => return Vec::new(),
-    };
-    for &(label, pair, name) in paired {
-        for (side, s) in sides {
-            expected.push((label, side, pair, format!("{name} {s}")));
+    let mut missing = Vec::new();
+    for &part in &template.expects {
+        let (label, pair, name) = match part {
+            ExpectedPart::Head => {
+                if !has(Label::Head, None, None) {
+                    missing.push(Label::Head.name().to_string());
+                }
+                continue;
+            }
+            ExpectedPart::Arms => (Label::Arm, None, "arm"),
+            ExpectedPart::Legs => (Label::Leg, None, "leg"),
+            ExpectedPart::ForeLegs => (Label::Leg, Some(LimbPair::Fore), "fore leg"),
+            ExpectedPart::HindLegs => (Label::Leg, Some(LimbPair::Hind), "hind leg"),
+            ExpectedPart::Wings => (Label::Wing, None, "wing"),
+        };
+        for side in Side::BOTH {
+            if !has(label, Some(side), pair) {
+                missing.push(format!("{name} {}", side.letter()));
+            }
         }
     }
-    expected
-        .into_iter()
-        .filter(|(label, side, pair, _)| !has(*label, *side, *pair))
-        .map(|(_, _, _, name)| name)
-        .collect()
+    missing
 }
 
 /// What [`rig`] fits to a labelled figure.

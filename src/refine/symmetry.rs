@@ -148,7 +148,7 @@ pub fn symmetrize(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::skeleton::Joint;
+    use crate::skeleton::{Canonical, Joint};
     use crate::voxel::{voxelize, VoxelOptions};
 
     fn figure(arm_raised: bool) -> crate::mesh::Mesh {
@@ -174,7 +174,8 @@ mod tests {
 
     fn skeleton() -> Skeleton {
         let mut s = Skeleton::default();
-        s.joints.push(Joint::new("pelvis", None, DVec3::ZERO));
+        s.joints
+            .push(Joint::new(Canonical::Pelvis.as_str(), None, DVec3::ZERO));
         s.joints.push(Joint::new(
             "hand_L",
             Some(JointId(0)),

@@ -197,26 +197,10 @@ pub fn bench_html(
     html
 }
 
-/// A study as one page: the displacement-per-level plot, the table, and, when `base` is given,
-/// the three projections of the base rig against the reference.
-pub fn study_html(
-    study: &Study,
-    title: &str,
-    preamble: &str,
-    base: Option<&ReportInput>,
-) -> String {
-    let mut html = page_start(title, preamble);
-    let _ = write!(
-        html,
-        "<p>Model <b>{}</b>{}; figure size {:.4}. All values are % of figure size.</p>",
-        escape(&study.model),
-        study
-            .reference
-            .as_ref()
-            .map(|r| format!(", reference {}", escape(r)))
-            .unwrap_or_default(),
-        study.figure.size
-    );
+/// The series of a study's displacement plot: CD-J2J to the base rig, the mean joint
+/// displacement from it (when variants other than the base pair with it), and the error to
+/// the reference (when there is one), per level of the variants that did not fail.
+fn study_series(study: &Study) -> Vec<Series> {
     let ok = || study.variants.iter().filter(|v| v.failure.is_none());
     let mut series = vec![Series {
         name: "CD-J2J to the base rig".into(),
@@ -246,6 +230,30 @@ pub fn study_html(
             points: reference,
         });
     }
+    series
+}
+
+/// A study as one page: the displacement-per-level plot, the table, and, when `base` is given,
+/// the three projections of the base rig against the reference.
+pub fn study_html(
+    study: &Study,
+    title: &str,
+    preamble: &str,
+    base: Option<&ReportInput>,
+) -> String {
+    let mut html = page_start(title, preamble);
+    let _ = write!(
+        html,
+        "<p>Model <b>{}</b>{}; figure size {:.4}. All values are % of figure size.</p>",
+        escape(&study.model),
+        study
+            .reference
+            .as_ref()
+            .map(|r| format!(", reference {}", escape(r)))
+            .unwrap_or_default(),
+        study.figure.size
+    );
+    let series = study_series(study);
     let options = LineChartOptions {
         log_x: study.kind == StudyKind::Tessellation,
         x_label: match study.kind {

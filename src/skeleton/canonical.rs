@@ -4,7 +4,9 @@
 //! Strings appear only at the file-format edges (template TOML, naming presets, skeleton
 //! JSON): [`Canonical::as_str`] and [`str::parse`] convert, and round-trip.
 
+use super::JointId;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::fmt;
 use std::str::FromStr;
 
@@ -236,6 +238,25 @@ impl fmt::Display for Canonical {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("`{0}` is not a canonical key (pelvis, spine, chest, neck, head, clavicle/shoulder/elbow/wrist/hip/knee/ankle/toe with _L or _R, tail_base, tail_mid, tail_end)")]
 pub struct NotCanonical(pub String);
+
+/// A map from canonical keys to joints: the maps of files and fits, keyed by the written key
+/// (`BTreeMap<String, JointId>`), and typed ones (`BTreeMap<Canonical, JointId>`).
+pub trait CanonicalJoints {
+    /// The joint mapped to `key`, if any.
+    fn joint_of(&self, key: Canonical) -> Option<JointId>;
+}
+
+impl CanonicalJoints for BTreeMap<String, JointId> {
+    fn joint_of(&self, key: Canonical) -> Option<JointId> {
+        self.get(key.as_str()).copied()
+    }
+}
+
+impl CanonicalJoints for BTreeMap<Canonical, JointId> {
+    fn joint_of(&self, key: Canonical) -> Option<JointId> {
+        self.get(&key).copied()
+    }
+}
 
 impl FromStr for Canonical {
     type Err = NotCanonical;

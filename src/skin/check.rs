@@ -11,12 +11,11 @@
 
 use super::SkinError;
 use crate::mesh::Mesh;
-use crate::skeleton::canonical::{Canonical, Side, Tail};
+use crate::skeleton::canonical::{Canonical, CanonicalJoints, Side, Tail};
 use crate::skeleton::{JointId, Skeleton};
 use glam::{DAffine3, DQuat, DVec3};
 use rayon::prelude::*;
 use serde::Serialize;
-use std::collections::BTreeMap;
 
 /// Which standard sweep to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -91,13 +90,13 @@ impl DeformationCheck {
     }
 }
 
-/// The poses of `kind` for `skeleton`, given its canonical map (`shoulder_L`, `elbow_R`,
-/// `chest`, `tail_base`... as written in files → joint) and the figure's `up` and `forward`
+/// The poses of `kind` for `skeleton`, given its canonical map (shoulders, elbows, chest,
+/// tail base... → joint; keyed as written in files or by [`Canonical`]) and the figure's `up` and `forward`
 /// directions (the figure's left is `up × forward`). Returns the poses and the names of those
 /// the map has no joint for.
 pub fn sweep(
     skeleton: &Skeleton,
-    canonical: &BTreeMap<String, JointId>,
+    canonical: &dyn CanonicalJoints,
     kind: SweepKind,
     up: DVec3,
     forward: DVec3,
@@ -130,7 +129,7 @@ pub fn sweep(
 /// figure's directions (unit, `left = up × forward`).
 struct Poser<'a> {
     skeleton: &'a Skeleton,
-    canonical: &'a BTreeMap<String, JointId>,
+    canonical: &'a dyn CanonicalJoints,
     up: DVec3,
     forward: DVec3,
     left: DVec3,
@@ -142,8 +141,7 @@ impl Poser<'_> {
     /// The joint of a canonical key, if the map has one in the skeleton.
     fn key(&self, key: Canonical) -> Option<JointId> {
         self.canonical
-            .get(key.as_str())
-            .copied()
+            .joint_of(key)
             .filter(|j| j.0 < self.skeleton.len())
     }
 
@@ -415,6 +413,7 @@ pub fn check_deformation(
 mod tests {
     use super::*;
     use crate::skeleton::Joint;
+    use std::collections::BTreeMap;
     use Side::Left;
 
     /// A vertical tube from y = 0 to y = 2 around two bones meeting at y = 1.

@@ -35,6 +35,8 @@ struct RawHeader {
     posture: Spanned<String>,
     #[serde(default)]
     refine: Option<Spanned<String>>,
+    #[serde(default)]
+    expects: Vec<Spanned<String>>,
 }
 
 #[derive(Deserialize)]

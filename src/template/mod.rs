@@ -35,8 +35,8 @@ mod preset;
 
 pub use error::{TemplateError, TemplateProblem};
 pub use model::{
-    AxialRules, CountRange, Girdle, LimbGroup, LimbKind, Manus, Placement, Posture, RefineKind,
-    Sections, Template, TemplateJoint, VertebraRules, AXIAL_PLACES, BUILTIN_TEMPLATES,
+    AxialRules, CountRange, ExpectedPart, Girdle, LimbGroup, LimbKind, Manus, Placement, Posture,
+    RefineKind, Sections, Template, TemplateJoint, VertebraRules, AXIAL_PLACES, BUILTIN_TEMPLATES,
     SIDED_PLACES,
 };
 pub use preset::{apply_preset, Preset, PresetNames};

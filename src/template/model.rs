@@ -42,6 +42,54 @@ pub enum RefineKind {
     HumanSlicing,
 }
 
+/// A body part a template expects the labels to have (`expects` in the template header);
+/// a paired part is expected on both sides. The rig names each one the labels lack
+/// ([`crate::pipeline::missing_parts`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ExpectedPart {
+    /// `head`.
+    Head,
+    /// `arms`: a left and a right arm.
+    Arms,
+    /// `legs`: a left and a right leg, of any girdle.
+    Legs,
+    /// `fore_legs`: a left and a right leg of the fore girdle.
+    ForeLegs,
+    /// `hind_legs`: a left and a right leg of the hind girdle.
+    HindLegs,
+    /// `wings`: a left and a right wing.
+    Wings,
+}
+
+impl ExpectedPart {
+    /// Every part, in the order the names are listed in messages.
+    pub const ALL: [ExpectedPart; 6] = [
+        Self::Head,
+        Self::Arms,
+        Self::Legs,
+        Self::ForeLegs,
+        Self::HindLegs,
+        Self::Wings,
+    ];
+
+    /// The name written in template files.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Head => "head",
+            Self::Arms => "arms",
+            Self::Legs => "legs",
+            Self::ForeLegs => "fore_legs",
+            Self::HindLegs => "hind_legs",
+            Self::Wings => "wings",
+        }
+    }
+
+    /// Parses [`ExpectedPart::as_str`] names.
+    pub fn parse(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.as_str() == name)
+    }
+}
+
 /// How the head-to-tail path in front of the foremost limb pair is split (8.1): fractions of
 /// it for the head (anterior) and the neck (posterior); they sum to 1.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -250,6 +298,8 @@ pub struct Template {
     pub posture: Posture,
     /// The refinement its fits get, if any.
     pub refinement: Option<RefineKind>,
+    /// The body parts it expects the labels to have, in file order (empty: none checked).
+    pub expects: Vec<ExpectedPart>,
     /// Head/neck split.
     pub sections: Sections,
     /// Axial rules.

@@ -1,5 +1,5 @@
 use super::*;
-use crate::skeleton::canonical::{is_canonical_key, CANONICAL_KEYS};
+use crate::skeleton::canonical::{is_canonical_key, Tail, CANONICAL_KEYS};
 use crate::skeleton::{Canonical, Joint, JointId, LocalAxis, Side, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
@@ -94,7 +94,10 @@ fn dofs_follow_the_anatomy() {
 fn canonical_keys_cover_the_reference_set() {
     for name in ["humanoid", "quadruped"] {
         let t = Template::builtin(name).unwrap();
-        let mut keys: Vec<String> = vec!["spine".into(), "chest".into()];
+        let mut keys: Vec<String> = vec![
+            Canonical::Spine.as_str().into(),
+            Canonical::Chest.as_str().into(),
+        ];
         for j in &t.joints {
             if let Some(c) = &j.canonical {
                 if j.side {
@@ -113,7 +116,7 @@ fn canonical_keys_cover_the_reference_set() {
     let q = Template::builtin("quadruped").unwrap();
     assert_eq!(
         q.joint("tail").unwrap().canonical.as_deref(),
-        Some("tail_base")
+        Some(Canonical::Tail(Tail::Base).as_str())
     );
 }
 
@@ -304,7 +307,7 @@ fn preset_renaming_never_duplicates_names() {
     s.joints.push(Joint::new("spine_02", None, DVec3::ZERO));
     s.joints
         .push(Joint::new("spine_01", Some(JointId(0)), DVec3::Y));
-    let c = BTreeMap::from([("spine".to_string(), JointId(1))]);
+    let c = BTreeMap::from([(Canonical::Spine.as_str().to_string(), JointId(1))]);
     apply_preset(&mut s, &c, Preset::MakeHuman).unwrap();
     assert_eq!(s.joints[1].name, "spine_02");
     assert_eq!(s.joints[0].name, "spine_02_2");

@@ -1,4 +1,4 @@
-//! Template validation in phases, in file order: header, sections, axial rules, vertebra
+//! Template validation in phases, in file order: header (with the expected parts), sections, axial rules, vertebra
 //! counts, ratios, joints, hierarchy, limbs. Every phase reports every problem it finds.
 
 mod joints;
@@ -31,6 +31,7 @@ pub(super) fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
         file: p.file.to_string(),
         posture: header.posture,
         refinement: header.refinement,
+        expects: header.expects,
         sections,
         axial,
         vertebrae,

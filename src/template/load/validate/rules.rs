@@ -11,6 +11,7 @@ pub(super) struct Header {
     pub(super) description: String,
     pub(super) posture: Posture,
     pub(super) refinement: Option<RefineKind>,
+    pub(super) expects: Vec<ExpectedPart>,
 }
 
 pub(super) fn header(raw: Spanned<RawHeader>, p: &mut Problems) -> Header {
@@ -42,12 +43,43 @@ pub(super) fn header(raw: Spanned<RawHeader>, p: &mut Problems) -> Header {
             None
         }
     });
+    let expects = expected_parts(header.expects, p);
     Header {
         name: header.name,
         description: header.description,
         posture,
         refinement,
+        expects,
     }
+}
+
+/// The header's `expects` list: known part names, each once.
+fn expected_parts(raw: Vec<Spanned<String>>, p: &mut Problems) -> Vec<ExpectedPart> {
+    let mut out = Vec::new();
+    for (k, name) in raw.iter().enumerate() {
+        let path = format!("template.expects[{k}]");
+        match ExpectedPart::parse(name.get_ref()) {
+            Some(part) if out.contains(&part) => p.push(
+                path,
+                &name.span(),
+                format!("{name:?} is listed twice", name = name.get_ref()),
+            ),
+            Some(part) => out.push(part),
+            None => {
+                let known: Vec<&str> = ExpectedPart::ALL.iter().map(|p| p.as_str()).collect();
+                p.push(
+                    path,
+                    &name.span(),
+                    format!(
+                        "unknown part {:?}: use {}",
+                        name.get_ref(),
+                        known.join(", ")
+                    ),
+                )
+            }
+        }
+    }
+    out
 }
 
 pub(super) fn sections(raw: Spanned<BTreeMap<String, Spanned<f64>>>, p: &mut Problems) -> Sections {

@@ -1,0 +1,86 @@
+//! The tail rule of the labelling (dissertation ch.7.3.3): the spine's continuation past the
+//! pelvis.
+
+use super::rules::{Assignment, UNLABELLED};
+use super::{FigureClass, Frame, Label, LevelGraph, Section};
+use glam::DVec3;
+
+/// What the tail rule looks at.
+pub(super) struct TailRule<'a> {
+    pub graph: &'a LevelGraph,
+    pub sections: &'a [Section],
+    pub frame: &'a Frame,
+    pub figure: FigureClass,
+    /// The trunk's DMS voxel centres.
+    pub trunk_points: &'a [DVec3],
+    /// Leg pairs, most anterior first.
+    pub pairs: &'a [(usize, usize)],
+    /// Farthest a tail may join the trunk from the posterior pair, mesh units.
+    pub limit: f64,
+    /// Shortest tail, mesh units.
+    pub min_length: f64,
+}
+
+impl TailRule<'_> {
+    fn attachment(&self, s: usize) -> DVec3 {
+        self.graph.vertices[self.sections[s].attachment_vertex].centroid
+    }
+
+    /// The tail: of `candidates` (unlabelled sections) and the unpaired legs, the one reaching
+    /// farthest back, when it extends rearward, is long enough, and roots at the pelvic end of
+    /// the trunk: within the distance limit of the posterior pair's attachments and nearer to
+    /// them than to the anterior end of the trunk (the fore pair's attachments, else the
+    /// trunk's highest point for a human-like figure, its most forward point otherwise). A
+    /// tail is the spine's continuation past the pelvis, so a protrusion from the upper back
+    /// (a backpack, a head leaning back) or a shoulder (a T-posed arm) is never one.
+    pub fn assign(
+        &self,
+        assign: &mut [Assignment],
+        single_legs: &mut Vec<usize>,
+        candidates: &[usize],
+    ) {
+        let (sections, frame) = (self.sections, self.frame);
+        let mut candidates: Vec<usize> = candidates.to_vec();
+        candidates.extend(single_legs.iter().copied());
+        candidates.sort_by(|&a, &b| {
+            sections[a]
+                .reach
+                .hindmost
+                .total_cmp(&sections[b].reach.hindmost)
+                .then(a.cmp(&b))
+        });
+        let Some(&t) = candidates.first() else {
+            return;
+        };
+        let s = &sections[t];
+        let attach = self.attachment(t);
+        let mid = |&(a, b): &(usize, usize)| (self.attachment(a) + self.attachment(b)) / 2.0;
+        let posterior = self.pairs.last().map(mid);
+        let anterior = if self.pairs.len() >= 2 {
+            self.pairs.first().map(mid)
+        } else {
+            let towards = match self.figure {
+                FigureClass::HumanLike => frame.up,
+                _ => frame.forward,
+            };
+            self.trunk_points
+                .iter()
+                .copied()
+                .max_by(|a, b| a.dot(towards).total_cmp(&b.dot(towards)))
+        };
+        let rearward = s.distal.dot(frame.forward) < attach.dot(frame.forward);
+        let near = posterior.is_none_or(|p| p.distance(attach) <= self.limit);
+        let pelvic_end = match (posterior, anterior) {
+            (Some(p), Some(a)) => p.distance(attach) < a.distance(attach),
+            _ => true,
+        };
+        let long = s.length >= self.min_length;
+        if s.extreme.backward && rearward && near && pelvic_end && long {
+            assign[t] = Assignment {
+                label: Some(Label::Tail),
+                ..UNLABELLED
+            };
+            single_legs.retain(|&l| l != t);
+        }
+    }
+}
