@@ -103,11 +103,7 @@ pub fn skin(
             first,
         });
     }
-    let tt = std::time::Instant::now();
     let (engine, dropped) = engine_weights(&weights);
-    if std::env::var_os("SKINPROF").is_some() {
-        eprintln!("  engine: {:.1} ms", tt.elapsed().as_secs_f64() * 1e3)
-    };
     let truncated = dropped.iter().filter(|&&d| d > 0.0).count();
     if truncated > 0 {
         warnings.push(SkinWarning::TruncatedInfluences {
@@ -212,11 +208,7 @@ pub fn skin_from_bones(
     if distance.grid != solid.grid {
         return Err(SkinError::GridMismatch);
     }
-    let tt = std::time::Instant::now();
     let segments = bone_segments(skeleton, solid, distance, options);
-    if std::env::var_os("SKINPROF").is_some() {
-        eprintln!("  segments: {:.1} ms", tt.elapsed().as_secs_f64() * 1e3)
-    };
     skin(mesh, skeleton, solid, distance, &segments, options)
 }
 

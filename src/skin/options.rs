@@ -49,7 +49,9 @@ pub struct SkinOptions {
     pub voxel_smoothing_iterations: usize,
     /// Rounds of Laplacian smoothing of the geodesic weights over the mesh's edges
     /// ([`SkinMethod::Geodesic`] only); an edge's share is scaled by (voxel size / edge
-    /// length)², so coarse low-poly meshes are barely smoothed. Default 32.
+    /// length)², so coarse low-poly meshes are barely smoothed. Meshes much finer than the
+    /// voxels (edges under a quarter voxel on average, such as a body subdivided to a million
+    /// triangles) get proportionally fewer rounds. Default 32.
     pub smoothing_iterations: usize,
     /// Scale applied to every distance-map sphere radius before marking the voxels it covers.
     /// Default 1.0: the sphere of a chain voxel is exactly its maximal inscribed ball, as in

@@ -72,22 +72,17 @@ pub(crate) fn geodesic_weights(
     options: &SkinOptions,
 ) -> (Vec<Vec<(JointId, f64)>>, Vec<usize>) {
     let grid = solid.grid;
-    let tt = std::time::Instant::now();
-    let lap = |s: &str| {
-        if std::env::var_os("SKINPROF").is_some() {
-            eprintln!("  {s}: {:.1} ms", tt.elapsed().as_secs_f64() * 1e3)
-        }
-    };
     let needed = voxels_around_vertices(mesh, solid);
-    lap("needed");
-    let field = field(solid, distance, segments, options, &needed);
-    lap("field");
-    let voxels = smoothed_voxel_weights(&field, &grid, &needed, options);
-    lap("diffusion");
+    // The mesh's adjacency does not depend on the field: built beside the shortest paths
+    // (one thread) and the diffusion.
+    let (voxels, adjacency) = rayon::join(
+        || {
+            let field = field(solid, distance, segments, options, &needed);
+            smoothed_voxel_weights(&field, &grid, &needed, options)
+        },
+        || Adjacency::new(mesh),
+    );
     let mut rows = vertex_rows(&voxels, &grid, mesh);
-    lap("vertex_rows");
-    let adjacency = Adjacency::new(mesh);
-    lap("adjacency");
     // A vertex the field does not reach (no joint reached any interior voxel near it) takes
     // the weights of the nearest weighted vertex of the same piece along the mesh's edges; a
     // piece with no weighted vertex at all follows the joint of its nearest bone.
@@ -100,25 +95,21 @@ pub(crate) fn geodesic_weights(
         options.smoothing_iterations,
         grid.voxel_size,
     );
-    lap("smooth");
-    let w = vertex_weights(&rows);
-    lap("vertex_weights");
-    (w, isolated)
+    (vertex_weights(&rows), isolated)
 }
 
 /// One flag per grid voxel: whether it is one of the eight voxels around a vertex.
 fn voxels_around_vertices(mesh: &Mesh, solid: &Solid) -> Vec<bool> {
-    let corners: Vec<[usize; 8]> = mesh
-        .positions
-        .par_iter()
-        .with_min_len(4096)
-        .map(|&p| corners(&solid.grid, p).map(|(index, _)| index))
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let needed: Vec<AtomicBool> = (0..solid.grid.len())
+        .map(|_| AtomicBool::new(false))
         .collect();
-    let mut needed = vec![false; solid.grid.len()];
-    for index in corners.iter().flatten() {
-        needed[*index] = true;
-    }
-    needed
+    mesh.positions.par_iter().with_min_len(4096).for_each(|&p| {
+        for (index, _) in corners(&solid.grid, p) {
+            needed[index].store(true, Ordering::Relaxed);
+        }
+    });
+    needed.into_iter().map(AtomicBool::into_inner).collect()
 }
 
 /// Binds every vertex still without weights to the joint of its nearest segment; returns

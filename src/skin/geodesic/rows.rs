@@ -145,7 +145,7 @@ impl Mixer {
     }
 
     /// Adds `weight` to `joint`'s sum.
-    #[inline]
+    #[inline(always)]
     pub fn add(&mut self, joint: u32, weight: f64) {
         let j = joint as usize;
         if j >= self.at.len() {
@@ -162,7 +162,7 @@ impl Mixer {
     }
 
     /// Adds `factor` times every entry of `row`.
-    #[inline]
+    #[inline(always)]
     pub fn add_row(&mut self, row: &Row, factor: f64) {
         for (j, w) in row.entries() {
             self.add(j, factor * w);
