@@ -1,7 +1,8 @@
 //! Skinning: the anatomical `rig` of the bundled MakeHuman body end to end (the target:
 //! under 0.15 s), and the skin stage alone on its fitted skeleton with the geodesic weights
 //! (default) and the dissertation's anchor weights, on the body (27k triangles) and on the
-//! body subdivided to 1.7 M triangles (the target: under 1 s). Compare ratios within one run.
+//! body subdivided to 1.7 M triangles (the target is a 1 M-triangle mesh under 1 s;
+//! this case is larger). Compare ratios within one run: the machine is shared.
 //!
 //! Run: `cargo bench --bench skin`.
 

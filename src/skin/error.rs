@@ -91,10 +91,13 @@ pub enum SkinError {
     },
     /// Too few deforming joints lie inside the figure: the skeleton is in another place or
     /// frame than the mesh.
-    #[error("only {inside} of the skeleton's {deforming} deforming joints lie inside the mesh (skeleton centre [{:.4}, {:.4}, {:.4}], mesh centre [{:.4}, {:.4}, {:.4}]): give a skeleton in the mesh's frame (same origin, same up axis) and units", skeleton_centre[0], skeleton_centre[1], skeleton_centre[2], figure_centre[0], figure_centre[1], figure_centre[2])]
+    #[error("only {inside} of the skeleton's {deforming} deforming joints lie inside the mesh (outside: {}; skeleton centre [{:.4}, {:.4}, {:.4}], mesh centre [{:.4}, {:.4}, {:.4}]): give a skeleton in the mesh's frame (same origin, same up axis) and units", listed(outside, deforming - inside), skeleton_centre[0], skeleton_centre[1], skeleton_centre[2], figure_centre[0], figure_centre[1], figure_centre[2])]
     SkeletonOutside {
         /// Deforming joints inside the figure.
         inside: usize,
+        /// Names of the first deforming joints outside the figure (at most five), in joint
+        /// order.
+        outside: Vec<String>,
         /// Deforming joints.
         deforming: usize,
         /// Centre of the deforming joints' bounding box, mesh frame.
@@ -108,6 +111,18 @@ pub enum SkinError {
         /// Index of the joint.
         joint: usize,
     },
+}
+
+/// Most joints named in [`SkinError::SkeletonOutside`].
+pub(crate) const OUTSIDE_LISTED: usize = 5;
+
+/// `names` joined by commas, with how many of `total` are left unnamed.
+fn listed(names: &[String], total: usize) -> String {
+    let mut text = names.join(", ");
+    if total > names.len() {
+        text += &format!(" and {} more", total - names.len());
+    }
+    text
 }
 
 /// A number with at most six decimals, trailing zeros cut: `100`, `2.54`, `0.01`.

@@ -38,17 +38,20 @@ pub struct SkinOptions {
     /// which roughly triples the edges torn at the MakeHuman shoulders).
     pub depth_exponent: f64,
     /// Rounds of diffusion of the geodesic weights through the voxels before the vertices
-    /// sample them ([`SkinMethod::Geodesic`] only): each round moves every voxel's weights
-    /// halfway towards the mean of its face neighbours' (voxels outside the figure link only
+    /// sample them ([`SkinMethod::Geodesic`] only): each round replaces every voxel's weights
+    /// by the mean of its own and its face neighbours' (voxels outside the figure link only
     /// where their nearest interior voxels touch), so the blend between two bones spreads over
-    /// about `sqrt(rounds / 6)` voxels either side of where they meet, whatever the mesh's
-    /// tessellation. Default 128 (about 4.6 voxels): with none, the finely tessellated
-    /// MakeHuman groins and armpits tear (54 edges past 2× over the sweep on
-    /// `mh_male_heavy_short`, 30 with 128; `reports/deformation/`).
+    /// about `sqrt(2 rounds / 7)` voxels either side of where they meet, whatever the mesh's
+    /// tessellation. Default 75 (about 4.6 voxels, as far as the 128 half-step rounds used
+    /// before at 0.59 times the work): with none, the finely tessellated MakeHuman groins and
+    /// armpits tear (54 edges past 2× over the sweep on `mh_male_heavy_short`, about 30 with
+    /// the default; `reports/deformation/`).
     pub voxel_smoothing_iterations: usize,
     /// Rounds of Laplacian smoothing of the geodesic weights over the mesh's edges
     /// ([`SkinMethod::Geodesic`] only); an edge's share is scaled by (voxel size / edge
-    /// length)², so coarse low-poly meshes are barely smoothed. Default 32.
+    /// length)², so coarse low-poly meshes are barely smoothed. Meshes much finer than the
+    /// voxels (edges under a quarter voxel on average, such as a body subdivided to a million
+    /// triangles) get proportionally fewer rounds. Default 32.
     pub smoothing_iterations: usize,
     /// Scale applied to every distance-map sphere radius before marking the voxels it covers.
     /// Default 1.0: the sphere of a chain voxel is exactly its maximal inscribed ball, as in
@@ -83,7 +86,7 @@ impl Default for SkinOptions {
             falloff: 2.0,
             depth_exponent: 1.0,
             blend_ratio: 2.0,
-            voxel_smoothing_iterations: 128,
+            voxel_smoothing_iterations: 75,
             smoothing_iterations: 32,
             sphere_scale: 1.0,
             connectivity: Connectivity::TwentySix,

@@ -137,6 +137,11 @@ pub fn placement(
     if (inside_count as f64) < options.min_inside_share * deforming.len() as f64 {
         return Err(SkinError::SkeletonOutside {
             inside: inside_count,
+            outside: outside
+                .iter()
+                .take(super::error::OUTSIDE_LISTED)
+                .map(|&j| skeleton.joint(j).name.clone())
+                .collect(),
             deforming: deforming.len(),
             skeleton_centre: ((low + high) * 0.5).to_array(),
             figure_centre: ((figure.0 + figure.1) * 0.5).to_array(),
@@ -495,7 +500,7 @@ mod tests {
         ]);
         assert!(matches!(
             placement(&moved, &solid, &PlacementOptions::default()),
-            Err(SkinError::SkeletonOutside { inside: 0, .. })
+            Err(SkinError::SkeletonOutside { inside: 0, ref outside, .. }) if outside == &["a", "b"]
         ));
         let mut controls = moved.clone();
         controls.joints.iter_mut().for_each(|j| j.deform = false);

@@ -2,6 +2,7 @@
 
 use crate::skeleton::JointId;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Most influences per vertex in [`EngineWeights`] (one glTF `JOINTS_0`/`WEIGHTS_0` set; the
 /// limit of most game engines).
@@ -82,36 +83,74 @@ pub struct EngineWeights {
 /// returns, per vertex, the total anchor weight that was dropped (zero with four or fewer
 /// influences). Joint ids must fit in `u16`.
 pub fn engine_weights(anchor: &[Vec<(JointId, f64)>]) -> (EngineWeights, Vec<f64>) {
+    let per_vertex: Vec<_> = anchor
+        .par_iter()
+        .with_min_len(1024)
+        .map(|v| engine_row(v))
+        .collect();
     let mut out = EngineWeights {
         joints: Vec::with_capacity(anchor.len()),
         weights: Vec::with_capacity(anchor.len()),
     };
     let mut dropped = Vec::with_capacity(anchor.len());
-    for vertex in anchor {
-        let mut sorted: Vec<(JointId, f64)> = vertex.clone();
-        sorted.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-        let kept = &sorted[..sorted.len().min(MAX_ENGINE_INFLUENCES)];
-        let sum: f64 = kept.iter().map(|(_, w)| w).sum();
-        let all: f64 = sorted.iter().map(|(_, w)| w).sum();
-        dropped.push((all - sum).max(0.0));
-        let mut joints = [0u16; MAX_ENGINE_INFLUENCES];
-        let mut weights = [0f32; MAX_ENGINE_INFLUENCES];
-        for (k, &(joint, w)) in kept.iter().enumerate() {
-            joints[k] = u16::try_from(joint.0).unwrap_or(u16::MAX);
-            weights[k] = if sum > 0.0 { (w / sum) as f32 } else { 0.0 };
-        }
-        if !kept.is_empty() {
-            if sum > 0.0 {
-                let others: f32 = weights[1..].iter().sum();
-                weights[0] = 1.0 - others;
-            } else {
-                weights[0] = 1.0;
-            }
-        }
+    for (joints, weights, d) in per_vertex {
         out.joints.push(joints);
         out.weights.push(weights);
+        dropped.push(d);
     }
     (out, dropped)
+}
+
+/// One vertex of [`engine_weights`]: its joints, weights and the weight dropped.
+fn engine_row(
+    vertex: &[(JointId, f64)],
+) -> (
+    [u16; MAX_ENGINE_INFLUENCES],
+    [f32; MAX_ENGINE_INFLUENCES],
+    f64,
+) {
+    let by_weight =
+        |a: &(JointId, f64), b: &(JointId, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
+    // The four largest (ties: lower joint id), without sorting or copying the whole list.
+    let mut kept = [(JointId(0), 0.0f64); MAX_ENGINE_INFLUENCES];
+    let mut count = 0;
+    for entry in vertex {
+        let mut at = count;
+        while at > 0 && by_weight(entry, &kept[at - 1]).is_lt() {
+            at -= 1;
+        }
+        if at < MAX_ENGINE_INFLUENCES {
+            let end = count.min(MAX_ENGINE_INFLUENCES - 1);
+            kept.copy_within(at..end, at + 1);
+            kept[at] = *entry;
+            count = (count + 1).min(MAX_ENGINE_INFLUENCES);
+        }
+    }
+    let kept = &kept[..count];
+    let sum: f64 = kept.iter().map(|(_, w)| w).sum();
+    // Summed largest first, as the kept ones: exactly `sum` when nothing is dropped.
+    let all: f64 = if vertex.len() <= MAX_ENGINE_INFLUENCES {
+        sum
+    } else {
+        let mut sorted = vertex.to_vec();
+        sorted.sort_by(by_weight);
+        sorted.iter().map(|(_, w)| w).sum()
+    };
+    let mut joints = [0u16; MAX_ENGINE_INFLUENCES];
+    let mut weights = [0f32; MAX_ENGINE_INFLUENCES];
+    for (k, &(joint, w)) in kept.iter().enumerate() {
+        joints[k] = u16::try_from(joint.0).unwrap_or(u16::MAX);
+        weights[k] = if sum > 0.0 { (w / sum) as f32 } else { 0.0 };
+    }
+    if !kept.is_empty() {
+        if sum > 0.0 {
+            let others: f32 = weights[1..].iter().sum();
+            weights[0] = 1.0 - others;
+        } else {
+            weights[0] = 1.0;
+        }
+    }
+    (joints, weights, (all - sum).max(0.0))
 }
 
 #[cfg(test)]

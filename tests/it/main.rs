@@ -19,5 +19,6 @@ mod refine;
 mod rig;
 mod robust;
 mod skin;
+mod skin_bad_input;
 mod skin_skeleton;
 mod voxel;

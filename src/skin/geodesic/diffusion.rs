@@ -128,12 +128,14 @@ fn links(field: &Field, grid: &Grid, voxels: &[usize], slot: &[u32]) -> Vec<[u32
         .collect()
 }
 
-/// `iterations` rounds of diffusion of `rows` between `linked` neighbours: each row moves
-/// halfway towards the mean of its neighbours' and is pruned to four joints
+/// `iterations` rounds of diffusion of `rows` between `linked` neighbours: each row becomes
+/// the plain mean of itself and its neighbours and is pruned to four joints
 /// ([`Mixer::pruned`]). The blend between bones then spreads over a few voxels wherever the
 /// bones meet (the crotch between the thighs, the armpit), at the same width on any
 /// tessellation: the weight field has no steeper slope than the voxels allow, which a fine
-/// mesh's short edges would otherwise stretch.
+/// mesh's short edges would otherwise stretch. A round of the plain mean of seven spreads a
+/// blend by a variance of 2/7 voxel² per axis (a half step towards the neighbours' mean only
+/// 1/6), so 75 rounds spread as far as 128 half steps at 0.59 times the work.
 ///
 /// Each round reads the previous round's rows and writes into a second buffer (no
 /// allocation per round); a row whose neighbours all equal it stays, and one whose
@@ -170,7 +172,7 @@ fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) ->
     if agree {
         return *own;
     }
-    let share = 0.5 / count as f64;
+    let share = 1.0 / (count + 1) as f64;
     let neighbours = || {
         linked
             .iter()
@@ -178,15 +180,15 @@ fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) ->
             .map(|&u| (&rows[u as usize], share))
     };
     if same_joints {
-        if let Some(row) = own.blend_same_joints(0.5, neighbours()) {
+        if let Some(row) = own.blend_same_joints(share, neighbours()) {
             return row;
         }
     }
-    if let Some(row) = blend_few(own, 0.5, neighbours()) {
+    if let Some(row) = blend_few(own, share, neighbours()) {
         return row;
     }
     mixer.clear();
-    mixer.add_row(own, 0.5);
+    mixer.add_row(own, share);
     for (row, share) in neighbours() {
         mixer.add_row(row, share);
     }

@@ -73,10 +73,16 @@ pub(crate) fn geodesic_weights(
 ) -> (Vec<Vec<(JointId, f64)>>, Vec<usize>) {
     let grid = solid.grid;
     let needed = voxels_around_vertices(mesh, solid);
-    let field = field(solid, distance, segments, options, &needed);
-    let voxels = smoothed_voxel_weights(&field, &grid, &needed, options);
+    // The mesh's adjacency does not depend on the field: built beside the shortest paths
+    // (one thread) and the diffusion.
+    let (voxels, adjacency) = rayon::join(
+        || {
+            let field = field(solid, distance, segments, options, &needed);
+            smoothed_voxel_weights(&field, &grid, &needed, options)
+        },
+        || Adjacency::new(mesh),
+    );
     let mut rows = vertex_rows(&voxels, &grid, mesh);
-    let adjacency = Adjacency::new(mesh);
     // A vertex the field does not reach (no joint reached any interior voxel near it) takes
     // the weights of the nearest weighted vertex of the same piece along the mesh's edges; a
     // piece with no weighted vertex at all follows the joint of its nearest bone.
@@ -94,13 +100,16 @@ pub(crate) fn geodesic_weights(
 
 /// One flag per grid voxel: whether it is one of the eight voxels around a vertex.
 fn voxels_around_vertices(mesh: &Mesh, solid: &Solid) -> Vec<bool> {
-    let mut needed = vec![false; solid.grid.len()];
-    for &p in &mesh.positions {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let needed: Vec<AtomicBool> = (0..solid.grid.len())
+        .map(|_| AtomicBool::new(false))
+        .collect();
+    mesh.positions.par_iter().with_min_len(4096).for_each(|&p| {
         for (index, _) in corners(&solid.grid, p) {
-            needed[index] = true;
+            needed[index].store(true, Ordering::Relaxed);
         }
-    }
-    needed
+    });
+    needed.into_iter().map(AtomicBool::into_inner).collect()
 }
 
 /// Binds every vertex still without weights to the joint of its nearest segment; returns

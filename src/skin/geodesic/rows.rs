@@ -127,30 +127,42 @@ pub(super) fn blend_few<'a>(
 pub(super) struct Mixer {
     joints: Vec<u32>,
     weights: Vec<f64>,
+    /// Joint id → its position in `joints` plus one (0: not in the sum), grown on demand
+    /// (skeletons have fewer than `u16::MAX` joints, checked before skinning), so that adding
+    /// a joint needs no search where many bones meet.
+    at: Vec<u32>,
 }
 
 impl Mixer {
     /// Empties the sum.
     #[inline]
     pub fn clear(&mut self) {
+        for &j in &self.joints {
+            self.at[j as usize] = 0;
+        }
         self.joints.clear();
         self.weights.clear();
     }
 
     /// Adds `weight` to `joint`'s sum.
-    #[inline]
+    #[inline(always)]
     pub fn add(&mut self, joint: u32, weight: f64) {
-        match self.joints.iter().position(|&j| j == joint) {
-            Some(k) => self.weights[k] += weight,
-            None => {
+        let j = joint as usize;
+        if j >= self.at.len() {
+            self.at.resize(j + 1, 0);
+        }
+        match self.at[j] {
+            0 => {
                 self.joints.push(joint);
                 self.weights.push(weight);
+                self.at[j] = self.joints.len() as u32;
             }
+            k => self.weights[k as usize - 1] += weight,
         }
     }
 
     /// Adds `factor` times every entry of `row`.
-    #[inline]
+    #[inline(always)]
     pub fn add_row(&mut self, row: &Row, factor: f64) {
         for (j, w) in row.entries() {
             self.add(j, factor * w);
