@@ -51,6 +51,26 @@ pub fn load_mesh(path: &Path) -> anyhow::Result<Mesh> {
     skelfit::mesh::load(path).with_context(|| format!("loading mesh {}", path.display()))
 }
 
+/// Loads a mesh and what the file held beyond it ([`skelfit::mesh::load_model`]: glTF and
+/// OBJ models, written back by [`skelfit::export::model_glb_bytes`]).
+pub fn load_model(path: &Path) -> anyhow::Result<(Mesh, Option<skelfit::mesh::SourceModel>)> {
+    skelfit::mesh::load_model(path).with_context(|| format!("loading mesh {}", path.display()))
+}
+
+/// Prints what the output leaves out of the user's model; with `--bones` the output holds
+/// the welded mesh instead of the model.
+pub fn print_model_warnings(model: &skelfit::mesh::SourceModel, bones: bool) {
+    if bones {
+        eprintln!(
+            "skelfit: warning: with --bones the .glb holds the welded mesh (no UVs, materials or textures of the input) [export, notice]"
+        );
+        return;
+    }
+    for w in &model.warnings {
+        eprintln!("skelfit: warning: {w} [export, notice]");
+    }
+}
+
 /// Milliseconds since `start`.
 pub fn millis(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3

@@ -2,13 +2,16 @@
 //! [--up ..] [--forward ..] [--labels OVERRIDE.json]`: the anatomical control skeleton from a
 //! template (dissertation ch.7-8), skinned and exported.
 
-use super::common::{load_mesh, millis, require_glb, Outputs, VoxelArgs};
+use super::common::{load_model, millis, require_glb, Outputs, VoxelArgs};
 use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use serde_json::json;
 use skelfit::anatomy::Overrides;
-use skelfit::export::{bvh_text, glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions};
+use skelfit::export::{
+    bvh_text, glb_bytes, model_glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions,
+    OutputFrame,
+};
 use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice, GENERAL};
 use skelfit::template::{Preset, Template};
 use skelfit::warning::Warning;
@@ -162,7 +165,7 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     let options = args.options()?;
     let mut outputs = args.outputs(&[])?;
     let start = Instant::now();
-    let mesh = load_mesh(&args.mesh)?;
+    let (mesh, model) = load_model(&args.mesh)?;
     let load_ms = millis(start);
     let rigged = with_spinner(format!("rigging {}", args.mesh.display()), || {
         rig(&mesh, &options)
@@ -195,6 +198,14 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
         )?;
         bone_warnings = made.warnings;
         bytes
+    } else if let Some(model) = &model {
+        model_glb_bytes(
+            model,
+            &rigged.fit.skeleton,
+            &rigged.skin,
+            &OutputFrame::IDENTITY,
+            &GltfOptions::default(),
+        )?
     } else {
         glb_bytes(
             &mesh,
@@ -226,6 +237,9 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     let mut warnings = rigged.warnings.clone();
     warnings.extend(bone_warnings.into_iter().map(Warning::Bones));
     super::common::print_warnings(&warnings);
+    if let Some(model) = &model {
+        super::common::print_model_warnings(model, args.bones);
+    }
     if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
         eprintln!("skelfit: hint: {hint}");
     }
