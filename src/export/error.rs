@@ -73,7 +73,9 @@ pub enum ExportError {
         detail: String,
     },
     /// The user's model refers to data it does not hold (a buffer view beyond its buffer).
-    #[error("the input model cannot be written back: {message}; re-export it from the modelling tool")]
+    #[error(
+        "the input model cannot be written back: {message}; re-export it from the modelling tool"
+    )]
     InvalidSource {
         /// What is wrong, with the glTF index.
         message: String,

@@ -86,7 +86,14 @@ pub fn model_glb_bytes(
         }
         mesh["primitives"] = Value::Array(primitives);
         meshes.push(mesh);
-        let skin_index = skin_of(instance, &placed, frame, &mut skins, &mut copy, &mut accessors_out);
+        let skin_index = skin_of(
+            instance,
+            &placed,
+            frame,
+            &mut skins,
+            &mut copy,
+            &mut accessors_out,
+        );
         let mut node = json!({"mesh": meshes.len() - 1, "skin": skin_index});
         if let Some(name) = &instance.name {
             node["name"] = json!(name);
@@ -309,7 +316,9 @@ impl<'a> Copier<'a> {
 
     /// The output index of input accessor `index` (a JSON number), copying it on first use.
     fn accessor(&mut self, index: &Value, out: &mut Vec<Value>) -> Result<usize, ExportError> {
-        let index = index.as_u64().ok_or_else(|| invalid(format!("accessor index {index}")))?
+        let index = index
+            .as_u64()
+            .ok_or_else(|| invalid(format!("accessor index {index}")))?
             as usize;
         if let Some(&done) = self.accessors.get(&index) {
             return Ok(done);
@@ -381,11 +390,13 @@ impl<'a> Copier<'a> {
             })
             .collect();
         let joints = self.bin.push(
-            rows.iter().flat_map(|(j, _)| j.iter().flat_map(|x| x.to_le_bytes())),
+            rows.iter()
+                .flat_map(|(j, _)| j.iter().flat_map(|x| x.to_le_bytes())),
             Some(ARRAY_BUFFER),
         );
         let weights = self.bin.push(
-            rows.iter().flat_map(|(_, w)| w.iter().flat_map(|x| x.to_le_bytes())),
+            rows.iter()
+                .flat_map(|(_, w)| w.iter().flat_map(|x| x.to_le_bytes())),
             Some(ARRAY_BUFFER),
         );
         (joints, weights)
@@ -396,4 +407,3 @@ impl<'a> Copier<'a> {
 fn invalid(message: String) -> ExportError {
     ExportError::InvalidSource { message }
 }
-

@@ -248,11 +248,12 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         if let Some(mesh) = node.mesh() {
             let skin = node.skin().map_or(0, |s| s.index());
             let weights = joint_map.as_deref().map(|map| (map, skin));
-            let primitives = append_mesh(&mesh, transform, weights, &buffers, &mut raw)
-                .map_err(|e| match e {
+            let primitives = append_mesh(&mesh, transform, weights, &buffers, &mut raw).map_err(
+                |e| match e {
                     Failure::Message(m) => error(m),
                     Failure::Mesh(e) => e,
-                })?;
+                },
+            )?;
             raw.instances.push(RawInstance {
                 node: n,
                 mesh: mesh.index(),

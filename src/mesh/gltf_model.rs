@@ -36,7 +36,10 @@ pub(super) fn load_gltf_model(path: &Path) -> Result<(Mesh, SourceModel), MeshEr
         ),
         ("skins", "the rig's skin replaces them"),
     ] {
-        let count = document.get(key).and_then(Value::as_array).map_or(0, Vec::len);
+        let count = document
+            .get(key)
+            .and_then(Value::as_array)
+            .map_or(0, Vec::len);
         if count > 0 {
             warnings.push(format!("the input's {count} {key} were left out: {why}"));
         }

@@ -18,6 +18,7 @@ mod outline;
 mod refine;
 mod rig;
 mod robust;
+mod roundtrip;
 mod skin;
 mod skin_skeleton;
 mod voxel;
