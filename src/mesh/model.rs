@@ -68,6 +68,7 @@ pub fn load_model(path: &Path) -> Result<(Mesh, Option<SourceModel>), MeshError>
         Some("gltf") | Some("glb") => {
             super::gltf_model::load_gltf_model(path).map(|(m, s)| (m, Some(s)))
         }
+        Some("obj") => super::obj_model::load_obj_model(path).map(|(m, s)| (m, Some(s))),
         _ => super::load(path).map(|m| (m, None)),
     }
 }
