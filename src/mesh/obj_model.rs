@@ -1,9 +1,9 @@
 //! The [`SourceModel`] of an OBJ file: a glTF document with a primitive per material, a vertex
 //! per distinct position/UV/normal corner, and the MTL materials with their images.
 
+use super::model::{image_file, SourceInstance, SourceModel, SourcePrimitive};
 use super::mtl::{read_libraries, MtlMaterial};
 use super::obj::{read_obj_parsed, ParsedObj};
-use super::model::{image_file, SourceInstance, SourceModel, SourcePrimitive};
 use super::{Mesh, MeshError};
 use glam::DMat4;
 use serde_json::{json, Value};
@@ -45,7 +45,15 @@ pub(super) fn load_obj_model(path: &Path) -> Result<(Mesh, SourceModel), MeshErr
                      white"
                 ));
             }
-            material(name, found, path, &mut images, &mut bin, &mut views, &mut warnings)
+            material(
+                name,
+                found,
+                path,
+                &mut images,
+                &mut bin,
+                &mut views,
+                &mut warnings,
+            )
         })
         .collect();
 
@@ -58,7 +66,14 @@ pub(super) fn load_obj_model(path: &Path) -> Result<(Mesh, SourceModel), MeshErr
     let mut primitives_json = Vec::new();
     let mut primitives = Vec::new();
     for (index, &group) in groups.iter().enumerate() {
-        let (json, vertices) = primitive(&parsed, &source, group, &mut bin, &mut views, &mut accessors);
+        let (json, vertices) = primitive(
+            &parsed,
+            &source,
+            group,
+            &mut bin,
+            &mut views,
+            &mut accessors,
+        );
         primitives_json.push(json);
         primitives.push(SourcePrimitive { index, vertices });
     }
@@ -132,8 +147,12 @@ fn material(
                     images
                         .list
                         .push(json!({"bufferView": view, "mimeType": mime, "name": file}));
-                    images.textures.push(json!({"source": images.list.len() - 1}));
-                    images.by_name.insert(file.clone(), images.textures.len() - 1);
+                    images
+                        .textures
+                        .push(json!({"source": images.list.len() - 1}));
+                    images
+                        .by_name
+                        .insert(file.clone(), images.textures.len() - 1);
                     Some(images.textures.len() - 1)
                 }
                 Err(reason) => {
@@ -203,20 +222,37 @@ fn primitive(
         }
     }
     let mut attributes = serde_json::Map::new();
-    let view = push_view(bin, views, &f32_bytes(positions.iter().flatten()), Some(34962));
-    accessors.push(json!({"bufferView": view, "componentType": 5126, "count": count,
-        "type": "VEC3", "min": min, "max": max}));
+    let view = push_view(
+        bin,
+        views,
+        &f32_bytes(positions.iter().flatten()),
+        Some(34962),
+    );
+    accessors.push(
+        json!({"bufferView": view, "componentType": 5126, "count": count,
+        "type": "VEC3", "min": min, "max": max}),
+    );
     attributes.insert("POSITION".into(), json!(accessors.len() - 1));
     if keys.iter().all(|k| k[2] != NONE) {
         let normals: Vec<[f32; 3]> = keys
             .iter()
             .map(|k| {
                 let n = parsed.normals[k[2] as usize];
-                n.try_normalize().unwrap_or(glam::DVec3::Y).as_vec3().to_array()
+                n.try_normalize()
+                    .unwrap_or(glam::DVec3::Y)
+                    .as_vec3()
+                    .to_array()
             })
             .collect();
-        let view = push_view(bin, views, &f32_bytes(normals.iter().flatten()), Some(34962));
-        accessors.push(json!({"bufferView": view, "componentType": 5126, "count": count, "type": "VEC3"}));
+        let view = push_view(
+            bin,
+            views,
+            &f32_bytes(normals.iter().flatten()),
+            Some(34962),
+        );
+        accessors.push(
+            json!({"bufferView": view, "componentType": 5126, "count": count, "type": "VEC3"}),
+        );
         attributes.insert("NORMAL".into(), json!(accessors.len() - 1));
     }
     if keys.iter().any(|k| k[1] != NONE) {
@@ -228,7 +264,9 @@ fn primitive(
             })
             .collect();
         let view = push_view(bin, views, &f32_bytes(uvs.iter().flatten()), Some(34962));
-        accessors.push(json!({"bufferView": view, "componentType": 5126, "count": count, "type": "VEC2"}));
+        accessors.push(
+            json!({"bufferView": view, "componentType": 5126, "count": count, "type": "VEC2"}),
+        );
         attributes.insert("TEXCOORD_0".into(), json!(accessors.len() - 1));
     }
     let index_bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();

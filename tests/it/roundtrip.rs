@@ -171,15 +171,30 @@ fn rig_model(path: &Path, frame: &OutputFrame) -> (Vec<u8>, Mesh) {
     (bytes, mesh)
 }
 
-/// Every welded vertex of `a` within `tolerance` of the same vertex of `b`.
+/// Every welded vertex of `a` within `tolerance` of a vertex of `b`, and as many (the output
+/// may list them in another order: an OBJ's primitives follow its materials).
 fn assert_same_positions(a: &Mesh, b: &Mesh, tolerance: f64) {
     assert_eq!(a.positions.len(), b.positions.len());
-    let worst = a
-        .positions
-        .iter()
-        .zip(&b.positions)
-        .map(|(p, q)| p.distance(*q))
-        .fold(0.0, f64::max);
+    let cell = |p: DVec3| (p / 1e-3).floor().as_ivec3().to_array();
+    let mut grid: std::collections::HashMap<[i32; 3], Vec<DVec3>> = Default::default();
+    for &q in &b.positions {
+        grid.entry(cell(q)).or_default().push(q);
+    }
+    let mut worst = 0.0f64;
+    for &p in &a.positions {
+        let [x, y, z] = cell(p);
+        let mut nearest = f64::INFINITY;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    for q in grid.get(&[x + dx, y + dy, z + dz]).into_iter().flatten() {
+                        nearest = nearest.min(p.distance(*q));
+                    }
+                }
+            }
+        }
+        worst = worst.max(nearest);
+    }
     assert!(worst <= tolerance, "rest pose moved a vertex by {worst}");
 }
 
@@ -299,6 +314,80 @@ fn rigged_cesium_man_keeps_its_uvs_material_texture_and_vertices() {
     assert_same_positions(&back.mesh, &welded, 1e-5);
     if let Some(report) = crate::export::validate(&[path]) {
         eprintln!("{report}");
+        assert!(report.contains("numErrors=0 "), "{report}");
+    }
+}
+
+/// An OBJ with a UV per corner (every vertex split), two `usemtl` materials and an MTL library
+/// whose first material has a `map_Kd` image: the output has a vertex per distinct corner, a
+/// primitive per material, both materials and the image.
+#[test]
+fn rigged_obj_keeps_uvs_and_mtl_materials_with_their_image() {
+    use std::fmt::Write;
+    let mesh = bundled_humanoid();
+    let dir = tempfile::tempdir().unwrap();
+    let (min, max) = mesh.bounding_box().unwrap();
+    let mut obj = String::from("mtllib body.mtl\n");
+    for p in &mesh.positions {
+        writeln!(obj, "v {} {} {}", p.x, p.y, p.z).unwrap();
+    }
+    let half = mesh.triangles.len() / 2;
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if t == 0 {
+            obj.push_str("usemtl skin\n");
+        } else if t == half {
+            obj.push_str("usemtl cloth\n");
+        }
+        for &v in tri {
+            let p = mesh.positions[v as usize];
+            let u = (p.x - min.x) / (max.x - min.x);
+            let w = (p.y - min.y) / (max.y - min.y) + t as f64 * 1e-9;
+            writeln!(obj, "vt {u} {w}").unwrap();
+        }
+        writeln!(
+            obj,
+            "f {}/{} {}/{} {}/{}",
+            tri[0] + 1,
+            3 * t + 1,
+            tri[1] + 1,
+            3 * t + 2,
+            tri[2] + 1,
+            3 * t + 3
+        )
+        .unwrap();
+    }
+    std::fs::write(dir.path().join("body.obj"), obj).unwrap();
+    std::fs::write(
+        dir.path().join("body.mtl"),
+        "newmtl skin\nKd 1 1 1\nmap_Kd textures/skin.png\nnewmtl cloth\nKd 0.2 0.3 0.4\n",
+    )
+    .unwrap();
+    std::fs::create_dir(dir.path().join("textures")).unwrap();
+    std::fs::write(dir.path().join("textures/skin.png"), small_png()).unwrap();
+    let (bytes, welded) = rig_model(&dir.path().join("body.obj"), &OutputFrame::IDENTITY);
+    let out = read_written(&bytes);
+    let corners = 3 * mesh.triangles.len();
+    assert_eq!(out.vertices, corners, "a vertex per distinct corner");
+    assert_eq!(out.uvs.len(), corners);
+    let primitives = out.json["meshes"][0]["primitives"].as_array().unwrap();
+    assert_eq!(primitives.len(), 2);
+    assert_eq!(primitives[1]["material"], 1);
+    assert_eq!(out.json["materials"][1]["name"], "cloth");
+    let factor = &out.json["materials"][1]["pbrMetallicRoughness"]["baseColorFactor"];
+    assert_eq!(factor, &serde_json::json!([0.2, 0.3, 0.4, 1.0]));
+    assert_eq!(
+        out.json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"],
+        0
+    );
+    assert_eq!(out.image, small_png());
+    for sum in &out.weight_sums {
+        assert!((sum - 1.0).abs() < 1e-5);
+    }
+    let path = dir.path().join("rigged.glb");
+    std::fs::write(&path, &bytes).unwrap();
+    let back = load_gltf_scene(&path).unwrap();
+    assert_same_positions(&back.mesh, &welded, 1e-5);
+    if let Some(report) = crate::export::validate(&[path]) {
         assert!(report.contains("numErrors=0 "), "{report}");
     }
 }
