@@ -94,13 +94,25 @@ impl Outputs {
     ) -> anyhow::Result<Self> {
         let outputs: Vec<&Path> = outputs.into_iter().collect();
         let inputs: Vec<&Path> = inputs.into_iter().collect();
-        skelfit::output::check_outputs(&outputs, &inputs)?;
-        Ok(Self::default())
+        match skelfit::output::check_outputs(&outputs, &inputs) {
+            Err(e @ skelfit::output::OutputError::IsInput { .. }) => {
+                Err(UsageError(e.to_string()).into())
+            }
+            other => Ok(other.map(|()| Self::default())?),
+        }
     }
 
     /// Adds a file to write at the end.
     pub fn add(&mut self, path: &Path, bytes: impl Into<Vec<u8>>) {
         self.files.push((path.to_path_buf(), bytes.into()));
+    }
+
+    /// Adds a glTF file to write at the end: the GLB bytes as they are for `.glb`, as JSON
+    /// with the data embedded for `.gltf` ([`MeshFormat`]).
+    pub fn add_mesh(&mut self, path: &Path, glb: Vec<u8>) -> anyhow::Result<()> {
+        let bytes = MeshFormat::of(path, "-o")?.encode(glb)?;
+        self.add(path, bytes);
+        Ok(())
     }
 
     /// Writes every file added, all-or-nothing.
@@ -124,19 +136,60 @@ pub fn output_folder(dir: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Refuses a binary glTF output named `.gltf` (skelfit writes GLB; a `.gltf` file must be
-/// JSON, and importers would reject GLB bytes under that name).
-pub fn require_glb(path: &Path, option: &str) -> anyhow::Result<()> {
-    let gltf = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
-    if gltf {
-        anyhow::bail!(
-            "{option} {}: skelfit writes binary glTF; name the file .glb",
-            path.display()
-        );
+/// A mistake in what the user asked for (an output that is an input, an unknown output
+/// extension): exit code 2, as for invalid command-line usage.
+#[derive(Debug)]
+pub struct UsageError(pub String);
+
+impl std::fmt::Display for UsageError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
     }
-    Ok(())
+}
+
+impl std::error::Error for UsageError {}
+
+/// How a glTF output is written, chosen by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// `.glb`: binary glTF.
+    Glb,
+    /// `.gltf`: JSON glTF with the binary data embedded (base64 `data:` URI).
+    Gltf,
+}
+
+impl MeshFormat {
+    /// The format of an output mesh file named by `option` (`-o`): `.glb` or `.gltf`
+    /// (case-insensitive); another extension is a [`UsageError`] naming the accepted ones.
+    pub fn of(path: &Path, option: &str) -> anyhow::Result<Self> {
+        let extension = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match extension.as_deref() {
+            Some("glb") => Ok(Self::Glb),
+            Some("gltf") => Ok(Self::Gltf),
+            _ => Err(UsageError(format!(
+                "{option} {}: unknown output extension; skelfit writes .glb (binary glTF) or \
+                 .gltf (glTF JSON with the data embedded)",
+                path.display()
+            ))
+            .into()),
+        }
+    }
+
+    /// The file's bytes from GLB bytes.
+    pub fn encode(self, glb: Vec<u8>) -> anyhow::Result<Vec<u8>> {
+        Ok(match self {
+            Self::Glb => glb,
+            Self::Gltf => skelfit::export::gltf_text_from_glb(&glb)?,
+        })
+    }
+}
+
+/// Checks a mesh output's extension (see [`MeshFormat::of`]).
+pub fn require_mesh_output(path: &Path, option: &str) -> anyhow::Result<()> {
+    MeshFormat::of(path, option).map(|_| ())
 }
 
 /// Writes a file atomically with its name in the error context.

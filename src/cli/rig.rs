@@ -2,7 +2,7 @@
 //! [--up ..] [--forward ..] [--labels OVERRIDE.json]`: the anatomical control skeleton from a
 //! template (dissertation ch.7-8), skinned and exported.
 
-use super::common::{load_model, millis, require_glb, Outputs, VoxelArgs};
+use super::common::{load_model, millis, require_mesh_output, Outputs, VoxelArgs};
 use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
@@ -147,7 +147,6 @@ impl RigArgs {
 
     /// Checks `-o` (a .glb) and the other outputs, together with `extra` ones, before any work.
     pub fn outputs<'a>(&'a self, extra: &[Option<&'a Path>]) -> anyhow::Result<Outputs> {
-        require_glb(&self.output, "-o")?;
         let outputs = [
             Some(self.output.as_path()),
             self.json.as_deref(),
@@ -156,7 +155,9 @@ impl RigArgs {
         .into_iter()
         .chain(extra.iter().copied())
         .flatten();
-        Outputs::check(outputs, self.inputs())
+        let checked = Outputs::check(outputs, self.inputs())?;
+        require_mesh_output(&self.output, "-o")?;
+        Ok(checked)
     }
 }
 
@@ -214,7 +215,7 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
             &GltfOptions::default(),
         )?
     };
-    outputs.add(&args.output, glb);
+    outputs.add_mesh(&args.output, glb)?;
     let info = run_info(&args.mesh, &rigged, load_ms);
     if let Some(path) = &args.json {
         outputs.add(path, rig_json(&args.mesh, &rigged, Some(info.clone()))?);

@@ -15,6 +15,7 @@ mod hardening;
 mod medial;
 mod mesh;
 mod outline;
+mod outputs;
 mod refine;
 mod rig;
 mod robust;
