@@ -71,6 +71,96 @@ pub fn print_model_warnings(model: &skelfit::mesh::SourceModel, bones: bool) {
     }
 }
 
+/// The frame of a written .glb, and what to tell the user about it.
+#[derive(Debug, Clone)]
+pub struct ChosenFrame {
+    /// Mesh frame → file frame.
+    pub frame: skelfit::export::OutputFrame,
+    /// One line for the summary: the file's frame and units and where they came from.
+    pub note: String,
+    /// A warning when `--units auto` could not tell the units.
+    pub warning: Option<String>,
+    /// The mesh's units (`None` with `--keep-frame`).
+    pub units: Option<skelfit::export::Units>,
+}
+
+impl ChosenFrame {
+    /// The choice as JSON for `run` information.
+    pub fn json(&self) -> serde_json::Value {
+        let r = self.frame.rotation;
+        serde_json::json!({
+            "rotation": [r.x, r.y, r.z, r.w],
+            "scale": self.frame.scale,
+            "mesh_units": self.units.map(|u| u.symbol()),
+        })
+    }
+}
+
+/// The output frame of a .glb (`--keep-frame`, `--units`): glTF's +Y up, +Z forward, metres
+/// from the figure's `up` and `forward` and the mesh's units (guessed from its height along
+/// `up` with `auto`), or the mesh's own frame with `keep_frame`.
+pub fn output_frame(
+    keep_frame: bool,
+    units: &str,
+    mesh: &Mesh,
+    up: glam::DVec3,
+    forward: glam::DVec3,
+) -> anyhow::Result<ChosenFrame> {
+    use skelfit::export::{OutputFrame, Units};
+    if keep_frame {
+        return Ok(ChosenFrame {
+            frame: OutputFrame::IDENTITY,
+            note: "the mesh's own frame and units (--keep-frame)".into(),
+            warning: None,
+            units: None,
+        });
+    }
+    let (low, high) = mesh
+        .positions
+        .iter()
+        .map(|p| p.dot(up))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), d| {
+            (l.min(d), h.max(d))
+        });
+    let height = (high - low).max(0.0);
+    let (chosen, how, warning) = match units {
+        "mm" => (Units::Millimetres, "given".to_string(), None),
+        "cm" => (Units::Centimetres, "given".to_string(), None),
+        "m" => (Units::Metres, "given".to_string(), None),
+        "in" => (Units::Inches, "given".to_string(), None),
+        "auto" => {
+            let guess = Units::guess(height);
+            let warning = (!guess.confident).then(|| {
+                format!(
+                    "the figure is {height:.4} units tall, outside the heights --units auto \
+                     knows (0.3-3 m, 30-300 cm, 300-3000 mm); the .glb takes them as metres, \
+                     pass --units mm|cm|m|in if they are not"
+                )
+            });
+            (
+                guess.units,
+                format!("guessed from the height {height:.4} by --units auto"),
+                warning,
+            )
+        }
+        other => anyhow::bail!("--units {other}: expected mm, cm, m, in or auto"),
+    };
+    let frame = OutputFrame::new(up, forward, chosen.metres());
+    let f = |v: glam::DVec3| format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z);
+    Ok(ChosenFrame {
+        frame,
+        note: format!(
+            "glTF's +Y up, +Z forward, metres (mesh up {}, forward {}, units {} {how}; \
+             --keep-frame keeps the mesh's)",
+            f(up),
+            f(forward),
+            chosen.symbol()
+        ),
+        warning,
+        units: Some(chosen),
+    })
+}
+
 /// Milliseconds since `start`.
 pub fn millis(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3

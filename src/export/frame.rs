@@ -94,9 +94,100 @@ impl OutputFrame {
     }
 }
 
+/// A length unit of the input mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Units {
+    /// Millimetres.
+    Millimetres,
+    /// Centimetres.
+    Centimetres,
+    /// Metres.
+    Metres,
+    /// Inches.
+    Inches,
+}
+
+/// What [`Units::guess`] decided, and how sure it is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnitsGuess {
+    /// The units chosen.
+    pub units: Units,
+    /// Whether the height fell in one of the ranges of [`Units::guess`]; `false` means
+    /// metres by default for a height outside all of them.
+    pub confident: bool,
+}
+
+impl Units {
+    /// Heights a figure standing 0.3-3 m tall has in each unit the guess considers, as
+    /// `(units, lowest, highest)`. Inches overlap centimetres (a 1.8 m figure is 71 in or
+    /// 180 cm), so they are never guessed.
+    pub const GUESS_RANGES: [(Units, f64, f64); 3] = [
+        (Units::Metres, 0.3, 3.0),
+        (Units::Centimetres, 30.0, 300.0),
+        (Units::Millimetres, 300.0, 3000.0),
+    ];
+
+    /// Metres per unit.
+    pub fn metres(self) -> f64 {
+        match self {
+            Units::Millimetres => 0.001,
+            Units::Centimetres => 0.01,
+            Units::Metres => 1.0,
+            Units::Inches => 0.0254,
+        }
+    }
+
+    /// The unit's short name (`mm`, `cm`, `m`, `in`).
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Units::Millimetres => "mm",
+            Units::Centimetres => "cm",
+            Units::Metres => "m",
+            Units::Inches => "in",
+        }
+    }
+
+    /// The units of a figure `height` units tall (its extent along up): the first of
+    /// [`Units::GUESS_RANGES`] holding it (human and animal figures measure 0.3-3 m), else
+    /// metres, not confident.
+    ///
+    /// # Example
+    /// ```
+    /// use skelfit::export::Units;
+    /// assert_eq!(Units::guess(1.7).units, Units::Metres);
+    /// assert_eq!(Units::guess(172.0).units, Units::Centimetres);
+    /// assert_eq!(Units::guess(1800.0).units, Units::Millimetres);
+    /// assert!(!Units::guess(12.0).confident);
+    /// ```
+    pub fn guess(height: f64) -> UnitsGuess {
+        Self::GUESS_RANGES
+            .iter()
+            .find(|(_, low, high)| (*low..=*high).contains(&height))
+            .map_or(
+                UnitsGuess {
+                    units: Units::Metres,
+                    confident: false,
+                },
+                |&(units, _, _)| UnitsGuess {
+                    units,
+                    confident: true,
+                },
+            )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn unit_guesses_follow_the_ranges() {
+        assert_eq!(Units::guess(0.3).units, Units::Metres);
+        assert_eq!(Units::guess(250.0).units, Units::Centimetres);
+        assert_eq!(Units::guess(2999.0).units, Units::Millimetres);
+        assert!(!Units::guess(5000.0).confident);
+        assert_eq!(Units::Inches.metres(), 0.0254);
+    }
 
     #[test]
     fn axes_go_where_gltf_wants_them() {

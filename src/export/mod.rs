@@ -31,7 +31,7 @@ mod obj;
 pub use bvh::{bvh_text, write_bvh, BvhOptions};
 pub use error::ExportError;
 use error::{check_skeleton, io_error};
-pub use frame::OutputFrame;
+pub use frame::{OutputFrame, Units, UnitsGuess};
 pub use gltf::{glb_bytes, glb_bytes_with, write_glb, Attachment, GltfOptions, FOREST_ROOT_NAME};
 pub use gltf_text::gltf_text_from_glb;
 pub use json::{skeleton_json, write_skeleton_json, JsonOptions, SKELETON_FORMAT};
