@@ -9,6 +9,7 @@ mod distance;
 mod eval;
 mod export;
 mod fit;
+mod frames;
 mod fuzz;
 mod general;
 mod hardening;
