@@ -54,7 +54,7 @@ pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
     let made = rig_bones(&rigged)?;
     let bones_ms = millis(clock);
     let skinned = args.with_skin.then_some((&mesh, &rigged.skin));
-    outputs.add(
+    outputs.add_mesh(
         &args.rig.output,
         bones_glb_bytes(
             &rigged.fit.skeleton,
@@ -62,7 +62,7 @@ pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
             skinned,
             &GltfOptions::default(),
         )?,
-    );
+    )?;
     if let Some(path) = &args.obj {
         outputs.add(path, obj_text(&made.world_mesh()));
     }

@@ -51,6 +51,116 @@ pub fn load_mesh(path: &Path) -> anyhow::Result<Mesh> {
     skelfit::mesh::load(path).with_context(|| format!("loading mesh {}", path.display()))
 }
 
+/// Loads a mesh and what the file held beyond it ([`skelfit::mesh::load_model`]: glTF and
+/// OBJ models, written back by [`skelfit::export::model_glb_bytes`]).
+pub fn load_model(path: &Path) -> anyhow::Result<(Mesh, Option<skelfit::mesh::SourceModel>)> {
+    skelfit::mesh::load_model(path).with_context(|| format!("loading mesh {}", path.display()))
+}
+
+/// Prints what the output leaves out of the user's model; with `--bones` the output holds
+/// the welded mesh instead of the model.
+pub fn print_model_warnings(model: &skelfit::mesh::SourceModel, bones: bool) {
+    if bones {
+        eprintln!(
+            "skelfit: warning: with --bones the .glb holds the welded mesh (no UVs, materials or textures of the input) [export, notice]"
+        );
+        return;
+    }
+    for w in &model.warnings {
+        eprintln!("skelfit: warning: {w} [export, notice]");
+    }
+}
+
+/// The frame of a written .glb, and what to tell the user about it.
+#[derive(Debug, Clone)]
+pub struct ChosenFrame {
+    /// Mesh frame → file frame.
+    pub frame: skelfit::export::OutputFrame,
+    /// One line for the summary: the file's frame and units and where they came from.
+    pub note: String,
+    /// A warning when `--units auto` could not tell the units.
+    pub warning: Option<String>,
+    /// The mesh's units (`None` with `--keep-frame`).
+    pub units: Option<skelfit::export::Units>,
+}
+
+impl ChosenFrame {
+    /// The choice as JSON for `run` information.
+    pub fn json(&self) -> serde_json::Value {
+        let r = self.frame.rotation;
+        serde_json::json!({
+            "rotation": [r.x, r.y, r.z, r.w],
+            "scale": self.frame.scale,
+            "mesh_units": self.units.map(|u| u.symbol()),
+        })
+    }
+}
+
+/// The output frame of a .glb (`--keep-frame`, `--units`): glTF's +Y up, +Z forward, metres
+/// from the figure's `up` and `forward` and the mesh's units (guessed from its height along
+/// `up` with `auto`), or the mesh's own frame with `keep_frame`.
+pub fn output_frame(
+    keep_frame: bool,
+    units: &str,
+    mesh: &Mesh,
+    up: glam::DVec3,
+    forward: glam::DVec3,
+) -> anyhow::Result<ChosenFrame> {
+    use skelfit::export::{OutputFrame, Units};
+    if keep_frame {
+        return Ok(ChosenFrame {
+            frame: OutputFrame::IDENTITY,
+            note: "the mesh's own frame and units (--keep-frame)".into(),
+            warning: None,
+            units: None,
+        });
+    }
+    let (low, high) = mesh
+        .positions
+        .iter()
+        .map(|p| p.dot(up))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), d| {
+            (l.min(d), h.max(d))
+        });
+    let height = (high - low).max(0.0);
+    let (chosen, how, warning) = match units {
+        "mm" => (Units::Millimetres, "given".to_string(), None),
+        "cm" => (Units::Centimetres, "given".to_string(), None),
+        "m" => (Units::Metres, "given".to_string(), None),
+        "in" => (Units::Inches, "given".to_string(), None),
+        "auto" => {
+            let guess = Units::guess(height);
+            let warning = (!guess.confident).then(|| {
+                format!(
+                    "the figure is {height:.4} units tall, outside the heights --units auto \
+                     knows (0.3-3 m, 30-300 cm, 300-3000 mm); the .glb takes them as metres, \
+                     pass --units mm|cm|m|in if they are not"
+                )
+            });
+            (
+                guess.units,
+                format!("guessed from the height {height:.4} by --units auto"),
+                warning,
+            )
+        }
+        other => anyhow::bail!("--units {other}: expected mm, cm, m, in or auto"),
+    };
+    let frame = OutputFrame::new(up, forward, chosen.metres());
+    let f = |v: glam::DVec3| format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z);
+    Ok(ChosenFrame {
+        frame,
+        note: format!(
+            "glTF's +Y up, +Z forward, metres (mesh up {}, forward {}, units {} {how}; \
+             --keep-frame keeps the mesh's)",
+            f(up),
+            f(forward),
+            chosen.symbol()
+        ),
+        warning,
+        units: Some(chosen),
+    })
+}
+
 /// Milliseconds since `start`.
 pub fn millis(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
@@ -74,13 +184,25 @@ impl Outputs {
     ) -> anyhow::Result<Self> {
         let outputs: Vec<&Path> = outputs.into_iter().collect();
         let inputs: Vec<&Path> = inputs.into_iter().collect();
-        skelfit::output::check_outputs(&outputs, &inputs)?;
-        Ok(Self::default())
+        match skelfit::output::check_outputs(&outputs, &inputs) {
+            Err(e @ skelfit::output::OutputError::IsInput { .. }) => {
+                Err(UsageError(e.to_string()).into())
+            }
+            other => Ok(other.map(|()| Self::default())?),
+        }
     }
 
     /// Adds a file to write at the end.
     pub fn add(&mut self, path: &Path, bytes: impl Into<Vec<u8>>) {
         self.files.push((path.to_path_buf(), bytes.into()));
+    }
+
+    /// Adds a glTF file to write at the end: the GLB bytes as they are for `.glb`, as JSON
+    /// with the data embedded for `.gltf` ([`MeshFormat`]).
+    pub fn add_mesh(&mut self, path: &Path, glb: Vec<u8>) -> anyhow::Result<()> {
+        let bytes = MeshFormat::of(path, "-o")?.encode(glb)?;
+        self.add(path, bytes);
+        Ok(())
     }
 
     /// Writes every file added, all-or-nothing.
@@ -104,19 +226,60 @@ pub fn output_folder(dir: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Refuses a binary glTF output named `.gltf` (skelfit writes GLB; a `.gltf` file must be
-/// JSON, and importers would reject GLB bytes under that name).
-pub fn require_glb(path: &Path, option: &str) -> anyhow::Result<()> {
-    let gltf = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
-    if gltf {
-        anyhow::bail!(
-            "{option} {}: skelfit writes binary glTF; name the file .glb",
-            path.display()
-        );
+/// A mistake in what the user asked for (an output that is an input, an unknown output
+/// extension): exit code 2, as for invalid command-line usage.
+#[derive(Debug)]
+pub struct UsageError(pub String);
+
+impl std::fmt::Display for UsageError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
     }
-    Ok(())
+}
+
+impl std::error::Error for UsageError {}
+
+/// How a glTF output is written, chosen by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// `.glb`: binary glTF.
+    Glb,
+    /// `.gltf`: JSON glTF with the binary data embedded (base64 `data:` URI).
+    Gltf,
+}
+
+impl MeshFormat {
+    /// The format of an output mesh file named by `option` (`-o`): `.glb` or `.gltf`
+    /// (case-insensitive); another extension is a [`UsageError`] naming the accepted ones.
+    pub fn of(path: &Path, option: &str) -> anyhow::Result<Self> {
+        let extension = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match extension.as_deref() {
+            Some("glb") => Ok(Self::Glb),
+            Some("gltf") => Ok(Self::Gltf),
+            _ => Err(UsageError(format!(
+                "{option} {}: unknown output extension; skelfit writes .glb (binary glTF) or \
+                 .gltf (glTF JSON with the data embedded)",
+                path.display()
+            ))
+            .into()),
+        }
+    }
+
+    /// The file's bytes from GLB bytes.
+    pub fn encode(self, glb: Vec<u8>) -> anyhow::Result<Vec<u8>> {
+        Ok(match self {
+            Self::Glb => glb,
+            Self::Gltf => skelfit::export::gltf_text_from_glb(&glb)?,
+        })
+    }
+}
+
+/// Checks a mesh output's extension (see [`MeshFormat::of`]).
+pub fn require_mesh_output(path: &Path, option: &str) -> anyhow::Result<()> {
+    MeshFormat::of(path, option).map(|_| ())
 }
 
 /// Writes a file atomically with its name in the error context.

@@ -1,7 +1,8 @@
 //! Command-line front end. Each subcommand has a module with its clap `Args` and a `run`.
 //!
 //! Exit codes: 0 success, 1 an error while working (printed as `skelfit: error: ...` with its
-//! chain of causes), 2 invalid command-line usage (printed by clap), 130 interrupted (SIGINT,
+//! chain of causes), 2 invalid command-line usage (printed by clap; also an output that is an
+//! input, or an output extension skelfit cannot write), 130 interrupted (SIGINT,
 //! SIGTERM or SIGHUP; temporary output files are removed and no output is written).
 
 mod bench;
@@ -130,7 +131,11 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("skelfit: error: {error:#}");
-            ExitCode::from(1)
+            if error.chain().any(|e| e.is::<common::UsageError>()) {
+                ExitCode::from(2)
+            } else {
+                ExitCode::from(1)
+            }
         }
     }
 }

@@ -2,7 +2,7 @@
 //! [--json OUT.json] [level-of-detail options]`: animatable skeletons from closed 2D outlines
 //! (seed 003), inflated into a skinned 3D model.
 
-use super::common::{millis, require_glb, Outputs};
+use super::common::{millis, require_mesh_output, Outputs};
 use super::simplify::LodArgs;
 use anyhow::Context;
 use clap::Args;
@@ -138,7 +138,6 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
     options.validate().context("checking the options")?;
     lod.validate()
         .context("checking the level-of-detail options")?;
-    require_glb(&args.output, "-o")?;
     let svgs: Vec<PathBuf> = match &args.svg {
         Some(svg) => (0..args.outlines.len()).map(|k| svg_path(svg, k)).collect(),
         None => Vec::new(),
@@ -149,6 +148,7 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
             .chain(svgs.iter().map(PathBuf::as_path)),
         args.outlines.iter().map(PathBuf::as_path),
     )?;
+    require_mesh_output(&args.output, "-o")?;
     let start = Instant::now();
     let mut parts = Vec::new();
     let mut skeleton_ms = 0.0;
@@ -174,10 +174,10 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
     let clock = Instant::now();
     let skin = skin_inflated(&assembly.mesh, &skeleton, args.resolution)?;
     let skin_ms = millis(clock);
-    outputs.add(
+    outputs.add_mesh(
         &args.output,
         glb_bytes(&assembly.mesh, &skeleton, &skin, &GltfOptions::default())?,
-    );
+    )?;
     if let Some(path) = &args.json {
         let model = args.outlines[0]
             .file_stem()

@@ -2,13 +2,17 @@
 //! [--up ..] [--forward ..] [--labels OVERRIDE.json]`: the anatomical control skeleton from a
 //! template (dissertation ch.7-8), skinned and exported.
 
-use super::common::{load_mesh, millis, require_glb, Outputs, VoxelArgs};
+use super::common::{
+    load_model, millis, output_frame, require_mesh_output, Outputs, VoxelArgs,
+};
 use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use serde_json::json;
 use skelfit::anatomy::Overrides;
-use skelfit::export::{bvh_text, glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions};
+use skelfit::export::{
+    bvh_text, glb_bytes, model_glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions,
+};
 use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice, GENERAL};
 use skelfit::template::{Preset, Template};
 use skelfit::warning::Warning;
@@ -78,6 +82,14 @@ pub struct RigArgs {
         allow_hyphen_values = true
     )]
     pub forward: String,
+    /// Write OUT.glb in the mesh's own frame and units instead of glTF's (+Y up, +Z forward,
+    /// metres).
+    #[arg(long, conflicts_with = "units")]
+    pub keep_frame: bool,
+    /// Units of the mesh, for the metre .glb: mm, cm, m, in, or auto (from the figure's height
+    /// along up: 0.3-3 is m, 30-300 cm, 300-3000 mm; the choice is printed).
+    #[arg(long, value_name = "UNITS", default_value = "auto", value_parser = ["mm", "cm", "m", "in", "auto"])]
+    pub units: String,
     /// A labels override file (JSON) correcting body-part sections (see `skelfit label`).
     #[arg(long, value_name = "OVERRIDE.json")]
     pub labels: Option<PathBuf>,
@@ -144,7 +156,6 @@ impl RigArgs {
 
     /// Checks `-o` (a .glb) and the other outputs, together with `extra` ones, before any work.
     pub fn outputs<'a>(&'a self, extra: &[Option<&'a Path>]) -> anyhow::Result<Outputs> {
-        require_glb(&self.output, "-o")?;
         let outputs = [
             Some(self.output.as_path()),
             self.json.as_deref(),
@@ -153,7 +164,9 @@ impl RigArgs {
         .into_iter()
         .chain(extra.iter().copied())
         .flatten();
-        Outputs::check(outputs, self.inputs())
+        let checked = Outputs::check(outputs, self.inputs())?;
+        require_mesh_output(&self.output, "-o")?;
+        Ok(checked)
     }
 }
 
@@ -162,7 +175,7 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     let options = args.options()?;
     let mut outputs = args.outputs(&[])?;
     let start = Instant::now();
-    let mesh = load_mesh(&args.mesh)?;
+    let (mesh, model) = load_model(&args.mesh)?;
     let load_ms = millis(start);
     let rigged = with_spinner(format!("rigging {}", args.mesh.display()), || {
         rig(&mesh, &options)
@@ -184,27 +197,47 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
         );
     }
     let clock = Instant::now();
+    let frame = output_frame(
+        args.keep_frame,
+        &args.units,
+        &mesh,
+        rigged.labelling.frame.up,
+        rigged.labelling.frame.forward,
+    )?;
+    let skeleton = frame.frame.skeleton(&rigged.fit.skeleton);
     let mut bone_warnings = Vec::new();
     let glb = if args.bones {
-        let made = super::bones::rig_bones(&rigged)?;
+        let mut made = super::bones::rig_bones(&rigged)?;
+        for bone in &mut made.bones {
+            bone.mesh = frame.frame.mesh(&bone.mesh);
+        }
         let bytes = skelfit::bones::bones_glb_bytes(
-            &rigged.fit.skeleton,
+            &skeleton,
             &made,
-            Some((&mesh, &rigged.skin)),
+            Some((&frame.frame.mesh(&mesh), &rigged.skin)),
             &GltfOptions::default(),
         )?;
         bone_warnings = made.warnings;
         bytes
+    } else if let Some(model) = &model {
+        model_glb_bytes(
+            model,
+            &rigged.fit.skeleton,
+            &rigged.skin,
+            &frame.frame,
+            &GltfOptions::default(),
+        )?
     } else {
         glb_bytes(
-            &mesh,
-            &rigged.fit.skeleton,
+            &frame.frame.mesh(&mesh),
+            &skeleton,
             &rigged.skin,
             &GltfOptions::default(),
         )?
     };
-    outputs.add(&args.output, glb);
-    let info = run_info(&args.mesh, &rigged, load_ms);
+    outputs.add_mesh(&args.output, glb)?;
+    let mut info = run_info(&args.mesh, &rigged, load_ms);
+    info["output_frame"] = frame.json();
     if let Some(path) = &args.json {
         outputs.add(path, rig_json(&args.mesh, &rigged, Some(info.clone()))?);
     }
@@ -222,10 +255,17 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&info)?);
     } else {
         print_summary(args, &rigged, load_ms, export_ms);
+        println!("frame           {}", frame.note);
+    }
+    if let Some(warning) = &frame.warning {
+        eprintln!("skelfit: warning: {warning} [export, notice]");
     }
     let mut warnings = rigged.warnings.clone();
     warnings.extend(bone_warnings.into_iter().map(Warning::Bones));
     super::common::print_warnings(&warnings);
+    if let Some(model) = &model {
+        super::common::print_model_warnings(model, args.bones);
+    }
     if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
         eprintln!("skelfit: hint: {hint}");
     }

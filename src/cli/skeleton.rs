@@ -1,7 +1,7 @@
 //! `skelfit skeleton MESH -o OUT.glb [--json OUT.json] [--bvh OUT.bvh] [parameters]`: the
 //! general control skeleton of any figure (dissertation ch.5), skinned and exported.
 
-use super::common::{load_mesh, require_glb, Outputs, VoxelArgs};
+use super::common::{load_mesh, require_mesh_output, Outputs, VoxelArgs};
 use super::simplify::LodArgs;
 use anyhow::Context;
 use clap::Args;
@@ -96,7 +96,6 @@ pub fn with_spinner<T>(message: String, work: impl FnOnce() -> T) -> T {
 /// Runs the command.
 pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     let options = args.options()?;
-    require_glb(&args.output, "-o")?;
     let mut outputs = Outputs::check(
         [
             Some(args.output.as_path()),
@@ -107,6 +106,7 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
         .flatten(),
         [args.mesh.as_path()],
     )?;
+    require_mesh_output(&args.output, "-o")?;
     let start = Instant::now();
     let mesh = load_mesh(&args.mesh)?;
     let load_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -116,7 +116,7 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     .context("fitting the general control skeleton")?;
     apply_lod(&mesh, &mut rig, &args.lod, &options)?;
     let clock = Instant::now();
-    outputs.add(
+    outputs.add_mesh(
         &args.output,
         glb_bytes(
             &mesh,
@@ -124,7 +124,7 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
             &rig.skin,
             &GltfOptions::default(),
         )?,
-    );
+    )?;
     let run = run_info(&args.mesh, &rig, load_ms);
     if let Some(path) = &args.json {
         let json_options = JsonOptions {

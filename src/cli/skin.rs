@@ -3,7 +3,7 @@
 //! JSON, BVH, a glTF/GLB's skin) with `skelfit rig`'s weights, keeping the skeleton's own
 //! joint names and hierarchy.
 
-use super::common::{load_mesh, millis, require_glb, Outputs, VoxelArgs};
+use super::common::{load_mesh, millis, require_mesh_output, Outputs, VoxelArgs};
 use super::skeleton::with_spinner;
 use anyhow::{bail, Context};
 use clap::Args;
@@ -62,8 +62,7 @@ impl SkinArgs {
 
     /// Checks every output before any work.
     fn outputs(&self) -> anyhow::Result<Outputs> {
-        require_glb(&self.output, "-o")?;
-        Outputs::check(
+        let checked = Outputs::check(
             [
                 Some(self.output.as_path()),
                 self.json.as_deref(),
@@ -72,7 +71,9 @@ impl SkinArgs {
             .into_iter()
             .flatten(),
             [self.mesh.as_path(), self.skeleton.as_path()],
-        )
+        )?;
+        require_mesh_output(&self.output, "-o")?;
+        Ok(checked)
     }
 }
 
@@ -110,10 +111,10 @@ pub fn run(args: &SkinArgs) -> anyhow::Result<()> {
     })?;
     let skin_ms = millis(clock);
     let clock = Instant::now();
-    outputs.add(
+    outputs.add_mesh(
         &args.output,
         glb_bytes(&mesh, &rig.skeleton, &skinned.skin, &GltfOptions::default())?,
-    );
+    )?;
     let info = run_info(args, &rig, &skinned, load_ms, skin_ms);
     if let Some(path) = &args.json {
         let canonical = rig

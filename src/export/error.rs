@@ -72,6 +72,14 @@ pub enum ExportError {
         /// Details.
         detail: String,
     },
+    /// The user's model refers to data it does not hold (a buffer view beyond its buffer).
+    #[error(
+        "the input model cannot be written back: {message}; re-export it from the modelling tool"
+    )]
+    InvalidSource {
+        /// What is wrong, with the glTF index.
+        message: String,
+    },
 }
 
 /// Rejects empty or invalid skeletons.

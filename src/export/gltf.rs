@@ -11,13 +11,13 @@ use std::path::Path;
 /// Name of the node that holds the root joints of a skeleton with several roots.
 pub const FOREST_ROOT_NAME: &str = "skeleton_root";
 /// glTF component type: unsigned short.
-const UNSIGNED_SHORT: u32 = 5123;
+pub(super) const UNSIGNED_SHORT: u32 = 5123;
 /// glTF component type: unsigned int.
 const UNSIGNED_INT: u32 = 5125;
 /// glTF component type: float.
-const FLOAT: u32 = 5126;
+pub(super) const FLOAT: u32 = 5126;
 /// Buffer view target of vertex attributes.
-const ARRAY_BUFFER: u32 = 34962;
+pub(super) const ARRAY_BUFFER: u32 = 34962;
 /// Buffer view target of indices.
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 /// GLB header magic `glTF`.
@@ -287,7 +287,7 @@ fn push_skinned(
 }
 
 /// A node per joint: its name and its rest transform relative to its parent's.
-fn joint_nodes(skeleton: &Skeleton) -> Vec<Value> {
+pub(super) fn joint_nodes(skeleton: &Skeleton) -> Vec<Value> {
     skeleton
         .joints
         .iter()
@@ -341,7 +341,7 @@ fn push_attachment(
 }
 
 /// Each joint node's `children`: its child joints, then its attachment nodes (`attached`).
-fn link_children(nodes: &mut [Value], skeleton: &Skeleton, attached: &[Vec<usize>]) {
+pub(super) fn link_children(nodes: &mut [Value], skeleton: &Skeleton, attached: &[Vec<usize>]) {
     for (k, extra) in attached.iter().enumerate() {
         let mut children: Vec<usize> = skeleton
             .children(crate::skeleton::JointId(k))
@@ -361,7 +361,7 @@ fn accessors_empty(document: &Value) -> bool {
 }
 
 /// An accessor object.
-fn accessor(view: usize, component: u32, count: usize, kind: &str) -> Value {
+pub(super) fn accessor(view: usize, component: u32, count: usize, kind: &str) -> Value {
     json!({"bufferView": view, "componentType": component, "count": count, "type": kind})
 }
 
@@ -511,14 +511,14 @@ fn vertex_normals(mesh: &Mesh) -> Vec<[f32; 3]> {
 
 /// The binary chunk under construction and its buffer views.
 #[derive(Default)]
-struct Binary {
-    bytes: Vec<u8>,
-    views: Vec<Value>,
+pub(super) struct Binary {
+    pub(super) bytes: Vec<u8>,
+    pub(super) views: Vec<Value>,
 }
 
 impl Binary {
     /// Appends one buffer view (4-byte aligned) and returns its index.
-    fn push(&mut self, data: impl Iterator<Item = u8>, target: Option<u32>) -> usize {
+    pub(super) fn push(&mut self, data: impl Iterator<Item = u8>, target: Option<u32>) -> usize {
         while self.bytes.len() % 4 != 0 {
             self.bytes.push(0);
         }
@@ -536,7 +536,7 @@ impl Binary {
 
 /// Packs a JSON document and binary data into a GLB container (glTF 2.0 §4.4): a 12-byte
 /// header, the JSON chunk padded with spaces and the BIN chunk padded with zeros to 4 bytes.
-fn pack_glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, ExportError> {
+pub(super) fn pack_glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, ExportError> {
     while json.len() % 4 != 0 {
         json.push(b' ');
     }

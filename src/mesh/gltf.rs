@@ -92,14 +92,7 @@ pub fn load_gltf(path: &Path) -> Result<Mesh, MeshError> {
 /// As [`load_gltf`]; also [`MeshError::Parse`] for a singular inverse bind matrix or a joint
 /// index beyond the skin.
 pub fn load_gltf_scene(path: &Path) -> Result<GltfScene, MeshError> {
-    let bytes = read_bytes(path)?;
-    let raw = guarded(path, FORMAT, || read(path, &bytes))?;
-    let detail = if raw.skipped_primitives > 0 {
-        " (the glTF scene holds only points or lines)"
-    } else {
-        " (the glTF scene has no mesh primitives)"
-    };
-    let (mesh, source_vertices) = finish(raw.positions, raw.triangles, detail)?;
+    let (_, raw, mesh, source_vertices) = read_welded(path)?;
     let weights = raw.skeleton.as_ref().map(|_| {
         let mut weights = vec![None; mesh.positions.len()];
         for (raw_vertex, welded) in source_vertices.iter().enumerate() {
@@ -121,6 +114,24 @@ pub fn load_gltf_scene(path: &Path) -> Result<GltfScene, MeshError> {
     })
 }
 
+/// The file's bytes, what [`read`] made of them and the welded mesh with its source map.
+#[allow(clippy::type_complexity)]
+pub(super) fn read_welded(
+    path: &Path,
+) -> Result<(Vec<u8>, RawScene, Mesh, Vec<Option<u32>>), MeshError> {
+    let bytes = read_bytes(path)?;
+    let mut raw = guarded(path, FORMAT, || read(path, &bytes))?;
+    let detail = if raw.skipped_primitives > 0 {
+        " (the glTF scene holds only points or lines)"
+    } else {
+        " (the glTF scene has no mesh primitives)"
+    };
+    let positions = std::mem::take(&mut raw.positions);
+    let triangles = std::mem::take(&mut raw.triangles);
+    let (mesh, source_vertices) = finish(positions, triangles, detail)?;
+    Ok((bytes, raw, mesh, source_vertices))
+}
+
 /// Joint weights summed per joint, zeros dropped, scaled to sum to one (empty if all zero).
 fn normalised(weights: &[(JointId, f64)]) -> Vec<(JointId, f64)> {
     let mut sum: std::collections::BTreeMap<JointId, f64> = Default::default();
@@ -137,7 +148,7 @@ fn normalised(weights: &[(JointId, f64)]) -> Vec<(JointId, f64)> {
 }
 
 /// Everything read from the file before welding.
-struct RawScene {
+pub(super) struct RawScene {
     positions: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
     skipped_primitives: usize,
@@ -147,6 +158,19 @@ struct RawScene {
     /// Per position: weights to skin joints of the rig (skin joint indices until the skeleton
     /// is built, then skeleton ids).
     weights: Vec<Vec<(JointId, f64)>>,
+    /// Every mesh node read, in reading order, with the transform applied to its positions.
+    pub instances: Vec<RawInstance>,
+    /// The data of every buffer of the file, in buffer order.
+    pub buffers: Vec<Vec<u8>>,
+}
+
+/// A mesh node as read: which mesh, the transform its positions got, and for every triangle
+/// primitive (in mesh order) its index and vertex count.
+pub(super) struct RawInstance {
+    pub node: usize,
+    pub mesh: usize,
+    pub transform: DMat4,
+    pub primitives: Vec<(usize, usize)>,
 }
 
 fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
@@ -156,8 +180,8 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
     let json = document.into_json();
     check_attribute_indices(&json).map_err(error)?;
     let document = gltf::Document::from_json(json).map_err(|e| error(e.to_string()))?;
-    let buffers = gltf_buffers::buffers(&document, path, blob).map_err(error)?;
-    let buffers: Vec<&[u8]> = buffers.iter().map(Vec::as_slice).collect();
+    let owned = gltf_buffers::buffers(&document, path, blob).map_err(error)?;
+    let buffers: Vec<&[u8]> = owned.iter().map(Vec::as_slice).collect();
     let tree = NodeTree::new(&document).map_err(error)?;
     let roots: Vec<usize> = match document
         .default_scene()
@@ -191,6 +215,8 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         skeleton: None,
         duplicate_joint_names: Vec::new(),
         weights: Vec::new(),
+        instances: Vec::new(),
+        buffers: Vec::new(),
     };
     for &n in &mesh_nodes {
         let node = &nodes[n];
@@ -222,12 +248,21 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         if let Some(mesh) = node.mesh() {
             let skin = node.skin().map_or(0, |s| s.index());
             let weights = joint_map.as_deref().map(|map| (map, skin));
-            append_mesh(&mesh, transform, weights, &buffers, &mut raw).map_err(|e| match e {
-                Failure::Message(m) => error(m),
-                Failure::Mesh(e) => e,
-            })?;
+            let primitives = append_mesh(&mesh, transform, weights, &buffers, &mut raw).map_err(
+                |e| match e {
+                    Failure::Message(m) => error(m),
+                    Failure::Mesh(e) => e,
+                },
+            )?;
+            raw.instances.push(RawInstance {
+                node: n,
+                mesh: mesh.index(),
+                transform,
+                primitives,
+            });
         }
     }
+    drop(buffers);
 
     if let Some(rig) = rig {
         // A joint deforms iff some vertex of a skinned primitive has weight on it.
@@ -246,6 +281,7 @@ fn read(path: &Path, bytes: &[u8]) -> Result<RawScene, MeshError> {
         }
         raw.skeleton = Some(skeleton);
     }
+    raw.buffers = owned;
     Ok(raw)
 }
 
@@ -281,7 +317,8 @@ impl From<String> for Failure {
     }
 }
 
-/// Appends the triangle primitives of `mesh`, transformed by `transform`.
+/// Appends the triangle primitives of `mesh`, transformed by `transform`; returns the index and
+/// vertex count of each primitive appended.
 /// `skinned` is given when the node is skinned: the rig's joint index of each joint of the
 /// node's skin (`None`: not a joint of the rig) and the skin's index (for messages); its
 /// vertices' `JOINTS_n` / `WEIGHTS_n` are kept as rig skin joint indices, weights on joints
@@ -292,8 +329,9 @@ fn append_mesh(
     skinned: Option<(&[Option<usize>], usize)>,
     buffers: &[&[u8]],
     raw: &mut RawScene,
-) -> Result<(), Failure> {
+) -> Result<Vec<(usize, usize)>, Failure> {
     let mirrored = transform.determinant() < 0.0;
+    let mut appended = Vec::new();
     for primitive in mesh.primitives() {
         let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
         let mode = primitive.mode();
@@ -380,8 +418,9 @@ fn append_mesh(
             }
         }
         raw.weights.extend(weights);
+        appended.push((primitive.index(), vertex_count));
     }
-    Ok(())
+    Ok(appended)
 }
 
 /// Triangles of a triangle-list, strip or fan index sequence, wound as the glTF spec defines.

@@ -78,7 +78,7 @@ pub(super) fn buffers(
 }
 
 /// The canonical folder of the glTF file.
-fn folder_of(gltf_path: &Path) -> Result<PathBuf, String> {
+pub(super) fn folder_of(gltf_path: &Path) -> Result<PathBuf, String> {
     let folder = match gltf_path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -170,8 +170,23 @@ fn percent_decoded(text: &str) -> Result<Vec<u8>, String> {
 
 /// Reads at most `length` bytes of the file a relative URI names inside `folder` (canonical).
 fn file_uri(uri: &str, folder: &Path, length: usize) -> Result<Vec<u8>, String> {
-    const ONLY: &str = "buffers must be data: URIs or relative paths to files in the folder of \
-                        the glTF file";
+    let target = resolve_file(uri, folder)?;
+    let metadata = std::fs::metadata(&target).map_err(|e| format!("cannot be opened: {e}"))?;
+    if metadata.len() < length as u64 {
+        return Err(format!(
+            "holds {} bytes but its byteLength is {length}",
+            metadata.len()
+        ));
+    }
+    read_at_most(&target, length as u64)
+}
+
+/// The canonical path of the regular file a relative URI names inside `folder` (canonical):
+/// schemes, absolute paths, paths leading outside the folder (after `..` and symbolic links)
+/// and anything but a regular file are refused, with a message saying why.
+pub(super) fn resolve_file(uri: &str, folder: &Path) -> Result<PathBuf, String> {
+    const ONLY: &str = "files must be data: URIs or relative paths to files in the folder of \
+                        the input file";
     let first_segment = uri.split(['/', '\\', '?', '#']).next().unwrap_or("");
     if first_segment.contains(':') {
         return Err(format!(
@@ -202,24 +217,32 @@ fn file_uri(uri: &str, folder: &Path, length: usize) -> Result<Vec<u8>, String> 
             target.display()
         ));
     }
-    let not_a_file = || format!("is refused: {} is not a regular file", target.display());
     let metadata = std::fs::metadata(&target).map_err(|e| format!("cannot be opened: {e}"))?;
     if !metadata.is_file() {
-        return Err(not_a_file());
-    }
-    if metadata.len() < length as u64 {
         return Err(format!(
-            "holds {} bytes but its byteLength is {length}",
-            metadata.len()
+            "is refused: {} is not a regular file",
+            target.display()
         ));
     }
-    let file = std::fs::File::open(&target).map_err(|e| format!("cannot be opened: {e}"))?;
+    Ok(target)
+}
+
+/// Reads at most `limit` bytes of the regular file `target`; more is an error when the file
+/// was not expected to be longer (`limit` is a cap, not a length).
+pub(super) fn read_at_most(target: &Path, limit: u64) -> Result<Vec<u8>, String> {
+    let file = std::fs::File::open(target).map_err(|e| format!("cannot be opened: {e}"))?;
     // The file may have been replaced between the check and the opening.
-    if !file.metadata().is_ok_and(|m| m.is_file()) {
-        return Err(not_a_file());
+    let metadata = file
+        .metadata()
+        .map_err(|e| format!("cannot be opened: {e}"))?;
+    if !metadata.is_file() {
+        return Err(format!(
+            "is refused: {} is not a regular file",
+            target.display()
+        ));
     }
-    let mut data = Vec::with_capacity(length);
-    file.take(length as u64)
+    let mut data = Vec::with_capacity(metadata.len().min(limit) as usize);
+    file.take(limit)
         .read_to_end(&mut data)
         .map_err(|e| format!("cannot be read: {e}"))?;
     Ok(data)

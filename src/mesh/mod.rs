@@ -7,7 +7,9 @@
 //! for UVs or normals come back connected.
 //!
 //! - [`load`] dispatches on the extension to [`load_obj`], [`load_gltf`], [`load_stl`],
-//!   [`load_ply`]; [`load_gltf_scene`] also returns a glTF skin's joints in the bind pose.
+//!   [`load_ply`]; [`load_gltf_scene`] also returns a glTF skin's joints in the bind pose;
+//!   [`load_model`] also keeps what the file held beyond the triangles ([`SourceModel`]: glTF
+//!   primitives, UVs, materials, textures; OBJ UVs and MTL materials) for the output.
 //! - [`Mesh::stats`] gives [`MeshStats`] (components, boundary and non-manifold edges, volume).
 //! - [`slice_plane`] and [`slice_sphere`] cut a mesh into [`SliceLoop`]s with centroid,
 //!   perimeter and [`PrincipalAxes`] (seed 004).
@@ -17,10 +19,14 @@ mod error;
 mod gltf;
 mod gltf_accessor;
 mod gltf_buffers;
+mod gltf_model;
 mod gltf_nodes;
 mod gltf_skin;
 mod load;
+mod model;
+mod mtl;
 mod obj;
+mod obj_model;
 mod orient;
 mod ply;
 mod retessellate;
@@ -36,6 +42,7 @@ mod weld;
 pub use self::gltf::{load_gltf, load_gltf_scene, GltfScene};
 pub use error::MeshError;
 pub use load::{load, load_with_source_map};
+pub use model::{load_model, SourceInstance, SourceModel, SourcePrimitive};
 pub use obj::load_obj;
 pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION, FLAT_VOLUME_FRACTION};
 pub use ply::load_ply;

@@ -9,7 +9,8 @@ use std::path::Path;
 const FORMAT: &str = "obj";
 
 /// Reads a Wavefront OBJ file: all objects and groups merged into one mesh, polygons
-/// triangulated as fans, points and lines ignored, materials not read. Coordinates are read
+/// triangulated as fans, points and lines ignored, materials not read (see
+/// [`load_model`](super::load_model) for UVs and materials). Coordinates are read
 /// as f64 (a figure far from the origin keeps its detail); `v x y z w` is divided by `w`. Welded and validated
 /// like every loader (see [`load`](super::load)). The mesh keeps the file's vertex order
 /// (less the vertices no face uses and those welded into an earlier one), so vertex `i` of a
@@ -30,6 +31,13 @@ pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
 
 /// [`load_obj`] with the source map of [`load_with_source_map`](super::load_with_source_map).
 pub(super) fn read_obj(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
+    read_obj_parsed(path).map(|(_, mesh, source)| (mesh, source))
+}
+
+/// [`read_obj`], also returning what the parser read (UVs, normals, materials per corner).
+pub(super) fn read_obj_parsed(
+    path: &Path,
+) -> Result<(ParsedObj, Mesh, Vec<Option<u32>>), MeshError> {
     let bytes = read_bytes(path)?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         let line = bytes[..e.valid_up_to()]
@@ -45,13 +53,25 @@ pub(super) fn read_obj(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshErro
     })?;
     let parsed = parse(text)
         .map_err(|(line, message)| parse_error(path, FORMAT, format!("line {line}: {message}")))?;
-    let ParsedObj {
-        coordinates,
-        corners,
-        out_of_range,
-    } = parsed;
-    if let Some(error) = out_of_range {
-        return Err(error);
+    let (mesh, source) = welded(path, &parsed)?;
+    Ok((parsed, mesh, source))
+}
+
+/// The welded mesh of the parsed file and the map of its `v` statements onto it.
+fn welded(path: &Path, parsed: &ParsedObj) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
+    let coordinates = &parsed.coordinates;
+    let corners = &parsed.corners;
+    if let Some(MeshError::IndexOutOfRange {
+        triangle,
+        index,
+        vertex_count,
+    }) = parsed.out_of_range
+    {
+        return Err(MeshError::IndexOutOfRange {
+            triangle,
+            index,
+            vertex_count,
+        });
     }
     if coordinates.is_empty() && corners.is_empty() {
         return Err(parse_error(
@@ -62,7 +82,7 @@ pub(super) fn read_obj(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshErro
     }
     // Raw vertices: the file vertices some face uses, in file order.
     let mut used = vec![false; coordinates.len()];
-    for &c in &corners {
+    for &c in corners {
         used[c as usize] = true;
     }
     let mut raw_of_file = vec![u32::MAX; used.len()];
@@ -111,14 +131,31 @@ fn exact_key(p: DVec3) -> [u64; 3] {
 }
 
 /// What [`parse`] read.
-struct ParsedObj {
+#[derive(Default)]
+pub(super) struct ParsedObj {
     /// Every `v` statement's position (divided by its `w`), f64.
-    coordinates: Vec<DVec3>,
+    pub coordinates: Vec<DVec3>,
     /// File vertex (0-based) of every triangle corner, three per triangle.
-    corners: Vec<u32>,
+    pub corners: Vec<u32>,
     /// The first face index beyond the vertices defined before it, as a mesh error (the
     /// triangle number counts the triangles of the faces before it).
     out_of_range: Option<MeshError>,
+    /// Every `vt` statement's `u v` (a missing or unreadable value is 0).
+    pub uvs: Vec<[f64; 2]>,
+    /// Every `vn` statement's vector (unreadable values are 0).
+    pub normals: Vec<DVec3>,
+    /// Per corner: its `vt` (0-based), `u32::MAX` for none.
+    pub corner_uvs: Vec<u32>,
+    /// Per corner: its `vn` (0-based), `u32::MAX` for none.
+    pub corner_normals: Vec<u32>,
+    /// Per triangle: index into `materials` of the `usemtl` in force, `u32::MAX` for none.
+    pub triangle_materials: Vec<u32>,
+    /// Material names in order of first `usemtl`.
+    pub materials: Vec<String>,
+    /// The `mtllib` file names, in order.
+    pub libraries: Vec<String>,
+    /// The material in force.
+    current: Option<u32>,
 }
 
 /// Parses OBJ text: `v x y z [w]` (or `v x y z r g b`), and `f` faces of `v`, `v/vt`,
@@ -129,11 +166,7 @@ struct ParsedObj {
 /// # Errors
 /// `(line, message)` (line 1-based) for a malformed `v` or `f` statement.
 fn parse(text: &str) -> Result<ParsedObj, (usize, String)> {
-    let mut parsed = ParsedObj {
-        coordinates: Vec::new(),
-        corners: Vec::new(),
-        out_of_range: None,
-    };
+    let mut parsed = ParsedObj::default();
     let mut counts = [0usize; 3]; // v, vt, vn
     let mut pending = String::new();
     let mut pending_line = 0;
@@ -203,8 +236,33 @@ fn statement(line: &str, counts: &mut [usize; 3], parsed: &mut ParsedObj) -> Res
             counts[0] += 1;
             parsed.coordinates.push(p);
         }
-        Some("vt") => counts[1] += 1,
-        Some("vn") => counts[2] += 1,
+        Some("vt") => {
+            counts[1] += 1;
+            let mut values = words.map(|w| w.parse::<f64>().unwrap_or(0.0));
+            let u = values.next().unwrap_or(0.0);
+            let v = values.next().unwrap_or(0.0);
+            parsed.uvs.push([u, v]);
+        }
+        Some("vn") => {
+            counts[2] += 1;
+            let mut values = words.map(|w| w.parse::<f64>().unwrap_or(0.0));
+            let mut next = || values.next().unwrap_or(0.0);
+            parsed.normals.push(DVec3::new(next(), next(), next()));
+        }
+        Some("usemtl") => {
+            let name = words.collect::<Vec<_>>().join(" ");
+            let index = match parsed.materials.iter().position(|m| *m == name) {
+                Some(i) => i,
+                None => {
+                    parsed.materials.push(name);
+                    parsed.materials.len() - 1
+                }
+            };
+            parsed.current = Some(index as u32);
+        }
+        Some("mtllib") => {
+            parsed.libraries.push(words.collect::<Vec<_>>().join(" "));
+        }
         Some("f") => {
             let mut face = Vec::new();
             for corner in words {
@@ -212,7 +270,14 @@ fn statement(line: &str, counts: &mut [usize; 3], parsed: &mut ParsedObj) -> Res
             }
             if face.len() >= 3 {
                 for i in 1..face.len() - 1 {
-                    parsed.corners.extend([face[0], face[i], face[i + 1]]);
+                    for [v, vt, vn] in [face[0], face[i], face[i + 1]] {
+                        parsed.corners.push(v);
+                        parsed.corner_uvs.push(vt);
+                        parsed.corner_normals.push(vn);
+                    }
+                    parsed
+                        .triangle_materials
+                        .push(parsed.current.unwrap_or(u32::MAX));
                 }
             }
         }
@@ -221,11 +286,16 @@ fn statement(line: &str, counts: &mut [usize; 3], parsed: &mut ParsedObj) -> Res
     Ok(())
 }
 
-/// The file vertex (0-based) of one face corner `v[/vt[/vn]]`; a vertex index beyond those
-/// defined so far is recorded in `parsed.out_of_range` (and vertex 0 used meanwhile).
-fn corner_vertex(corner: &str, counts: &[usize; 3], parsed: &mut ParsedObj) -> Result<u32, String> {
+/// The file vertex, texture coordinate and normal (0-based, `u32::MAX` for none) of one face
+/// corner `v[/vt[/vn]]`; a vertex index beyond those defined so far is recorded in
+/// `parsed.out_of_range` (and vertex 0 used meanwhile).
+fn corner_vertex(
+    corner: &str,
+    counts: &[usize; 3],
+    parsed: &mut ParsedObj,
+) -> Result<[u32; 3], String> {
     const WHAT: [&str; 3] = ["vertex", "texture coordinate", "normal"];
-    let mut vertex = 0u32;
+    let mut vertex = [0u32, u32::MAX, u32::MAX];
     let fields: Vec<&str> = corner.split('/').collect();
     if fields.len() > 3 {
         return Err(format!("face corner {corner:?} has more than v/vt/vn"));
@@ -256,8 +326,10 @@ fn corner_vertex(corner: &str, counts: &[usize; 3], parsed: &mut ParsedObj) -> R
                     });
                 }
             } else {
-                vertex = resolved as u32;
+                vertex[0] = resolved as u32;
             }
+        } else {
+            vertex[slot] = resolved as u32;
         }
     }
     Ok(vertex)

@@ -113,7 +113,7 @@ fn humanoid_glb_round_trips_and_is_identical_on_one_and_two_threads() {
 }
 
 /// The validator script, run on `files`; `None` (skip) when node or the validator is missing.
-fn validate(files: &[PathBuf]) -> Option<String> {
+pub(crate) fn validate(files: &[PathBuf]) -> Option<String> {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/validate_gltf.mjs");
     let output = match Command::new("node").arg(&script).args(files).output() {
         Ok(output) => output,
