@@ -2,9 +2,7 @@
 //! [--up ..] [--forward ..] [--labels OVERRIDE.json]`: the anatomical control skeleton from a
 //! template (dissertation ch.7-8), skinned and exported.
 
-use super::common::{
-    load_model, millis, output_frame, require_mesh_output, Outputs, VoxelArgs,
-};
+use super::common::{load_model, millis, output_frame, require_mesh_output, Outputs, VoxelArgs};
 use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
