@@ -102,7 +102,7 @@ fn sides(a: usize, b: usize, sections: &[Section], frame: &Frame) -> [(usize, Si
 }
 
 /// Labels the level graph (ch.7.3.3), a phase per step: the trunk and the figure class
-/// ([`trunk`]), the sections hanging off the trunk ([`sections`]), then legs, wings, the tail
+/// (`trunk.rs`), the sections hanging off the trunk (`sections.rs`), then legs, wings, the tail
 /// (an animal's before the head, a human-like figure's after the head and the arms), the head,
 /// arms, lone arms, unpaired legs, and the leftovers merged into the trunk.
 pub fn label_graph(
