@@ -341,17 +341,15 @@ fn unwritable_json_output_leaves_no_output_at_all() {
 }
 
 #[test]
-fn gltf_named_output_is_refused_instead_of_holding_glb_bytes() {
+fn gltf_named_output_holds_gltf_json_not_glb_bytes() {
     let dir = tempfile::tempdir().unwrap();
-    let out = skelfit(&[
-        "rig",
-        &humanoid(),
-        "-o",
-        dir.path().join("o.gltf").to_str().unwrap(),
-    ]);
-    assert_eq!(out.status.code(), Some(1));
-    assert!(stderr(&out).contains(".glb"), "{}", stderr(&out));
-    assert!(listing(dir.path()).is_empty());
+    let path = dir.path().join("o.gltf");
+    let out = skelfit(&["rig", &humanoid(), "-o", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let bytes = std::fs::read(&path).unwrap();
+    assert!(!bytes.starts_with(b"glTF"), "binary GLB under a .gltf name");
+    let json: serde_json::Value = serde_json::from_slice(&bytes).expect("glTF JSON");
+    assert!(json["asset"]["version"].is_string());
 }
 
 #[test]
@@ -361,19 +359,27 @@ fn output_that_is_an_input_or_named_twice_is_refused() {
     std::fs::copy(humanoid(), &mesh).unwrap();
     let before = std::fs::read(&mesh).unwrap();
     let glb = dir.path().join("o.glb");
-    for args in [
-        vec![
-            "-o",
-            glb.to_str().unwrap(),
-            "--json",
-            mesh.to_str().unwrap(),
-        ],
-        vec!["-o", glb.to_str().unwrap(), "--json", glb.to_str().unwrap()],
+    // Onto the input: a usage error (exit 2); one name for two outputs: exit 1.
+    for (args, code) in [
+        (
+            vec![
+                "-o",
+                glb.to_str().unwrap(),
+                "--json",
+                mesh.to_str().unwrap(),
+            ],
+            2,
+        ),
+        (vec!["-o", mesh.to_str().unwrap()], 2),
+        (
+            vec!["-o", glb.to_str().unwrap(), "--json", glb.to_str().unwrap()],
+            1,
+        ),
     ] {
         let mut all = vec!["rig", mesh.to_str().unwrap()];
         all.extend(args);
         let out = skelfit(&all);
-        assert_eq!(out.status.code(), Some(1), "{all:?}");
+        assert_eq!(out.status.code(), Some(code), "{all:?}");
         assert_eq!(listing(dir.path()), ["mesh.obj"]);
     }
     assert_eq!(std::fs::read(&mesh).unwrap(), before);
