@@ -101,6 +101,45 @@ fn sides(a: usize, b: usize, sections: &[Section], frame: &Frame) -> [(usize, Si
     }
 }
 
+/// Whether section `s` has a mirror partner among `candidates`: another section of comparable
+/// length (within a factor of two) whose voxel mean, reflected across the median plane through
+/// `centre` (normal `left`), lies within a third of the longer one's length of `s`'s mean, with
+/// `s` off that plane by more than the same tolerance (a median part mirrors onto itself).
+fn mirrored(
+    s: usize,
+    candidates: &[usize],
+    sections: &[Section],
+    frame: &Frame,
+    centre: DVec3,
+) -> bool {
+    let a = &sections[s];
+    let offset = |p: DVec3| (p - centre).dot(frame.left);
+    candidates.iter().any(|&t| {
+        let b = &sections[t];
+        let longer = a.length.max(b.length);
+        let tolerance = longer / 3.0;
+        let comparable = a.length.min(b.length) >= 0.5 * longer;
+        let reflected = b.mean - frame.left * (2.0 * offset(b.mean));
+        t != s
+            && comparable
+            && offset(a.mean).abs() > tolerance
+            && reflected.distance(a.mean) <= tolerance
+    })
+}
+
+/// Whether a section leaves the trunk the way a rest-pose arm does: from its attachment to its
+/// distal end it goes at least as far sideways or down as it goes up, and as it goes forward.
+fn reaches_like_an_arm(section: &Section, frame: &Frame) -> bool {
+    let d = section.distal - section.attachment;
+    let (side, up, forward) = (
+        d.dot(frame.left).abs(),
+        d.dot(frame.up),
+        d.dot(frame.forward).abs(),
+    );
+    let out = side.max(-up);
+    out >= up && out >= forward
+}
+
 /// Labels the level graph (ch.7.3.3), a phase per step: the trunk and the figure class
 /// (`trunk.rs`), the sections hanging off the trunk (`sections.rs`), then legs, wings, the tail
 /// (an animal's before the head, a human-like figure's after the head and the arms), the head,
@@ -150,9 +189,9 @@ pub fn label_graph(
     if !human_like {
         rules.tail(&tail, &mut legs.single);
     }
-    rules.head(trunk.has_junction);
-    let arms = rules.arms();
     let centre = trunk.centre();
+    rules.head(trunk.has_junction, centre);
+    let arms = rules.arms();
     if human_like {
         rules.tail(&tail, &mut legs.single);
         rules.lone_arms(&arms, centre);
@@ -284,8 +323,10 @@ impl Rules<'_> {
     }
 
     /// Head: the unlabelled section reaching farthest up (human-like), forward (animal-like),
-    /// else both; none without a major junction.
-    fn head(&mut self, has_junction: bool) {
+    /// else both; none without a major junction. The head is the figure's one median part: a
+    /// section mirrored by another across the median plane (through `centre`) is one of a pair
+    /// (ears, horns, raised arms) and is not taken while an unpaired section remains.
+    fn head(&mut self, has_junction: bool, centre: DVec3) {
         let all = self
             .sections
             .iter()
@@ -302,8 +343,18 @@ impl Rules<'_> {
                 FigureClass::Unknown => up + fw,
             }
         };
-        let head = self
-            .unlabelled()
+        let candidates = self.unlabelled();
+        let unpaired: Vec<usize> = candidates
+            .iter()
+            .copied()
+            .filter(|&s| !mirrored(s, &candidates, self.sections, self.frame, centre))
+            .collect();
+        let pool = if unpaired.is_empty() {
+            candidates
+        } else {
+            unpaired
+        };
+        let head = pool
             .into_iter()
             .max_by(|&a, &b| score(a).total_cmp(&score(b)).then(b.cmp(&a)));
         match head {
@@ -332,7 +383,21 @@ impl Rules<'_> {
             self.graph,
             options.pair_distance * radius,
         );
-        for pair in pairs {
+        // In a rest pose (T, A or arms down) arms reach sideways or down from the trunk, not
+        // up or forward: with several candidate pairs, those that point up (ears, horns) or
+        // forward (a snout, a visor) are not arms while a sideways or hanging pair remains.
+        let human_like = self.figure == FigureClass::HumanLike;
+        let rest_pose = |&(a, b): &(usize, usize)| {
+            [a, b]
+                .iter()
+                .all(|&s| reaches_like_an_arm(&self.sections[s], self.frame))
+        };
+        let keep: Vec<(usize, usize)> = if human_like && pairs.iter().any(rest_pose) {
+            pairs.into_iter().filter(rest_pose).collect()
+        } else {
+            pairs
+        };
+        for pair in keep {
             self.label_pair(pair, Label::Arm, LimbPair::Fore);
         }
         arms
@@ -349,10 +414,14 @@ impl Rules<'_> {
 
     /// A lone arm of a human-like figure: a long section (of `arms`) left unpaired that joins
     /// the upper half of the trunk (its partner is missing, or too far away to pair).
+    /// Once a pair of arms is labelled, a section pointing up or forward (see
+    /// [`reaches_like_an_arm`]) is not a lone arm.
     fn lone_arms(&mut self, arms: &[usize], centre: DVec3) {
+        let paired = self.assign.iter().any(|a| a.label == Some(Label::Arm));
         for &s in arms {
             if self.assign[s].label.is_none()
                 && self.sections[s].attachment.dot(self.frame.up) > centre.dot(self.frame.up)
+                && (!paired || reaches_like_an_arm(&self.sections[s], self.frame))
             {
                 let side = self.side_of(s, centre);
                 self.assign[s] = Assignment {

@@ -805,3 +805,18 @@ fn a_helmet_deeper_than_a_human_head_is_still_found() {
         .unwrap();
     assert!(head.error_percent < 9.0, "head {:.2} %", head.error_percent);
 }
+
+/// A big head with long ears (quaternius_platformer_character): the ears mirror each other, so
+/// neither is the head (the head is the figure's one median part), and they point up, so they
+/// are not a second pair of arms beside the sideways T-posed ones. Before: one ear was the
+/// head, the other ear and two face bumps were arms; core mean 23 % of height.
+#[test]
+fn mirrored_ears_are_neither_the_head_nor_arms() {
+    let Some((core, _, result)) = real_core("quaternius_platformer_character") else {
+        return;
+    };
+    let parts = &result.anatomy.as_ref().expect("an anatomy").parts;
+    let arms = parts.split(", ").filter(|p| p.starts_with("arm")).count();
+    assert_eq!(arms, 2, "{parts}");
+    assert!(core < 10.0, "core mean {core:.2} %");
+}
