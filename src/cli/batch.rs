@@ -6,16 +6,16 @@
 //!   path. Each gets `OUT/models/<name>/` with `rig.glb` (as `skelfit rig`), `rig.json` (the
 //!   skeleton with its canonical map and run information), `check.json` (the deformation check
 //!   of `skelfit check rig.glb --canonical rig.json`) and `result.json` (its log line).
-//! - Resumable: a model whose `result.json` says `ok` for the same source and whose outputs
-//!   exist is skipped; every file is written atomically, `result.json` last. Failed models
-//!   are tried again.
+//! - Resumable: a model whose `result.json` (for the same source) says `ok` and whose outputs
+//!   exist, or says `failed`, is skipped; every file is written atomically, `result.json`
+//!   last. `--retry-failed` tries the failed ones again.
 //! - Shards ([`shard`]): shard K of N (0-based) takes positions K, K + N, ... of the sorted
 //!   list; from `--shard`, or `JOB_COMPLETION_INDEX` / `SLURM_ARRAY_TASK_ID` with `--shards`.
 //! - Log ([`log`]): `OUT/batch-KofN.jsonl`, a line per model and one per finished run;
 //!   `--merge` ([`merge`]) joins the logs into `report.json` and `report.md`.
 //! - A model that fails (an error or a panic) is a `failed` line; the run goes on. Exit code 0
-//!   when no model failed, 3 when some did (the run still handled every model), 1 when the
-//!   batch itself could not run.
+//!   when no model of the shard failed (in this run or, skipped now, in an earlier one), 3 when
+//!   some did (the run still handled every model), 1 when the batch itself could not run.
 
 mod log;
 mod merge;
@@ -77,6 +77,10 @@ pub struct BatchArgs {
     /// its height, as `skelfit rig --units auto`).
     #[arg(long, value_name = "UNITS", default_value = "auto", value_parser = ["mm", "cm", "m", "in", "auto"])]
     pub units: String,
+    /// Rig again the models that failed in an earlier run (by default a rerun skips them as
+    /// it skips complete ones: their failure is recorded in their result.json).
+    #[arg(long)]
+    pub retry_failed: bool,
     #[command(flatten)]
     pub voxel: VoxelArgs,
 }
@@ -88,6 +92,8 @@ struct Settings {
     shard: Shard,
     /// Core-seconds per wall-clock second of one model: threads / jobs.
     cores_per_model: f64,
+    /// Rig the models that failed in an earlier run again.
+    retry_failed: bool,
 }
 
 /// Runs the command.
@@ -123,6 +129,7 @@ pub fn run(args: &BatchArgs) -> anyhow::Result<()> {
         units: args.units.clone(),
         shard,
         cores_per_model: threads as f64 / args.jobs as f64,
+        retry_failed: args.retry_failed,
     };
     let log_path = out.join(shard.log_name());
     let log = Log::open(&log_path)?;
@@ -151,10 +158,13 @@ pub fn run(args: &BatchArgs) -> anyhow::Result<()> {
     };
     log.append(&Line::Run(run_line.clone()))?;
     print_summary(&lines, &run_line);
-    if run_line.failed > 0 {
+    let failed = lines
+        .iter()
+        .filter(|l| l.outcome().status == Status::Failed)
+        .count();
+    if failed > 0 {
         return Err(SomeFailed(format!(
-            "{} of {} models failed (their lines in {} say why); the others are done",
-            run_line.failed,
+            "{failed} of {} models failed (their lines in {} say why; --retry-failed tries them again); the others are done",
             mine.len(),
             log_path.display()
         ))
@@ -169,7 +179,10 @@ fn run_merge(out: &Path) -> anyhow::Result<()> {
     let json = out.join("report.json");
     let md = out.join("report.md");
     skelfit::output::write_all_atomic(&[
-        (&json, serde_json::to_string_pretty(&merged.report)?.as_bytes()),
+        (
+            &json,
+            serde_json::to_string_pretty(&merged.report)?.as_bytes(),
+        ),
         (&md, merged.markdown.as_bytes()),
     ])?;
     print!("{}", merged.markdown);
@@ -188,7 +201,13 @@ fn run_merge(out: &Path) -> anyhow::Result<()> {
 
 /// Handles `models` on `jobs` threads (each rig uses the global thread pool inside), appending
 /// each model's line to the log as it ends; returns the lines in the models' order.
-fn run_models(models: &[&Model], out: &Path, settings: &Settings, log: &Log, jobs: usize) -> Vec<ModelLine> {
+fn run_models(
+    models: &[&Model],
+    out: &Path,
+    settings: &Settings,
+    log: &Log,
+    jobs: usize,
+) -> Vec<ModelLine> {
     let bar = indicatif::ProgressBar::new(models.len() as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template(
@@ -256,11 +275,13 @@ fn handle(model: &Model, out: &Path, settings: &Settings) -> ModelLine {
         error: None,
         previous: None,
     };
-    if let Some(previous) = completed(&dir, model) {
+    if let Some(previous) = completed(&dir, model, settings.retry_failed) {
         line.status = Status::Skipped;
         line.previous = Some(Box::new(previous));
     } else {
-        let result = catch_unwind(AssertUnwindSafe(|| rig_model(model, &dir, settings, &mut line)));
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            rig_model(model, &dir, settings, &mut line)
+        }));
         let error = match result {
             Ok(Ok(())) => None,
             Ok(Err(e)) => Some(format!("{e:#}")),
@@ -287,25 +308,38 @@ fn handle(model: &Model, out: &Path, settings: &Settings) -> ModelLine {
     line
 }
 
-/// The earlier line of a complete model: `result.json` says `ok` for the same source and
-/// rig.glb, rig.json and check.json exist.
-fn completed(dir: &Path, model: &Model) -> Option<ModelLine> {
+/// The earlier line of a model that needs no work: `result.json` is for the same source and
+/// says `ok` with rig.glb, rig.json and check.json there, or `failed` (unless `retry_failed`).
+fn completed(dir: &Path, model: &Model, retry_failed: bool) -> Option<ModelLine> {
     let text = std::fs::read_to_string(dir.join("result.json")).ok()?;
     let line: ModelLine = serde_json::from_str(&text).ok()?;
-    let outputs = ["rig.glb", "rig.json", "check.json"]
-        .iter()
-        .all(|f| dir.join(f).is_file());
-    (line.status == Status::Ok && line.source == model.relative && outputs).then_some(line)
+    if line.source != model.relative {
+        return None;
+    }
+    let done = match line.status {
+        Status::Ok => ["rig.glb", "rig.json", "check.json"]
+            .iter()
+            .all(|f| dir.join(f).is_file()),
+        Status::Failed => !retry_failed,
+        Status::Skipped => false,
+    };
+    done.then_some(line)
 }
 
 /// Rigs one model into `dir` (rig.glb and rig.json as one set, then check.json), filling in
 /// `line`.
-fn rig_model(model: &Model, dir: &Path, settings: &Settings, line: &mut ModelLine) -> anyhow::Result<()> {
+fn rig_model(
+    model: &Model,
+    dir: &Path,
+    settings: &Settings,
+    line: &mut ModelLine,
+) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let clock = Instant::now();
     let (mesh, source) = load_model(&model.path)?;
     let load_ms = millis(clock);
-    let rigged = rig(&mesh, &settings.options).context("fitting the anatomical control skeleton")?;
+    let rigged =
+        rig(&mesh, &settings.options).context("fitting the anatomical control skeleton")?;
     let frame = output_frame(
         false,
         &settings.units,
@@ -324,16 +358,26 @@ fn rig_model(model: &Model, dir: &Path, settings: &Settings, line: &mut ModelLin
     line.warnings = rigged.warnings.iter().map(|w| w.record()).collect();
     line.notices.extend(frame.warning);
     if let Some(source) = &source {
-        line.notices.extend(source.warnings.iter().map(|w| w.to_string()));
+        line.notices
+            .extend(source.warnings.iter().map(|w| w.to_string()));
     }
     // The check of the written file, as `skelfit check rig.glb --canonical rig.json` (the
     // .glb is in glTF's frame: +Y up, +Z forward).
-    let check = check_rig(&glb_path, Some(&json_path), SweepArg::Auto, DVec3::Y, DVec3::Z);
+    let check = check_rig(
+        &glb_path,
+        Some(&json_path),
+        SweepArg::Auto,
+        DVec3::Y,
+        DVec3::Z,
+    );
     let check_value = match check {
         Ok(checked) => {
             let c = &checked.check;
             line.check = Some(CheckSummary {
-                sweep: serde_json::to_value(c.sweep)?.as_str().unwrap_or_default().to_string(),
+                sweep: serde_json::to_value(c.sweep)?
+                    .as_str()
+                    .unwrap_or_default()
+                    .to_string(),
                 poses: c.poses.len(),
                 over_1_5: c.total_over_1_5(),
                 over_2: c.total_over_2(),
@@ -373,7 +417,10 @@ fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
 fn print_summary(lines: &[ModelLine], run: &RunLine) {
     let refs: Vec<&ModelLine> = lines.iter().collect();
     print!("{}", log::table(&refs));
-    let rigged: Vec<&ModelLine> = lines.iter().filter(|l| l.status != Status::Skipped).collect();
+    let rigged: Vec<&ModelLine> = lines
+        .iter()
+        .filter(|l| l.status != Status::Skipped)
+        .collect();
     let core_seconds: f64 = rigged.iter().map(|l| l.core_seconds).sum();
     println!(
         "\nshard {}: {} models: {} ok, {} failed, {} skipped (complete before) in {:.1} s on {} threads, --jobs {}",

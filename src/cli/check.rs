@@ -64,7 +64,13 @@ pub struct CheckArgs {
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     let up = parse_direction(&args.up).map_err(anyhow::Error::msg)?;
     let forward = parse_direction(&args.forward).map_err(anyhow::Error::msg)?;
-    let checked = check_rig(&args.rig, args.canonical.as_deref(), args.sweep, up, forward)?;
+    let checked = check_rig(
+        &args.rig,
+        args.canonical.as_deref(),
+        args.sweep,
+        up,
+        forward,
+    )?;
     print_check(&checked.check, checked.check.sweep);
     if checked.unweighted > 0 {
         eprintln!(
@@ -108,8 +114,7 @@ pub fn check_rig(
             "--up and --forward are parallel: give two different axes (e.g. --up +Y --forward +Z)"
         );
     }
-    let scene =
-        load_gltf_scene(rig).with_context(|| format!("cannot read {}", rig.display()))?;
+    let scene = load_gltf_scene(rig).with_context(|| format!("cannot read {}", rig.display()))?;
     let (Some(skeleton), Some(weights)) = (scene.skeleton, scene.weights) else {
         bail!(
             "{} has no skin: check needs a skinned mesh (JOINTS_0/WEIGHTS_0); rig it first with `skelfit rig`",

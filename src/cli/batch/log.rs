@@ -1,7 +1,7 @@
 //! The batch log: one JSON object a line (`OUT/batch-KofN.jsonl`, appended by every run of
 //! shard K of N). A `model` line per model handled (`ok`, `failed` or `skipped`), and a `run`
-//! line when a run ends. `OUT/models/<name>/result.json` holds the model's last `ok` (or
-//! `failed`) line; it is written last, so a model is complete when it says `ok` and its outputs
+//! line when a run ends. `OUT/models/<name>/result.json` holds the model's last `ok` or
+//! `failed` line; it is written last, so a model is complete when it says `ok` and its outputs
 //! exist.
 
 use serde::{Deserialize, Serialize};
@@ -16,9 +16,11 @@ use std::sync::Mutex;
 pub enum Status {
     /// Rigged and checked; its outputs are written.
     Ok,
-    /// An error or a panic stopped it; `error` says which. Retried by the next run.
+    /// An error or a panic stopped it; `error` says which. Skipped by the next run unless
+    /// `--retry-failed`.
     Failed,
-    /// Complete from an earlier run; nothing was done (`previous` holds that run's line).
+    /// Complete (or failed) in an earlier run; nothing was done (`previous` holds that run's
+    /// line).
     Skipped,
 }
 
@@ -206,7 +208,10 @@ pub fn table(lines: &[&ModelLine]) -> String {
         out.push_str(&format!(
             "| {} | {} | {:.2} | {} | {} | {} | {} |\n",
             line.model,
-            line.status.as_str(),
+            match line.status {
+                Status::Skipped => format!("skipped ({})", shown.status.as_str()),
+                status => status.as_str().to_string(),
+            },
             line.seconds,
             shown.template.as_deref().unwrap_or("-"),
             warnings,

@@ -28,9 +28,9 @@ pub fn log_files(out: &Path) -> anyhow::Result<Vec<PathBuf>> {
         .filter_map(Result::ok)
         .map(|e| e.path())
         .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("batch-") && n.ends_with(".jsonl") && n.contains("of"))
+            p.file_name().and_then(|n| n.to_str()).is_some_and(|n| {
+                n.starts_with("batch-") && n.ends_with(".jsonl") && n.contains("of")
+            })
         })
         .collect();
     files.sort();
@@ -126,7 +126,9 @@ fn report_json(
     for line in outcomes {
         for w in &line.warnings {
             *by_severity.entry(w.severity.as_str().into()).or_default() += 1;
-            *by_code.entry(format!("{}/{}", w.stage, w.code)).or_default() += 1;
+            *by_code
+                .entry(format!("{}/{}", w.stage, w.code))
+                .or_default() += 1;
         }
     }
     let rigged: Vec<&&ModelLine> = outcomes
@@ -198,7 +200,10 @@ fn report_markdown(report: &serde_json::Value, outcomes: &[&ModelLine]) -> Strin
             _ => String::new(),
         }
     ));
-    if let Some(missing) = report["missing_shards"].as_array().filter(|m| !m.is_empty()) {
+    if let Some(missing) = report["missing_shards"]
+        .as_array()
+        .filter(|m| !m.is_empty())
+    {
         md.push_str(&format!(
             "Shards without a finished run: {}.\n\n",
             missing

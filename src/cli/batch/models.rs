@@ -55,10 +55,7 @@ pub fn find_models(input: &Path, skip: Option<&Path>) -> anyhow::Result<Vec<Mode
         }
         read_list(input)?
     } else {
-        bail!(
-            "{}: no such folder or list file",
-            input.display()
-        );
+        bail!("{}: no such folder or list file", input.display());
     };
     if files.is_empty() {
         bail!(
@@ -75,7 +72,12 @@ type Found = (Vec<String>, PathBuf);
 
 /// Collects the mesh files of `dir` (relative components `prefix`) and of its sub-folders.
 /// Symbolic links to files are followed, links to folders are not (no cycles).
-fn walk(dir: &Path, prefix: &[String], skip: Option<&Path>, out: &mut Vec<Found>) -> anyhow::Result<()> {
+fn walk(
+    dir: &Path,
+    prefix: &[String],
+    skip: Option<&Path>,
+    out: &mut Vec<Found>,
+) -> anyhow::Result<()> {
     if skip.is_some_and(|s| dir.canonicalize().is_ok_and(|d| d == s)) {
         return Ok(());
     }
@@ -114,8 +116,8 @@ fn walk(dir: &Path, prefix: &[String], skip: Option<&Path>, out: &mut Vec<Found>
 
 /// The paths of a list file, resolved against its folder.
 fn read_list(list: &Path) -> anyhow::Result<Vec<Found>> {
-    let text =
-        std::fs::read_to_string(list).with_context(|| format!("reading list {}", list.display()))?;
+    let text = std::fs::read_to_string(list)
+        .with_context(|| format!("reading list {}", list.display()))?;
     let folder = list.parent().unwrap_or(Path::new(""));
     Ok(text
         .lines()
@@ -123,7 +125,12 @@ fn read_list(list: &Path) -> anyhow::Result<Vec<Found>> {
         .filter(|line| !line.is_empty() && !line.starts_with('#'))
         .map(|line| {
             let given = Path::new(line);
-            (components(given), folder.join(given))
+            let mut names = components(given);
+            if names.is_empty() {
+                // `.` or `/`: not a mesh file; it fails to load and is named `_`.
+                names.push("_".into());
+            }
+            (names, folder.join(given))
         })
         .collect())
 }
@@ -140,33 +147,27 @@ fn components(path: &Path) -> Vec<String> {
         .collect()
 }
 
-/// Sorted, deduplicated models with unique names. A mesh that is the only one taken from its
-/// folder is named after the folder (`humanoid/mh_neutral_default`); otherwise after the folder
-/// and its stem (`props/chair` for `props/chair.obj`). A name given twice gets `-2`, `-3`, ...
-/// in sorted order.
+/// Sorted, deduplicated models with unique names: the relative path without its extension
+/// (`props/chair` for `props/chair.obj`), except that refdata's `mesh.*` and `source.*` are
+/// named after their folder (`humanoid/mh_neutral_default`). A name given twice gets `-2`,
+/// `-3`, ... in sorted order.
 fn named(files: Vec<Found>) -> Vec<Model> {
     let files: BTreeMap<String, (Vec<String>, PathBuf)> = files
         .into_iter()
         .map(|(relative, path)| (relative.join("/"), (relative, path)))
         .collect();
-    let mut per_folder: BTreeMap<Vec<String>, usize> = BTreeMap::new();
-    for (relative, _) in files.values() {
-        *per_folder
-            .entry(relative[..relative.len() - 1].to_vec())
-            .or_default() += 1;
-    }
     let mut taken = BTreeSet::new();
     files
         .into_iter()
         .map(|(key, (relative, path))| {
-            let folder = &relative[..relative.len() - 1];
-            let base = if !folder.is_empty() && per_folder[folder] == 1 {
+            let (file, folder) = relative.split_last().unwrap_or((&key, &[]));
+            let stem = Path::new(file)
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let base = if !folder.is_empty() && GENERIC_STEMS.contains(&stem.as_str()) {
                 folder.join("/")
             } else {
-                let stem = Path::new(&relative[relative.len() - 1])
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_default();
                 folder
                     .iter()
                     .cloned()
@@ -189,6 +190,10 @@ fn named(files: Vec<Found>) -> Vec<Model> {
         .collect()
 }
 
+/// File stems that name no model (refdata's `<model>/mesh.obj` and `<model>/source.glb`): such
+/// a file's model is named after its folder.
+const GENERIC_STEMS: [&str; 2] = ["mesh", "source"];
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -208,6 +213,7 @@ mod tests {
             "a.ply",
             "c/x.obj",
             "c/y.stl",
+            "c/mesh.obj",
             "../up/z.obj",
         ]));
         let names: Vec<(&str, &str)> = models
@@ -217,10 +223,11 @@ mod tests {
         assert_eq!(
             names,
             vec![
-                ("_up/up/z.obj", "_up/up"),
+                ("_up/up/z.obj", "_up/up/z"),
                 ("a.obj", "a"),
                 ("a.ply", "a-2"),
                 ("b/one/mesh.obj", "b/one"),
+                ("c/mesh.obj", "c"),
                 ("c/x.obj", "c/x"),
                 ("c/y.stl", "c/y"),
             ]

@@ -130,19 +130,28 @@ mod tests {
     #[test]
     fn shards_from_flags_and_environment() {
         let none = env(&[]);
-        assert_eq!(Shard::resolve(Some("2/3"), None, &none).unwrap().0, Shard { index: 2, count: 3 });
+        assert_eq!(
+            Shard::resolve(Some("2/3"), None, &none).unwrap().0,
+            Shard { index: 2, count: 3 }
+        );
         assert!(Shard::resolve(Some("3/3"), None, &none).is_err());
         assert_eq!(Shard::resolve(None, None, &none).unwrap().0, Shard::ALL);
         assert!(Shard::resolve(None, Some(4), &none).is_err());
         let k8s = env(&[("JOB_COMPLETION_INDEX", "1")]);
-        assert_eq!(Shard::resolve(None, Some(4), &k8s).unwrap().0, Shard { index: 1, count: 4 });
+        assert_eq!(
+            Shard::resolve(None, Some(4), &k8s).unwrap().0,
+            Shard { index: 1, count: 4 }
+        );
         assert!(Shard::resolve(None, None, &k8s).is_err());
         let slurm = env(&[
             ("SLURM_ARRAY_TASK_ID", "5"),
             ("SLURM_ARRAY_TASK_MIN", "1"),
             ("SLURM_ARRAY_TASK_COUNT", "8"),
         ]);
-        assert_eq!(Shard::resolve(None, None, &slurm).unwrap().0, Shard { index: 4, count: 8 });
+        assert_eq!(
+            Shard::resolve(None, None, &slurm).unwrap().0,
+            Shard { index: 4, count: 8 }
+        );
         let shard = Shard { index: 1, count: 3 };
         let taken: Vec<usize> = (0..8).filter(|&i| shard.takes(i)).collect();
         assert_eq!(taken, vec![1, 4, 7]);
