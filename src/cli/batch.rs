@@ -142,6 +142,7 @@ pub fn run(args: &BatchArgs) -> anyhow::Result<()> {
         log_path.display()
     );
     let start = Instant::now();
+    let cpu_start = log::cpu_seconds();
     let lines = run_models(&mine, out, &settings, &log, args.jobs);
     let count = |s: Status| lines.iter().filter(|l| l.status == s).count();
     let run_line = RunLine {
@@ -152,6 +153,9 @@ pub fn run(args: &BatchArgs) -> anyhow::Result<()> {
         failed: count(Status::Failed),
         skipped: count(Status::Skipped),
         wall_seconds: start.elapsed().as_secs_f64(),
+        cpu_seconds: log::cpu_seconds()
+            .zip(cpu_start)
+            .map(|(end, start)| end - start),
         threads,
         jobs: args.jobs,
         finished: log::now(),
@@ -428,10 +432,17 @@ fn print_summary(lines: &[ModelLine], run: &RunLine) {
     );
     if core_seconds > 0.0 {
         println!(
-            "throughput: {:.3} models per core-second ({} models, {:.1} core-seconds)",
+            "throughput: {:.3} models per core-second ({} models, {:.1} core-seconds = wall-clock seconds x threads / jobs)",
             rigged.len() as f64 / core_seconds,
             rigged.len(),
             core_seconds
+        );
+    }
+    if let Some(cpu) = run.cpu_seconds.filter(|&c| c > 0.0 && !rigged.is_empty()) {
+        println!(
+            "cpu: {:.1} CPU-seconds, {:.3} models per CPU-second",
+            cpu,
+            rigged.len() as f64 / cpu
         );
     }
 }

@@ -128,6 +128,10 @@ pub struct RunLine {
     pub skipped: usize,
     /// Wall-clock seconds of the run.
     pub wall_seconds: f64,
+    /// CPU seconds (user + system) the process used, where the system tells (Linux); unlike
+    /// core-seconds, not inflated by other work on shared cores.
+    #[serde(default)]
+    pub cpu_seconds: Option<f64>,
     /// Threads the process had (rayon's pool).
     pub threads: usize,
     /// Models rigged at once (`--jobs`).
@@ -220,4 +224,16 @@ pub fn table(lines: &[&ModelLine]) -> String {
         ));
     }
     out
+}
+
+/// CPU seconds (user + system) this process has used: `/proc/self/stat`'s `utime` + `stime`,
+/// in the kernel's fixed user-space clock ticks (100 a second); `None` off Linux.
+pub fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The command name (field 2) is in parentheses and may hold spaces: count after it.
+    let fields: Vec<&str> = stat.get(stat.rfind(')')? + 1..)?.split_whitespace().collect();
+    // Fields 14 (utime) and 15 (stime), numbered from 1; `fields[0]` is field 3.
+    let utime: f64 = fields.get(11)?.parse().ok()?;
+    let stime: f64 = fields.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
 }

@@ -1,7 +1,8 @@
 //! `skelfit batch --merge OUT`: the shards' logs joined into one report (`report.json`,
 //! `report.md`). Per model the report takes its latest `ok` or `failed` line from any log (a
 //! `skipped` line stands for the line that made the outputs); totals count models, statuses
-//! and warnings; throughput is models per core-second of rigging.
+//! and warnings; throughput is models per core-second of rigging (each model's wall-clock
+//! seconds times the cores it had) and models per CPU-second (the runs' measured CPU time).
 
 use super::log::{table, Line, ModelLine, RunLine, Status};
 use serde_json::json;
@@ -139,6 +140,14 @@ fn report_json(
     let core_seconds: f64 = rigged.iter().map(|l| l.core_seconds).sum();
     let throughput = (core_seconds > 0.0).then(|| rigged.len() as f64 / core_seconds);
     let expected = runs.iter().map(|r| r.total_models).max();
+    // CPU time from the runs that rigged something and measured it.
+    let measured: Vec<&RunLine> = runs
+        .iter()
+        .filter(|r| r.ok + r.failed > 0 && r.cpu_seconds.is_some())
+        .collect();
+    let cpu_seconds: f64 = measured.iter().filter_map(|r| r.cpu_seconds).sum();
+    let cpu_models: usize = measured.iter().map(|r| r.ok + r.failed).sum();
+    let per_cpu_second = (cpu_seconds > 0.0).then(|| cpu_models as f64 / cpu_seconds);
     // The latest run of every shard.
     let mut shards: BTreeMap<String, &RunLine> = BTreeMap::new();
     for run in runs {
@@ -174,6 +183,8 @@ fn report_json(
                 "rig_seconds": rig_seconds,
                 "core_seconds": core_seconds,
                 "models_per_core_second": throughput,
+                "cpu_seconds": cpu_seconds,
+                "models_per_cpu_second": per_cpu_second,
             },
         },
         "missing_shards": missing_shards,
@@ -222,6 +233,13 @@ fn report_markdown(report: &serde_json::Value, outcomes: &[&ModelLine]) -> Strin
             .as_f64()
             .map_or("-".into(), |v| format!("{v:.3}"))
     ));
+    if let Some(per_cpu) = timing["models_per_cpu_second"].as_f64() {
+        md.push_str(&format!(
+            "The runs used {:.1} CPU-seconds: {per_cpu:.3} models per CPU-second (core-seconds count \
+             the cores a run had, CPU-seconds what it used).\n\n",
+            timing["cpu_seconds"].as_f64().unwrap_or(0.0)
+        ));
+    }
     if let Some(codes) = t["warnings_by_code"].as_object().filter(|c| !c.is_empty()) {
         md.push_str("| warning (stage/code) | count |\n|---|---:|\n");
         for (code, n) in codes {
