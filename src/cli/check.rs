@@ -13,7 +13,7 @@ use skelfit::skeleton::canonical::Tail;
 use skelfit::skeleton::{Canonical, JointId};
 use skelfit::skin::check::{check_deformation, sweep, DeformationCheck, SweepKind};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Which sweep (`--sweep`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -64,21 +64,99 @@ pub struct CheckArgs {
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     let up = parse_direction(&args.up).map_err(anyhow::Error::msg)?;
     let forward = parse_direction(&args.forward).map_err(anyhow::Error::msg)?;
+    let checked = check_rig(
+        &args.rig,
+        args.canonical.as_deref(),
+        args.sweep,
+        up,
+        forward,
+    )?;
+    print_check(&checked.check, checked.check.sweep);
+    if checked.unweighted > 0 {
+        eprintln!(
+            "skelfit: warning: {} vertices carry no weight and stay at rest in every pose",
+            checked.unweighted
+        );
+    }
+    if let Some(path) = &args.json {
+        let json = check_json(&args.rig, &checked);
+        write_file(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// What [`check_rig`] found.
+#[derive(Debug, Clone)]
+pub struct CheckedRig {
+    /// The per-pose counts.
+    pub check: DeformationCheck,
+    /// Vertices that carry no weight (they stay at rest in every pose).
+    pub unweighted: usize,
+}
+
+/// The deformation check of a skinned glTF/GLB (`skelfit check RIG --canonical CANONICAL`):
+/// reads the file, finds the joints to pose (from `canonical`'s map, else by the naming
+/// presets), runs the sweep and measures the stretched edges.
+///
+/// # Errors
+/// The file cannot be read or has no skin, no joint to pose is found, the directions are
+/// parallel.
+pub fn check_rig(
+    rig: &Path,
+    canonical: Option<&Path>,
+    sweep_arg: SweepArg,
+    up: DVec3,
+    forward: DVec3,
+) -> anyhow::Result<CheckedRig> {
     if up.cross(forward).length() < 1e-6 {
         bail!(
             "--up and --forward are parallel: give two different axes (e.g. --up +Y --forward +Z)"
         );
     }
-    let scene = load_gltf_scene(&args.rig)
-        .with_context(|| format!("cannot read {}", args.rig.display()))?;
+    let scene = load_gltf_scene(rig).with_context(|| format!("cannot read {}", rig.display()))?;
     let (Some(skeleton), Some(weights)) = (scene.skeleton, scene.weights) else {
         bail!(
             "{} has no skin: check needs a skinned mesh (JOINTS_0/WEIGHTS_0); rig it first with `skelfit rig`",
-            args.rig.display()
+            rig.display()
         );
     };
     let unweighted = weights.iter().filter(|w| w.is_empty()).count();
-    let canonical: BTreeMap<String, JointId> = match &args.canonical {
+    let canonical = canonical_joints(rig, canonical, &skeleton)?;
+    let kind = match sweep_arg {
+        SweepArg::Humanoid => SweepKind::Humanoid,
+        SweepArg::Animal => SweepKind::Animal,
+        SweepArg::Auto => guess_sweep(&skeleton, &canonical, up, forward),
+    };
+    let (poses, missing) = sweep(&skeleton, &canonical, kind, up, forward);
+    if poses.is_empty() {
+        bail!(
+            "none of the {kind:?} sweep's joints are in the canonical map ({}): give --canonical or --sweep",
+            canonical.keys().cloned().collect::<Vec<_>>().join(", ")
+        );
+    }
+    let check = check_deformation(&scene.mesh, &skeleton, &weights, kind, &poses, missing)?;
+    Ok(CheckedRig { check, unweighted })
+}
+
+/// The `skelfit-check-v1` JSON of a check of `rig`.
+pub fn check_json(rig: &Path, checked: &CheckedRig) -> serde_json::Value {
+    serde_json::json!({
+        "format": "skelfit-check-v1",
+        "rig": rig.display().to_string(),
+        "unweighted_vertices": checked.unweighted,
+        "check": checked.check,
+    })
+}
+
+/// The joints to pose: `canonical`'s map looked up by name in the skin, else the naming
+/// presets recognised in the skin's joint names.
+fn canonical_joints(
+    rig: &Path,
+    canonical: Option<&Path>,
+    skeleton: &skelfit::skeleton::Skeleton,
+) -> anyhow::Result<BTreeMap<String, JointId>> {
+    match canonical {
         Some(path) => {
             let reference = load_skeleton(path)
                 .with_context(|| format!("cannot read the canonical map in {}", path.display()))?;
@@ -95,52 +173,22 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
                 bail!(
                     "no joint of {}'s canonical map is named in {}'s skin: give the skeleton file written with this rig",
                     path.display(),
-                    args.rig.display()
+                    rig.display()
                 );
             }
-            map
+            Ok(map)
         }
         None => {
             let (map, _) = canonical_map(&ReferenceRig::from_skeleton("rig", skeleton.clone()));
             if map.is_empty() {
                 bail!(
                     "the joints of {} follow no known naming (skelfit, Mixamo, Unity, MakeHuman): give --canonical RIG.json",
-                    args.rig.display()
+                    rig.display()
                 );
             }
-            map
+            Ok(map)
         }
-    };
-    let kind = match args.sweep {
-        SweepArg::Humanoid => SweepKind::Humanoid,
-        SweepArg::Animal => SweepKind::Animal,
-        SweepArg::Auto => guess_sweep(&skeleton, &canonical, up, forward),
-    };
-    let (poses, missing) = sweep(&skeleton, &canonical, kind, up, forward);
-    if poses.is_empty() {
-        bail!(
-            "none of the {kind:?} sweep's joints are in the canonical map ({}): give --canonical or --sweep",
-            canonical.keys().cloned().collect::<Vec<_>>().join(", ")
-        );
     }
-    let check = check_deformation(&scene.mesh, &skeleton, &weights, kind, &poses, missing)?;
-    print_check(&check, kind);
-    if unweighted > 0 {
-        eprintln!(
-            "skelfit: warning: {unweighted} vertices carry no weight and stay at rest in every pose"
-        );
-    }
-    if let Some(path) = &args.json {
-        let json = serde_json::json!({
-            "format": "skelfit-check-v1",
-            "rig": args.rig.display().to_string(),
-            "unweighted_vertices": unweighted,
-            "check": check,
-        });
-        write_file(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
-        println!("wrote {}", path.display());
-    }
-    Ok(())
 }
 
 /// Prints the table of poses and their stretched edges.

@@ -239,6 +239,19 @@ impl std::fmt::Display for UsageError {
 
 impl std::error::Error for UsageError {}
 
+/// A batch that ran to its end but in which some models failed (`skelfit batch`): exit code
+/// 3, so that scripts can tell it from an error that stopped the run (1).
+#[derive(Debug)]
+pub struct SomeFailed(pub String);
+
+impl std::fmt::Display for SomeFailed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for SomeFailed {}
+
 /// How a glTF output is written, chosen by its extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MeshFormat {

@@ -3,8 +3,10 @@
 //! Exit codes: 0 success, 1 an error while working (printed as `skelfit: error: ...` with its
 //! chain of causes), 2 invalid command-line usage (printed by clap; also an output that is an
 //! input, or an output extension skelfit cannot write), 130 interrupted (SIGINT,
-//! SIGTERM or SIGHUP; temporary output files are removed and no output is written).
+//! SIGTERM or SIGHUP; temporary output files are removed and no output is written), 3 a
+//! `skelfit batch` that ran to its end with some models failed (each is a row of its log).
 
+mod batch;
 mod bench;
 mod bones;
 mod check;
@@ -36,6 +38,10 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Rig every mesh of a folder (recursively) or of a list file into one output folder per
+    /// model (rig.glb, rig.json, check.json), resumably, optionally as shard K of N of a Slurm
+    /// array or Kubernetes Indexed Job; `--merge OUT` joins the shards' logs into one report.
+    Batch(batch::BatchArgs),
     /// Rig every model of a refdata-style folder (in parallel), evaluate each against its
     /// reference rig, and write accuracy and timing tables (CSV, Markdown, JSON, HTML).
     Bench(bench::BenchArgs),
@@ -111,6 +117,7 @@ pub fn main() -> ExitCode {
         std::process::exit(130);
     });
     let result = match &cli.command {
+        Command::Batch(args) => batch::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Bones(args) => bones::run(args),
         Command::Check(args) => check::run(args),
@@ -129,6 +136,10 @@ pub fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        Err(error) if error.is::<common::SomeFailed>() => {
+            eprintln!("skelfit: {error}");
+            ExitCode::from(3)
+        }
         Err(error) => {
             eprintln!("skelfit: error: {error:#}");
             if error.chain().any(|e| e.is::<common::UsageError>()) {

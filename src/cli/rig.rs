@@ -120,20 +120,7 @@ impl RigArgs {
         options.voxel = self.voxel.options()?;
         options.label.up = super::common::parse_up(&self.up)?;
         options.label.forward = super::common::parse_forward(&self.forward)?;
-        options.template = match self.template.as_str() {
-            "auto" => TemplateChoice::Auto,
-            name @ ("humanoid" | "quadruped" | "winged") => TemplateChoice::Builtin(name.into()),
-            path => {
-                let path = Path::new(path);
-                if !path.is_file() {
-                    anyhow::bail!(
-                        "--template {}: not a built-in template (auto, humanoid, quadruped, winged) nor a template file",
-                        path.display()
-                    );
-                }
-                TemplateChoice::Custom(Box::new(Template::load(path)?))
-            }
-        };
+        options.template = template_choice(&self.template)?;
         options.fit.preset = self.preset.into();
         options.refine.in_rig = self.refine == "on";
         options.refine.symmetry = self.symmetry == "on";
@@ -142,6 +129,24 @@ impl RigArgs {
         }
         Ok(options)
     }
+}
+
+/// `--template`: `auto`, a built-in template's name, or a template file (loaded).
+pub fn template_choice(text: &str) -> anyhow::Result<TemplateChoice> {
+    Ok(match text {
+        "auto" => TemplateChoice::Auto,
+        name @ ("humanoid" | "quadruped" | "winged") => TemplateChoice::Builtin(name.into()),
+        path => {
+            let path = Path::new(path);
+            if !path.is_file() {
+                anyhow::bail!(
+                    "--template {}: not a built-in template (auto, humanoid, quadruped, winged) nor a template file",
+                    path.display()
+                );
+            }
+            TemplateChoice::Custom(Box::new(Template::load(path)?))
+        }
+    })
 }
 
 impl RigArgs {
@@ -217,21 +222,8 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
         )?;
         bone_warnings = made.warnings;
         bytes
-    } else if let Some(model) = &model {
-        model_glb_bytes(
-            model,
-            &rigged.fit.skeleton,
-            &rigged.skin,
-            &frame.frame,
-            &GltfOptions::default(),
-        )?
     } else {
-        glb_bytes(
-            &frame.frame.mesh(&mesh),
-            &skeleton,
-            &rigged.skin,
-            &GltfOptions::default(),
-        )?
+        rig_glb(&mesh, model.as_ref(), &rigged, &frame)?
     };
     outputs.add_mesh(&args.output, glb)?;
     let mut info = run_info(&args.mesh, &rigged, load_ms);
@@ -281,6 +273,31 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// The skinned .glb of a rig without bone meshes, in `frame`: the input model (its
+/// primitives, UVs, materials, textures) when the file held one, else the welded mesh.
+pub fn rig_glb(
+    mesh: &skelfit::mesh::Mesh,
+    model: Option<&skelfit::mesh::SourceModel>,
+    rigged: &Rig,
+    frame: &super::common::ChosenFrame,
+) -> anyhow::Result<Vec<u8>> {
+    Ok(match model {
+        Some(model) => model_glb_bytes(
+            model,
+            &rigged.fit.skeleton,
+            &rigged.skin,
+            &frame.frame,
+            &GltfOptions::default(),
+        )?,
+        None => glb_bytes(
+            &frame.frame.mesh(mesh),
+            &frame.frame.skeleton(&rigged.fit.skeleton),
+            &rigged.skin,
+            &GltfOptions::default(),
+        )?,
+    })
 }
 
 /// The fitted skeleton as skelfit JSON with its `canonical` map and `run` information.

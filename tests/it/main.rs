@@ -1,6 +1,7 @@
 //! Integration tests: one binary, one module per stage.
 
 mod anatomy;
+mod batch;
 mod bench;
 mod bones;
 mod cli;
