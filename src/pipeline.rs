@@ -15,7 +15,7 @@ use crate::medial::{dms, MedialOptions};
 use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
 use crate::skin::{skin, skin_from_bones, SegmentVoxels, Skin, SkinError, SkinOptions};
-use crate::voxel::{voxelize, Grid, Solid, VoxelOptions, VoxelReport};
+use crate::voxel::{voxelize_figure, Grid, Solid, VoxelOptions, VoxelReport};
 use crate::warning::Warning;
 use serde::Serialize;
 use std::time::Instant;
@@ -98,7 +98,7 @@ fn general_stages(mesh: &Mesh, options: &GeneralSkeletonOptions) -> crate::Resul
     options.general.validate()?;
     let mut timings = Vec::new();
     let mut lap = Laps::start();
-    let solid = voxelize(mesh, &options.voxel)?;
+    let solid = voxelize_figure(mesh, &options.voxel)?;
     lap.lap("voxelize", &mut timings);
     let distance = edt(&solid);
     lap.lap("distance", &mut timings);

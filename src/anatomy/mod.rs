@@ -75,7 +75,7 @@ use crate::distance::edt;
 use crate::medial::{dms, MedialSurface};
 use crate::mesh::Mesh;
 use crate::paths::PathOptions;
-use crate::voxel::{voxelize, Solid};
+use crate::voxel::{voxelize_figure, Solid};
 use crate::warning::Warning;
 use glam::DVec3;
 
@@ -98,7 +98,7 @@ pub fn label_with_overrides(
     overrides: Option<&Overrides>,
 ) -> crate::Result<Labelling> {
     options.validate()?;
-    let solid = voxelize(mesh, &options.voxel)?;
+    let solid = voxelize_figure(mesh, &options.voxel)?;
     let surface = dms(&edt(&solid), &options.medial)?;
     Ok(label_pieces(
         mesh,

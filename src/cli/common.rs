@@ -23,6 +23,11 @@ pub struct VoxelArgs {
     /// Refuse grids with more voxels than this.
     #[arg(long, value_name = "N", default_value_t = VoxelOptions::default().max_voxels)]
     pub max_voxels: usize,
+    /// A grid sized by --voxel-size is refined once when the figure holds fewer interior
+    /// voxels than this (thin limbs of long figures); 0 keeps it. --voxel-length and
+    /// --resolution grids are kept as given.
+    #[arg(long, value_name = "N", default_value_t = VoxelOptions::default().min_interior)]
+    pub min_interior_voxels: usize,
 }
 
 impl VoxelArgs {
@@ -37,6 +42,10 @@ impl VoxelArgs {
         let options = VoxelOptions {
             size,
             max_voxels: self.max_voxels,
+            min_interior: match (self.voxel_length, self.resolution) {
+                (None, None) => self.min_interior_voxels,
+                _ => 0,
+            },
             ..Default::default()
         };
         options

@@ -363,12 +363,19 @@ fn print_summary(args: &RigArgs, rigged: &Rig, load_ms: f64, export_ms: f64) {
         rigged.fit.template
     );
     println!(
-        "grid            {} x {} x {} ({} interior voxels of {:.6})",
+        "grid            {} x {} x {} ({} interior voxels of {:.6}){}",
         grid.dims[0],
         grid.dims[1],
         grid.dims[2],
         rigged.solid.report.interior_voxels,
-        grid.voxel_size
+        grid.voxel_size,
+        match rigged.solid.report.refined_from {
+            Some((fraction, held)) => format!(
+                "; refined: {held} interior voxels at {fraction} of the longest side were too \
+                 few for a thin figure"
+            ),
+            None => String::new(),
+        }
     );
     println!(
         "skeleton        {} joints, {} canonical",

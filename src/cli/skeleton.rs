@@ -168,7 +168,7 @@ fn apply_lod(
     let clock = Instant::now();
     let skeleton = skelfit::lod::level_of_detail(&rig.general.skeleton, &lod)
         .context("applying level of detail")?;
-    let solid = skelfit::voxel::voxelize(mesh, &options.skeleton.voxel)?;
+    let solid = skelfit::voxel::voxelize_figure(mesh, &options.skeleton.voxel)?;
     let distance = skelfit::distance::edt(&solid);
     rig.skin = skelfit::skin::skin_from_bones(mesh, &skeleton, &solid, &distance, &options.skin)
         .context("skinning the mesh to the simplified skeleton")?;

@@ -6,7 +6,7 @@ use clap::Args;
 use serde::Serialize;
 use skelfit::distance::{edt, DistanceMap};
 use skelfit::report::{distance_slice, png_bytes};
-use skelfit::voxel::{voxelize, Solid, VoxelOptions, VoxelReport, VoxelWarning};
+use skelfit::voxel::{voxelize_figure, Solid, VoxelOptions, VoxelReport, VoxelWarning};
 use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -79,7 +79,7 @@ pub fn summarize(
     let mesh = load_mesh(mesh_path)?;
     let load_ms = millis(start);
     let start = Instant::now();
-    let solid = voxelize(&mesh, options).context("voxelizing")?;
+    let solid = voxelize_figure(&mesh, options).context("voxelizing")?;
     let voxelize_ms = millis(start);
     let start = Instant::now();
     let map = edt(&solid);

@@ -15,7 +15,7 @@ use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{ExpectedPart, Preset, Template};
-use crate::voxel::{boundary_mesh, voxelize, Solid, VoxelOptions};
+use crate::voxel::{boundary_mesh, voxelize_figure, Solid, VoxelOptions};
 use crate::warning::Warning;
 
 pub use super::warning::{RigWarning, MEDIAL_FALLBACK};
@@ -198,7 +198,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut timings = Vec::new();
     let mut lap = Laps::start();
 
-    let solid = voxelize(mesh, &options.voxel)?;
+    let solid = voxelize_figure(mesh, &options.voxel)?;
     lap.lap("voxelize", &mut timings);
     let distance = edt(&solid);
     lap.lap("distance", &mut timings);

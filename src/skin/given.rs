@@ -5,7 +5,7 @@ use super::{placement, skin_from_bones, Placement, PlacementOptions, Skin, SkinO
 use crate::distance::edt;
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
-use crate::voxel::{voxelize, Solid, VoxelOptions};
+use crate::voxel::{voxelize_figure, Solid, VoxelOptions};
 use crate::warning::Warning;
 
 /// Options of [`skin_skeleton`].
@@ -57,7 +57,7 @@ pub fn skin_skeleton(
     options.skin.validate()?;
     options.placement.validate()?;
     options.voxel.validate()?;
-    let solid = voxelize(mesh, &options.voxel)?;
+    let solid = voxelize_figure(mesh, &options.voxel)?;
     let placed = placement(skeleton, &solid, &options.placement)?;
     let distance = edt(&solid);
     let skin = skin_from_bones(

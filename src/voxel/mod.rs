@@ -23,5 +23,5 @@ pub use join::DroppedPiece;
 pub use options::{VoxelOptions, VoxelSize};
 pub use solid::{Solid, VoxelReport};
 
-pub use voxelize::{grid_for, voxelize};
+pub use voxelize::{grid_for, voxelize, voxelize_figure};
 pub use warning::VoxelWarning;

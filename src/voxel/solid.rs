@@ -48,6 +48,9 @@ pub struct VoxelReport {
     pub left_out_triangles: usize,
     /// Their share of the mesh's surface area, 0-1.
     pub left_out_area_share: f64,
+    /// The grid was refined by [`voxelize_figure`](super::voxelize_figure): the fraction of
+    /// the longest side first tried and the interior voxels it held.
+    pub refined_from: Option<(f64, usize)>,
 }
 
 /// Dropped interior components are worth a warning from this share of the interior on (a

@@ -6,10 +6,43 @@ use super::outlier::far_outlier;
 use super::sizing::grid_of;
 use super::surface::surface_voxels;
 use super::winding::winding_votes;
-use super::{Grid, Solid, VoxelError, VoxelOptions, VoxelReport};
+use super::{Grid, Solid, VoxelError, VoxelOptions, VoxelReport, VoxelSize};
 use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
+
+/// Voxelizes a figure to be rigged: [`voxelize`], then, when the size is a fraction of the
+/// longest side and the figure holds fewer than [`VoxelOptions::min_interior`] interior voxels,
+/// once more with the voxel edge shrunk by the cube root of the shortfall (within
+/// `max_voxels`; the first grid stands when the finer one fails). The solid's
+/// [`VoxelReport::refined_from`] gives the size first tried.
+///
+/// # Errors
+/// As [`voxelize`] on the first grid.
+pub fn voxelize_figure(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError> {
+    let solid = voxelize(mesh, options)?;
+    let interior = solid.report.interior_voxels;
+    let VoxelSize::Fraction(fraction) = options.size else {
+        return Ok(solid);
+    };
+    if interior == 0 || interior >= options.min_interior {
+        return Ok(solid);
+    }
+    let shrink = (interior as f64 / options.min_interior as f64).cbrt();
+    let finer = VoxelOptions {
+        // A little finer than the cube root: the interior grows a little slower than the
+        // volume (fewer boundary voxels count as inside on a coarse grid).
+        size: VoxelSize::Fraction(fraction * shrink * 0.97),
+        ..*options
+    };
+    match voxelize(mesh, &finer) {
+        Ok(mut refined) => {
+            refined.report.refined_from = Some((fraction, interior));
+            Ok(refined)
+        }
+        Err(_) => Ok(solid),
+    }
+}
 
 /// Voxelizes `mesh` into a [`Solid`].
 ///
@@ -109,6 +142,7 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
         left_out_pieces: left_out.pieces,
         left_out_triangles: left_out.triangles,
         left_out_area_share: left_out.area_share,
+        refined_from: None,
     };
     Ok(Solid {
         grid,

@@ -390,3 +390,51 @@ fn makehuman_with_a_punched_hole_gives_nearly_the_closed_solid() {
         a.len()
     );
 }
+
+/// A long thin figure (a capsule 40 times as long as it is thick) holds a few hundred interior
+/// voxels at 1 % of its length: `voxelize_figure` refines the grid until it holds about
+/// `min_interior`; the bundled human body already holds more and keeps the first grid.
+#[test]
+fn thin_figures_get_a_finer_grid_and_bodies_keep_theirs() {
+    use skelfit::voxel::voxelize_figure;
+    let thin = Mesh::capsule(DVec3::ZERO, 0.05, 4.0, 16, 32);
+    let options = VoxelOptions::default();
+    let first = voxelize(&thin, &options).unwrap();
+    let refined = voxelize_figure(&thin, &options).unwrap();
+    assert!(first.report.interior_voxels < options.min_interior / 4);
+    let (fraction, held) = refined.report.refined_from.expect("refined");
+    assert_eq!((fraction, held), (0.01, first.report.interior_voxels));
+    let n = refined.report.interior_voxels;
+    assert!(
+        n >= options.min_interior * 3 / 4 && n <= options.min_interior * 2,
+        "{n} interior voxels"
+    );
+    assert!(refined.grid.voxel_size < first.grid.voxel_size);
+    let body = skelfit::mesh::load(
+        &crate::common::data_dir().join("humanoid/mh_neutral_default/mesh.obj"),
+    )
+    .unwrap();
+    let kept = voxelize_figure(&body, &options).unwrap();
+    assert_eq!(kept.report.refined_from, None);
+    assert_eq!(kept.inside, voxelize(&body, &options).unwrap().inside);
+    // Off, or with an absolute size, the first grid stands.
+    let off = VoxelOptions {
+        min_interior: 0,
+        ..Default::default()
+    };
+    assert_eq!(
+        voxelize_figure(&thin, &off).unwrap().report.refined_from,
+        None
+    );
+    let absolute = VoxelOptions {
+        size: VoxelSize::Absolute(0.04),
+        ..Default::default()
+    };
+    assert_eq!(
+        voxelize_figure(&thin, &absolute)
+            .unwrap()
+            .report
+            .refined_from,
+        None
+    );
+}
