@@ -86,6 +86,10 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
     best.or_else(|| dense.iter().find(|s| s.arc == narrowest).map(|s| s.centre))
 }
 
+/// A bend found within this fraction of the limb's span from the edges of its middle half is
+/// taken as the edge of a kink outside it (see [`bend`]).
+const BEND_EDGE: f64 = 0.05;
+
 /// Which criterion placed a knee or elbow.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BendRule {
@@ -97,7 +101,7 @@ pub enum BendRule {
 
 /// The knee or elbow between the refined `proximal` and `distal` joints: the point on the
 /// middle part of the centroid curve with the smallest angle; if that angle is above
-/// `straight_degrees`, the curve point nearest the point at `ratio` of the way between the two
+/// `straight_degrees` or lies at the middle part's edge, the curve point nearest the point at `ratio` of the way between the two
 /// joints, moved to the slice of minimal perimeter within `ratio_window` of the limb's length.
 pub fn bend(
     profile: &LimbProfile,
@@ -126,7 +130,10 @@ pub fn bend(
     let (q, angle) = middle(0.25, 0.75)
         .map(|s| (s.centre, angle_at(proximal, s.centre, distal)))
         .min_by(|a, b| a.1.total_cmp(&b.1))?;
-    if angle.to_degrees() <= options.straight_degrees {
+    // A smallest angle at the window's edge is no bend of this limb: the angle still falls
+    // towards the edge, to a kink outside it (where thick legs meet at the crotch, a foot).
+    let inside = (0.25 + BEND_EDGE..=0.75 - BEND_EDGE).contains(&along(q));
+    if inside && angle.to_degrees() <= options.straight_degrees {
         return Some((q, BendRule::SmallestAngle));
     }
     // The ratio point on the straight line between the joints, taken to the curve (the trace
