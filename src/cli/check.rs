@@ -1,8 +1,8 @@
 //! `skelfit check RIG.glb [--canonical RIG.json] [--sweep auto|humanoid|animal] [--up ..]
-//! [--forward ..] [--json OUT.json]`: pose a skinned glTF through the standard sweep and count
-//! the mesh edges stretched past 1.5× and 2×.
+//! [--forward ..] [--results-json OUT.json]`: pose a skinned glTF through the standard sweep and
+//! count the mesh edges stretched past 1.5× and 2× (`--json`: the same JSON on stdout).
 
-use super::common::write_file;
+use super::common::{say, write_file};
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
@@ -55,9 +55,9 @@ pub struct CheckArgs {
         allow_hyphen_values = true
     )]
     pub forward: String,
-    /// Write the per-pose counts as JSON to this file.
+    /// Write the per-pose counts as JSON to this file (`--json` prints them on stdout).
     #[arg(long, value_name = "OUT.json")]
-    pub json: Option<PathBuf>,
+    pub results_json: Option<PathBuf>,
 }
 
 /// Runs `skelfit check`.
@@ -126,39 +126,44 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     let check = check_deformation(&scene.mesh, &skeleton, &weights, kind, &poses, missing)?;
     print_check(&check, kind);
     if unweighted > 0 {
-        eprintln!(
-            "skelfit: warning: {unweighted} vertices carry no weight and stay at rest in every pose"
+        super::common::warn(
+            &format!("{unweighted} vertices carry no weight and stay at rest in every pose"),
+            "skin",
+            "degraded",
         );
     }
-    if let Some(path) = &args.json {
-        let json = serde_json::json!({
-            "format": "skelfit-check-v1",
-            "rig": args.rig.display().to_string(),
-            "unweighted_vertices": unweighted,
-            "check": check,
-        });
+    let json = serde_json::json!({
+        "format": "skelfit-check-v1",
+        "rig": args.rig.display().to_string(),
+        "unweighted_vertices": unweighted,
+        "check": check,
+    });
+    if let Some(path) = &args.results_json {
         write_file(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
-        println!("wrote {}", path.display());
+        say!("wrote {}", path.display());
+    }
+    if super::common::json_mode() {
+        super::common::print_json(&json)?;
     }
     Ok(())
 }
 
 /// Prints the table of poses and their stretched edges.
 fn print_check(check: &DeformationCheck, kind: SweepKind) {
-    println!(
+    say!(
         "{} edges, {:?} sweep ({} poses)",
         check.edges,
         kind,
         check.poses.len()
     );
-    println!("{:<24} {:>8} {:>8} {:>7}", "pose", ">1.5x", ">2x", "worst");
+    say!("{:<24} {:>8} {:>8} {:>7}", "pose", ">1.5x", ">2x", "worst");
     for p in &check.poses {
-        println!(
+        say!(
             "{:<24} {:>8} {:>8} {:>7.2}",
             p.pose, p.over_1_5, p.over_2, p.worst
         );
     }
-    println!(
+    say!(
         "{:<24} {:>8} {:>8} {:>7.2}",
         "all poses",
         check.total_over_1_5(),
@@ -166,7 +171,7 @@ fn print_check(check: &DeformationCheck, kind: SweepKind) {
         check.worst()
     );
     if !check.missing.is_empty() {
-        println!("not posed (no joint): {}", check.missing.join(", "));
+        say!("not posed (no joint): {}", check.missing.join(", "));
     }
 }
 

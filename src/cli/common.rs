@@ -544,7 +544,7 @@ fn group_line(first: &WarningRecord, messages: &[(&str, usize)]) -> String {
         )
     } else {
         format!(
-            "skelfit: warning: {}: {total} x {} ({names}), e.g. {}: {rest} {tail}",
+            "skelfit: warning: {}: {} ({total}): {names}; e.g. {}: {rest} {tail}",
             first.stage,
             first.code.replace('_', " "),
             split[0].0

@@ -38,7 +38,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         args.results.display(),
         env!("CARGO_PKG_VERSION")
     );
-    let html = if value.is_array() {
+    let is_bench = value.is_array();
+    let html = if is_bench {
         let results: Vec<BenchResult> = serde_json::from_value(value).with_context(|| {
             format!(
                 "{} is not a bench.json written by skelfit bench",
@@ -69,8 +70,16 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         });
         study_html(&study, &title, &preamble, None)
     };
+    let kind = if is_bench { "bench" } else { "study" };
     outputs.add(&output, html);
     outputs.write()?;
-    println!("wrote {}", output.display());
+    if super::common::json_mode() {
+        super::common::print_json(&serde_json::json!({
+            "results": args.results.display().to_string(),
+            "kind": kind,
+            "written": [output.display().to_string()],
+        }))?;
+    }
+    super::common::say!("wrote {}", output.display());
     Ok(())
 }
