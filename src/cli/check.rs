@@ -160,7 +160,10 @@ fn print_check(check: &DeformationCheck, kind: SweepKind) {
     for p in &check.poses {
         say!(
             "{:<24} {:>8} {:>8} {:>7.2}",
-            p.pose, p.over_1_5, p.over_2, p.worst
+            p.pose,
+            p.over_1_5,
+            p.over_2,
+            p.worst
         );
     }
     say!(

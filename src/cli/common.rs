@@ -424,7 +424,9 @@ pub fn note(line: &str) {
 /// Prints a warning that has no typed [`Warning`] (an export notice) unless `-q`:
 /// `skelfit: warning: MESSAGE [STAGE, SEVERITY]`.
 pub fn warn(message: &str, stage: &str, severity: &str) {
-    note(&format!("skelfit: warning: {message} [{stage}, {severity}]"));
+    note(&format!(
+        "skelfit: warning: {message} [{stage}, {severity}]"
+    ));
 }
 
 /// Prints `warnings` to stderr ranked for the reader ([`skelfit::warning::ranked`]: parts

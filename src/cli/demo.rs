@@ -181,7 +181,12 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
         );
     }
     say!("mean joint error: of the anatomical rig against the reference rig beside the mesh, in mesh units (u; the bundled models are in metres) and % of the figure's size");
-    say!("results written to {}", args.out.display());
+    let (index, _) = super::report::write_index(&args.out, None, Some("skelfit demo"))?;
+    say!(
+        "results written to {} (index: {})",
+        args.out.display(),
+        index.display()
+    );
     Ok(())
 }
 

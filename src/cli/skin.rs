@@ -265,7 +265,9 @@ fn print_summary(
         say!("no vertex on    {}", unweighted.join(", "));
     }
     say!("timings (ms)    load {load_ms:.1}, skin {skin_ms:.1}, export {export_ms:.1}");
-    for path in std::iter::once(&args.output).chain([&args.skeleton_json, &args.bvh].into_iter().flatten()) {
+    for path in
+        std::iter::once(&args.output).chain([&args.skeleton_json, &args.bvh].into_iter().flatten())
+    {
         say!("wrote           {}", path.display());
     }
 }

@@ -183,7 +183,11 @@ fn run_study(
     super::common::say!("tables in {}", common.out.display());
     for v in &result.variants {
         if let Some(f) = &v.failure {
-            super::common::warn(&format!("variant {} failed: {f}", v.label), "study", "part_missing");
+            super::common::warn(
+                &format!("variant {} failed: {f}", v.label),
+                "study",
+                "part_missing",
+            );
         }
     }
     Ok(())

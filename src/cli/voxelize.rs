@@ -132,7 +132,11 @@ pub fn print_text(s: &VoxelSummary) {
     say!("mesh                 {}", s.mesh);
     say!(
         "grid                 {} x {} x {} voxels of {:.6} (origin {:?})",
-        s.dims[0], s.dims[1], s.dims[2], s.voxel_size, s.origin
+        s.dims[0],
+        s.dims[1],
+        s.dims[2],
+        s.voxel_size,
+        s.origin
     );
     say!("interior voxels      {}", s.interior_voxels);
     match s.mesh_volume {
