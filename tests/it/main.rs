@@ -4,6 +4,7 @@ mod anatomy;
 mod bench;
 mod bones;
 mod cli;
+mod cli_convention;
 mod common;
 mod distance;
 mod eval;
