@@ -194,8 +194,9 @@ fn bones_svg_stays_under_half_a_megabyte() {
         assert!(bytes.len() < 500_000, "{name}: {} bytes", bytes.len());
         let svg = text(&bytes);
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-        // Every bone is drawn, in each of the three views.
-        assert!(svg.matches("<g><title>femur_L</title>").count() == 3, "{name}");
+        // Three views, each bone a titled group in each view where it shows.
+        let groups = svg.matches("<g><title>").count();
+        assert!(groups > 3 * 20, "{name}: {groups} groups");
     }
 }
 
@@ -220,7 +221,7 @@ fn report_index_links_every_page_with_its_verdict() {
         .nth(1)
         .and_then(|rest| rest.split("</p>").next())
         .expect("the bench page opens with a verdict");
-    assert!(verdict.contains("against each model's reference rig"), "{verdict}");
+    assert!(verdict.contains("reference rig (rig_game_engine.json"), "{verdict}");
     assert!(verdict.contains("worst: "), "{verdict}");
     let listed = json_of(&["report", "--index", p(dir.path()), "--json"]);
     let index = std::fs::read_to_string(dir.path().join("index.html")).unwrap();
