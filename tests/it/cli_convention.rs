@@ -99,7 +99,10 @@ fn json_and_summary_go_to_different_streams_and_q_keeps_only_the_json() {
     let glb = dir.path().join("h.glb");
     let out = skelfit(&["rig", &data(HORSE), "-o", p(&glb), "--json"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    assert!(text(&out.stderr).contains("wrote"), "the summary goes to stderr");
+    assert!(
+        text(&out.stderr).contains("wrote"),
+        "the summary goes to stderr"
+    );
     serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap();
 
     let quiet = skelfit(&["rig", &data(HORSE), "-o", p(&glb), "-q"]);
@@ -149,9 +152,17 @@ fn warnings_of_one_kind_are_one_line_unless_verbose() {
         .filter(|l| l.contains("left out, only"))
         .collect();
     assert_eq!(group.len(), 1, "one line for the kind: {grouped}");
-    assert!(group[0].contains(&format!("outside ({})", outside.len())), "{}", group[0]);
+    assert!(
+        group[0].contains(&format!("outside ({})", outside.len())),
+        "{}",
+        group[0]
+    );
     for l in &outside {
-        let bone = l.trim_start_matches("skelfit: warning: ").split(':').next().unwrap();
+        let bone = l
+            .trim_start_matches("skelfit: warning: ")
+            .split(':')
+            .next()
+            .unwrap();
         assert!(group[0].contains(bone), "{bone} named in {}", group[0]);
     }
     // Ranked: parts missing before degraded ones.
@@ -221,7 +232,10 @@ fn report_index_links_every_page_with_its_verdict() {
         .nth(1)
         .and_then(|rest| rest.split("</p>").next())
         .expect("the bench page opens with a verdict");
-    assert!(verdict.contains("reference rig (rig_game_engine.json"), "{verdict}");
+    assert!(
+        verdict.contains("reference rig (rig_game_engine.json"),
+        "{verdict}"
+    );
     assert!(verdict.contains("worst: "), "{verdict}");
     let listed = json_of(&["report", "--index", p(dir.path()), "--json"]);
     let index = std::fs::read_to_string(dir.path().join("index.html")).unwrap();
