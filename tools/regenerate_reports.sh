@@ -9,6 +9,7 @@
 #                      HTML page per character (projections of predicted vs reference joints)
 #   reports/labels/    body-part labelling accuracy on the reference set
 #   reports/scaling/   time against interior voxel count (mesh to skinned general skeleton)
+#   reports/index.html links every report (skelfit report --index reports)
 # Usage: tools/regenerate_reports.sh   (from anywhere; takes a few minutes)
 # Set SKELFIT_SKIP_SCALING=1 to leave reports/scaling/ alone (its timings need a quiet machine).
 set -euo pipefail
@@ -46,3 +47,6 @@ fi
 if [ -z "${SKELFIT_SKIP_SCALING:-}" ]; then
   cargo run --release --quiet --example scaling -- --out reports/scaling
 fi
+
+# reports/index.html: every report above, each with the verdict line its page opens with.
+"$BIN" report --index reports -o reports/index.html --title "skelfit reports"

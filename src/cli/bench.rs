@@ -107,7 +107,11 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         );
     }
     super::common::output_folder(&args.out)?;
-    let bar = indicatif::ProgressBar::new(models.len() as u64);
+    let bar = if super::common::quiet() {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new(models.len() as u64)
+    };
     if let Ok(style) = indicatif::ProgressStyle::with_template(
         "{bar:40} {pos}/{len} models  {elapsed_precise}  {msg}",
     ) {
@@ -166,9 +170,12 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         });
         write_file(&args.out.join("index.html"), html.as_bytes())?;
     }
-    print!("{}", bench_table(&results).plain());
+    if super::common::json_mode() {
+        println!("{}", to_json(&results)?.trim_end());
+    }
+    super::common::say!("{}", bench_table(&results).plain().trim_end());
     let counts = bench_counts(&results);
-    println!(
+    super::common::say!(
         "\n{} models: {} with per-joint errors, {} chamfer only, {} failed; tables in {}",
         counts.models,
         counts.per_joint,

@@ -2,7 +2,7 @@
 //! options of `skelfit rig`: rig the figure, generate its bone meshes (dissertation 9.1) and
 //! write them as child nodes of the armature's joints.
 
-use super::common::millis;
+use super::common::{millis, note, say};
 use super::rig::RigArgs;
 use super::skeleton::with_spinner;
 use anyhow::Context;
@@ -69,31 +69,55 @@ pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.svg {
         outputs.add(path, bones_svg(&made, Some(&mesh), 360.0));
     }
+    if let Some(path) = &args.rig.skeleton_json {
+        outputs.add(path, super::rig::rig_json(&args.rig.mesh, &rigged, None)?);
+    }
     outputs.write()?;
+    let mut warnings = rigged.warnings.clone();
+    warnings.extend(made.warnings.iter().cloned().map(Warning::Bones));
+    if super::common::json_mode() {
+        let written: Vec<String> = [Some(&args.rig.output), args.obj.as_ref(), args.svg.as_ref()]
+            .into_iter()
+            .chain([args.rig.skeleton_json.as_ref()])
+            .flatten()
+            .map(|p| p.display().to_string())
+            .collect();
+        super::common::print_json(&serde_json::json!({
+            "mesh": args.rig.mesh.display().to_string(),
+            "template": rigged.fit.template,
+            "joints": rigged.fit.skeleton.len(),
+            "bones": made.bones.iter().map(|b| serde_json::json!({
+                "name": b.name,
+                "kind": b.kind.as_str(),
+                "joint": rigged.fit.skeleton.joints[b.joint.0].name,
+            })).collect::<Vec<_>>(),
+            "timings_ms": {"load": load_ms, "bones": bones_ms},
+            "written": written,
+            "warnings": warnings,
+        }))?;
+    }
     let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
     for b in &made.bones {
         *kinds.entry(b.kind.as_str()).or_default() += 1;
     }
     let list: Vec<String> = kinds.iter().map(|(k, n)| format!("{k} {n}")).collect();
-    println!("mesh            {}", args.rig.mesh.display());
-    println!(
+    say!("mesh            {}", args.rig.mesh.display());
+    say!(
         "skeleton        {} joints, template {}",
         rigged.fit.skeleton.len(),
         rigged.fit.template
     );
-    println!("bones           {}: {}", made.bones.len(), list.join(", "));
-    println!("timings (ms)    load {load_ms:.1}, bones {bones_ms:.1}");
+    say!("bones           {}: {}", made.bones.len(), list.join(", "));
+    say!("timings (ms)    load {load_ms:.1}, bones {bones_ms:.1}");
     for path in [Some(&args.rig.output), args.obj.as_ref(), args.svg.as_ref()]
         .into_iter()
         .flatten()
     {
-        println!("wrote           {}", path.display());
+        say!("wrote           {}", path.display());
     }
-    let mut warnings = rigged.warnings.clone();
-    warnings.extend(made.warnings.iter().cloned().map(Warning::Bones));
     super::common::print_warnings(&warnings);
     if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
-        eprintln!("skelfit: hint: {hint}");
+        note(&format!("skelfit: hint: {hint}"));
     }
     Ok(())
 }

@@ -1,8 +1,8 @@
 //! `skelfit check RIG.glb [--canonical RIG.json] [--sweep auto|humanoid|animal] [--up ..]
-//! [--forward ..] [--json OUT.json]`: pose a skinned glTF through the standard sweep and count
-//! the mesh edges stretched past 1.5× and 2×.
+//! [--forward ..] [--results-json OUT.json]`: pose a skinned glTF through the standard sweep and
+//! count the mesh edges stretched past 1.5× and 2× (`--json`: the same JSON on stdout).
 
-use super::common::write_file;
+use super::common::{say, write_file};
 use anyhow::{bail, Context};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
@@ -55,9 +55,9 @@ pub struct CheckArgs {
         allow_hyphen_values = true
     )]
     pub forward: String,
-    /// Write the per-pose counts as JSON to this file.
+    /// Write the per-pose counts as JSON to this file (`--json` prints them on stdout).
     #[arg(long, value_name = "OUT.json")]
-    pub json: Option<PathBuf>,
+    pub results_json: Option<PathBuf>,
 }
 
 /// Runs `skelfit check`.
@@ -73,15 +73,22 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     )?;
     print_check(&checked.check, checked.check.sweep);
     if checked.unweighted > 0 {
-        eprintln!(
-            "skelfit: warning: {} vertices carry no weight and stay at rest in every pose",
-            checked.unweighted
+        super::common::warn(
+            &format!(
+                "{} vertices carry no weight and stay at rest in every pose",
+                checked.unweighted
+            ),
+            "skin",
+            "degraded",
         );
     }
-    if let Some(path) = &args.json {
-        let json = check_json(&args.rig, &checked);
+    let json = check_json(&args.rig, &checked);
+    if let Some(path) = &args.results_json {
         write_file(path, serde_json::to_string_pretty(&json)?.as_bytes())?;
-        println!("wrote {}", path.display());
+        say!("wrote {}", path.display());
+    }
+    if super::common::json_mode() {
+        super::common::print_json(&json)?;
     }
     Ok(())
 }
@@ -193,20 +200,23 @@ fn canonical_joints(
 
 /// Prints the table of poses and their stretched edges.
 fn print_check(check: &DeformationCheck, kind: SweepKind) {
-    println!(
+    say!(
         "{} edges, {:?} sweep ({} poses)",
         check.edges,
         kind,
         check.poses.len()
     );
-    println!("{:<24} {:>8} {:>8} {:>7}", "pose", ">1.5x", ">2x", "worst");
+    say!("{:<24} {:>8} {:>8} {:>7}", "pose", ">1.5x", ">2x", "worst");
     for p in &check.poses {
-        println!(
+        say!(
             "{:<24} {:>8} {:>8} {:>7.2}",
-            p.pose, p.over_1_5, p.over_2, p.worst
+            p.pose,
+            p.over_1_5,
+            p.over_2,
+            p.worst
         );
     }
-    println!(
+    say!(
         "{:<24} {:>8} {:>8} {:>7.2}",
         "all poses",
         check.total_over_1_5(),
@@ -214,7 +224,7 @@ fn print_check(check: &DeformationCheck, kind: SweepKind) {
         check.worst()
     );
     if !check.missing.is_empty() {
-        println!("not posed (no joint): {}", check.missing.join(", "));
+        say!("not posed (no joint): {}", check.missing.join(", "));
     }
 }
 

@@ -70,13 +70,15 @@ pub fn load_model(path: &Path) -> anyhow::Result<(Mesh, Option<skelfit::mesh::So
 /// the welded mesh instead of the model.
 pub fn print_model_warnings(model: &skelfit::mesh::SourceModel, bones: bool) {
     if bones {
-        eprintln!(
-            "skelfit: warning: with --bones the .glb holds the welded mesh (no UVs, materials or textures of the input) [export, notice]"
+        warn(
+            "with --bones the .glb holds the welded mesh (no UVs, materials or textures of the input)",
+            "export",
+            "notice",
         );
         return;
     }
     for w in &model.warnings {
-        eprintln!("skelfit: warning: {w} [export, notice]");
+        warn(&w.to_string(), "export", "notice");
     }
 }
 
@@ -364,23 +366,212 @@ pub fn orientation_hint(labels: &skelfit::anatomy::Labelling, up: glam::DVec3) -
     })
 }
 
-/// Prints `warnings` to stderr ranked for the reader ([`skelfit::warning::ranked`]: most
-/// severe first, grouped by stage), each with its stage and severity.
-pub fn print_warnings(warnings: &[Warning]) {
-    for w in ranked(warnings) {
-        eprintln!("skelfit: warning: {w} [{}, {}]", w.stage(), w.severity());
+/// Options every command takes (`global = true`): `--json`, `-q`, `-v`.
+#[derive(Debug, Clone, Copy, Default, Args)]
+pub struct GlobalArgs {
+    /// Print the command's machine-readable result as JSON on stdout (the summary for people
+    /// goes to stderr). Files are named by their own options (-o, --skeleton-json FILE, ...).
+    /// `--print-json` is a deprecated alias, removed in the next release.
+    #[arg(long, global = true, visible_alias = "print-json")]
+    pub json: bool,
+    /// Quiet: print errors only (no summary, warnings, hints or progress).
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    pub quiet: bool,
+    /// Verbose: print every warning on its own line instead of grouped by kind.
+    #[arg(short, long, global = true)]
+    pub verbose: bool,
+}
+
+/// The commands `skelfit --help` lists first, in this order; the rest follow alphabetically.
+pub const MAIN_COMMANDS: [&str; 3] = ["rig", "skin", "check"];
+
+/// The `display_order` of a subcommand in `skelfit --help`: the [`MAIN_COMMANDS`] first.
+pub fn help_order(name: &str) -> usize {
+    MAIN_COMMANDS
+        .iter()
+        .position(|main| *main == name)
+        .unwrap_or(MAIN_COMMANDS.len())
+}
+
+static GLOBAL: std::sync::OnceLock<GlobalArgs> = std::sync::OnceLock::new();
+
+/// Records the global options once, after parsing.
+pub fn set_global(global: GlobalArgs) {
+    let _ = GLOBAL.set(global);
+}
+
+/// The global options (all off until [`set_global`]).
+pub fn global() -> GlobalArgs {
+    GLOBAL.get().copied().unwrap_or_default()
+}
+
+/// Whether `--json` asks for the machine-readable result on stdout.
+pub fn json_mode() -> bool {
+    global().json
+}
+
+/// Whether `-q` asks for errors only.
+pub fn quiet() -> bool {
+    global().quiet
+}
+
+/// Prints a line of the summary for people: on stdout, on stderr with `--json` (stdout holds
+/// the JSON), nowhere with `-q`.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        let g = $crate::cli::common::global();
+        if g.quiet {
+        } else if g.json {
+            eprintln!($($arg)*);
+        } else {
+            println!($($arg)*);
+        }
+    }};
+}
+pub(crate) use say;
+
+/// Prints `value` as pretty JSON on stdout: a command's result under `--json`.
+pub fn print_json<T: serde::Serialize + ?Sized>(value: &T) -> anyhow::Result<()> {
+    println!("{}", serde_json::to_string_pretty(value)?);
+    Ok(())
+}
+
+/// Prints a line for people on stderr (a hint, a missing part, a note) unless `-q`.
+pub fn note(line: &str) {
+    if !quiet() {
+        eprintln!("{line}");
     }
+}
+
+/// Prints a warning that has no typed [`Warning`] (an export notice) unless `-q`:
+/// `skelfit: warning: MESSAGE [STAGE, SEVERITY]`.
+pub fn warn(message: &str, stage: &str, severity: &str) {
+    note(&format!(
+        "skelfit: warning: {message} [{stage}, {severity}]"
+    ));
+}
+
+/// Prints `warnings` to stderr ranked for the reader ([`skelfit::warning::ranked`]: parts
+/// missing first, then degraded, then notices; grouped by stage) and grouped by kind (see
+/// [`warning_lines`]); every warning on its own line with `-v`, none with `-q`.
+pub fn print_warnings(warnings: &[Warning]) {
+    let records: Vec<WarningRecord> = ranked(warnings).into_iter().map(Warning::record).collect();
+    print_ranked_records(&records);
 }
 
 /// Prints warning records (an evaluation's) to stderr, most severe first, as
 /// [`print_warnings`] does.
 pub fn print_warning_records(records: &[WarningRecord]) {
-    let mut ranked: Vec<&WarningRecord> = records.iter().collect();
+    let mut ranked: Vec<WarningRecord> = records.to_vec();
     ranked.sort_by_key(|r| std::cmp::Reverse(r.severity));
-    for r in ranked {
-        eprintln!(
-            "skelfit: warning: {} [{}, {}]",
+    print_ranked_records(&ranked);
+}
+
+fn print_ranked_records(records: &[WarningRecord]) {
+    let g = global();
+    if g.quiet {
+        return;
+    }
+    for line in warning_lines(records, g.verbose) {
+        eprintln!("{line}");
+    }
+}
+
+/// The lines that report `records` (already ranked): with `verbose` one per warning; else
+/// duplicates merged (`(x3)`) and warnings of the same stage and code on one line with their
+/// count and the items they name, e.g. `skelfit: warning: refine: kept at the unrefined
+/// position (6): pelvis, neck, elbow_L, ... [refine, degraded; -v lists each]`. Groups keep
+/// the order of their first warning.
+pub fn warning_lines(records: &[WarningRecord], verbose: bool) -> Vec<String> {
+    let line = |r: &WarningRecord, times: usize| {
+        let times = if times > 1 {
+            format!(" (x{times})")
+        } else {
+            String::new()
+        };
+        format!(
+            "skelfit: warning: {}{times} [{}, {}]",
             r.message, r.stage, r.severity
+        )
+    };
+    if verbose {
+        return records.iter().map(|r| line(r, 1)).collect();
+    }
+    // Groups by (stage, code) in order of first appearance; messages deduplicated with counts.
+    let mut groups: Vec<(&WarningRecord, Vec<(&str, usize)>)> = Vec::new();
+    for r in records {
+        let group = match groups
+            .iter_mut()
+            .position(|(first, _)| first.stage == r.stage && first.code == r.code)
+        {
+            Some(i) => &mut groups[i].1,
+            None => {
+                groups.push((r, Vec::new()));
+                &mut groups.last_mut().expect("just pushed").1
+            }
+        };
+        match group.iter_mut().find(|(m, _)| *m == r.message) {
+            Some((_, n)) => *n += 1,
+            None => group.push((&r.message, 1)),
+        }
+    }
+    groups
+        .into_iter()
+        .map(|(first, messages)| match messages.as_slice() {
+            [(_, n)] => line(first, *n),
+            _ => group_line(first, &messages),
+        })
+        .collect()
+}
+
+/// One line for several distinct warnings of one kind.
+fn group_line(first: &WarningRecord, messages: &[(&str, usize)]) -> String {
+    let total: usize = messages.iter().map(|(_, n)| n).sum();
+    let tail = format!("[{}, {}; -v lists each]", first.stage, first.severity);
+    // "SUBJECT: rest" after an optional "stage: " prefix: the subject is the item it names.
+    let prefix = format!("{}: ", first.stage);
+    let split: Option<Vec<(&str, &str)>> = messages
+        .iter()
+        .map(|(m, _)| {
+            let m = m.strip_prefix(prefix.as_str()).unwrap_or(m);
+            m.split_once(": ")
+                .filter(|(subject, _)| subject.split_whitespace().count() <= 3)
+        })
+        .collect();
+    let Some(split) = split else {
+        return format!(
+            "skelfit: warning: {}: {total} warnings of kind {}, e.g. {} {tail}",
+            first.stage, first.code, first.message
         );
+    };
+    let mut subjects: Vec<&str> = Vec::new();
+    for (subject, _) in &split {
+        if !subjects.contains(subject) {
+            subjects.push(subject);
+        }
+    }
+    const SHOWN: usize = 8;
+    let mut names = subjects
+        .iter()
+        .take(SHOWN)
+        .copied()
+        .collect::<Vec<_>>()
+        .join(", ");
+    if subjects.len() > SHOWN {
+        names.push_str(&format!(" and {} more", subjects.len() - SHOWN));
+    }
+    let rest = split[0].1;
+    if split.iter().all(|(_, r)| *r == rest) {
+        format!(
+            "skelfit: warning: {}: {rest} ({total}): {names} {tail}",
+            first.stage
+        )
+    } else {
+        format!(
+            "skelfit: warning: {}: {} ({total}): {names}; e.g. {}: {rest} {tail}",
+            first.stage,
+            first.code.replace('_', " "),
+            split[0].0
+        )
     }
 }

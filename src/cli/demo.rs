@@ -9,7 +9,7 @@
 //! (`rig_game_engine.json`, else the only `rig_*.json`) it also prints the anatomical rig's
 //! per-joint error; then a summary table.
 
-use super::common::{write_file, VoxelArgs};
+use super::common::{say, write_file, VoxelArgs};
 use super::voxelize::{print_text, summarize};
 use anyhow::Context;
 use clap::Args;
@@ -76,7 +76,7 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
             .unwrap_or_else(|| "model".into());
         let out = args.out.join(&name);
         std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
-        println!("== {name}");
+        say!("== {name}");
         let stats = super::common::load_mesh(mesh_path)?.stats();
         write_file(
             &out.join("info.json"),
@@ -88,13 +88,58 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
             serde_json::to_string_pretty(&summary)?.as_bytes(),
         )?;
         print_text(&summary);
-        let general = rig_general(mesh_path, &out)?;
-        let anatomical = rig_anatomical(mesh_path, &out)?;
-        rows.push((name, stats, summary, general, anatomical));
+        let (general, general_warnings) = rig_general(mesh_path, &out)?;
+        let (anatomical, anatomical_warnings) = rig_anatomical(mesh_path, &out)?;
+        // One grouped, ranked list per model: what needs attention first.
+        let mut warnings = general_warnings;
+        warnings.extend(anatomical_warnings);
+        super::common::print_warnings(&warnings);
+        rows.push((name, stats, summary, general, anatomical, warnings));
     }
-    println!();
-    println!(
-        "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9} {:>7} {:>9} {:>10} {:>7} {:>9} {:>11}",
+    if super::common::json_mode() {
+        let models: Vec<serde_json::Value> = rows
+            .iter()
+            .map(|(name, stats, s, (joints, rig_ms), a, warnings)| {
+                serde_json::json!({
+                    "model": name,
+                    "info": stats,
+                    "voxelize": s,
+                    "general": {"joints": joints, "rig_ms": rig_ms},
+                    "anatomical": {
+                        "template": a.template,
+                        "joints": a.joints,
+                        "rig_ms": a.rig_ms,
+                        "mean_error": a.error.map(|e| e.0),
+                        "mean_error_percent": a.error.map(|e| e.1),
+                    },
+                    "warnings": warnings,
+                })
+            })
+            .collect();
+        super::common::print_json(&serde_json::json!({
+            "out": args.out.display().to_string(),
+            "models": models,
+        }))?;
+    }
+    say!();
+    say!(
+        "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9} | {:>7} {:>9} | {:>10} {:>7} {:>9} {:>16}",
+        "",
+        "",
+        "",
+        "",
+        "",
+        "",
+        "",
+        "general",
+        "skeleton",
+        "anatomical",
+        "rig",
+        "",
+        ""
+    );
+    say!(
+        "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9} | {:>7} {:>9} | {:>10} {:>7} {:>9} {:>16}",
         "model",
         "triangles",
         "closed",
@@ -107,19 +152,19 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
         "template",
         "joints",
         "rig ms",
-        "mean error"
+        "mean joint error"
     );
-    for (name, stats, s, (joints, rig_ms), anatomical) in &rows {
+    for (name, stats, s, (joints, rig_ms), anatomical, _) in &rows {
         let vol = s
             .mesh_volume
             .map(|v| format!("{:+.2}%", 100.0 * (s.interior_volume - v) / v))
             .unwrap_or_else(|| "n/a".into());
         let error = anatomical
             .error
-            .map(|(mean, percent)| format!("{mean:.4} ({percent:.1}%)"))
+            .map(|(mean, percent)| format!("{mean:.4} u ({percent:.1}%)"))
             .unwrap_or_else(|| "n/a".into());
-        println!(
-            "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9.1} {:>7} {:>9.1} {:>10} {:>7} {:>9.1} {:>11}",
+        say!(
+            "{:<24} {:>9} {:>6} {:>16} {:>10} {:>9} {:>9.1} | {:>7} {:>9.1} | {:>10} {:>7} {:>9.1} {:>16}",
             name,
             stats.triangles,
             if stats.closed { "yes" } else { "no" },
@@ -135,14 +180,20 @@ pub fn run(args: &DemoArgs) -> anyhow::Result<()> {
             error
         );
     }
-    println!("results written to {}", args.out.display());
+    say!("mean joint error: of the anatomical rig against the reference rig beside the mesh, in mesh units (u; the bundled models are in metres) and % of the figure's size");
+    let (index, _) = super::report::write_index(&args.out, None, Some("skelfit demo"))?;
+    say!(
+        "results written to {} (index: {})",
+        args.out.display(),
+        index.display()
+    );
     Ok(())
 }
 
 /// Rigs one model with the general method (default parameters) and writes
 /// `general.glb`, `general.json` and `general.bvh` into `out`. Returns the joint count and the
 /// total rig time in milliseconds.
-fn rig_general(mesh_path: &Path, out: &Path) -> anyhow::Result<(usize, f64)> {
+fn rig_general(mesh_path: &Path, out: &Path) -> anyhow::Result<((usize, f64), Vec<Warning>)> {
     let mesh = super::common::load_mesh(mesh_path)?;
     let start = std::time::Instant::now();
     let rig = general_rig(&mesh, &GeneralRigOptions::default())
@@ -170,7 +221,7 @@ fn rig_general(mesh_path: &Path, out: &Path) -> anyhow::Result<(usize, f64)> {
         &rig.general.skeleton,
         &BvhOptions::default(),
     )?;
-    println!(
+    say!(
         "general rig          {} joints, {} segments, {} end effectors in {:.1} ms -> {}",
         rig.general.skeleton.len(),
         rig.general.segments.len(),
@@ -178,8 +229,7 @@ fn rig_general(mesh_path: &Path, out: &Path) -> anyhow::Result<(usize, f64)> {
         rig_ms,
         glb.display()
     );
-    super::common::print_warnings(&rig.warnings);
-    Ok((rig.general.skeleton.len(), rig_ms))
+    Ok(((rig.general.skeleton.len(), rig_ms), rig.warnings))
 }
 
 /// What the demo reports of an anatomical rig.
@@ -195,7 +245,7 @@ struct AnatomicalRow {
 /// Rigs one model with the anatomical skeleton (template chosen from the labels) and writes
 /// `rig.glb`, `rig.json` (with the canonical map) and `rig.bvh` into `out`; evaluates it
 /// against the model's reference rig when one is beside the mesh.
-fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow> {
+fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<(AnatomicalRow, Vec<Warning>)> {
     let mesh = super::common::load_mesh(mesh_path)?;
     let start = std::time::Instant::now();
     let rigged = rig(&mesh, &RigOptions::default())
@@ -228,14 +278,12 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
         &out.join("bones.svg"),
         skelfit::bones::bones_svg(&made, Some(&mesh), 360.0).as_bytes(),
     )?;
-    println!(
+    say!(
         "bone meshes          {} bones -> {}",
         made.bones.len(),
         out.join("bones.glb").display()
     );
-    let bone_warnings: Vec<Warning> = made.warnings.iter().cloned().map(Warning::Bones).collect();
-    super::common::print_warnings(&bone_warnings);
-    println!(
+    say!(
         "anatomical rig       {} template, {} joints ({} canonical) in {:.1} ms -> {}",
         rigged.fit.template,
         rigged.fit.skeleton.len(),
@@ -243,7 +291,8 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
         rig_ms,
         glb.display()
     );
-    super::common::print_warnings(&rigged.warnings);
+    let mut warnings = rigged.warnings.clone();
+    warnings.extend(made.warnings.iter().cloned().map(Warning::Bones));
     let error = match reference_beside(mesh_path) {
         Some(reference) => {
             let reference = load_skeleton(&reference)?;
@@ -255,7 +304,7 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
             };
             let e = evaluate(&predicted, &reference, Some(&mesh), &options)?;
             if e.has_joint_errors() {
-                println!(
+                say!(
                     "                     mean joint error {:.4} ({:.2} % of figure size) over {} joints",
                     e.summary.mean,
                     e.summary_percent.mean,
@@ -263,7 +312,7 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
                 );
                 Some((e.summary.mean, e.summary_percent.mean))
             } else {
-                println!(
+                say!(
                     "                     no shared joint names: chamfer CD-J2J {:.2} % of figure size",
                     e.chamfer_percent.j2j
                 );
@@ -272,12 +321,13 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<AnatomicalRow>
         }
         None => None,
     };
-    Ok(AnatomicalRow {
+    let row = AnatomicalRow {
         template: rigged.fit.template.clone(),
         joints: rigged.fit.skeleton.len(),
         rig_ms,
         error,
-    })
+    };
+    Ok((row, warnings))
 }
 
 /// The reference rig beside a mesh: `rig_game_engine.json`, else the only `rig_*.json` (the

@@ -45,9 +45,10 @@ pub struct EvalArgs {
     /// Write the per-joint table as CSV to this file.
     #[arg(long, value_name = "OUT")]
     pub csv: Option<PathBuf>,
-    /// Write the whole evaluation (joints, summaries, chamfer distances, warnings) as JSON.
+    /// Write the whole evaluation (joints, summaries, chamfer distances, warnings) as JSON to
+    /// this file (`--json` prints it on stdout).
     #[arg(long, value_name = "OUT")]
-    pub json: Option<PathBuf>,
+    pub results_json: Option<PathBuf>,
     /// Write a self-contained HTML report (projections, chart, table) to this file.
     #[arg(long, value_name = "OUT")]
     pub html: Option<PathBuf>,
@@ -72,7 +73,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     let mut outputs = Outputs::check(
         [
             args.csv.as_deref(),
-            args.json.as_deref(),
+            args.results_json.as_deref(),
             args.html.as_deref(),
         ]
         .into_iter()
@@ -110,13 +111,16 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             )
         })?;
     super::common::print_warning_records(&evaluation.warnings);
-    print!("{}", summary_text(&evaluation, args.markdown));
+    super::common::say!("{}", summary_text(&evaluation, args.markdown).trim_end());
+    if super::common::json_mode() {
+        println!("{}", to_json(&evaluation)?.trim_end());
+    }
     if let Some(path) = &args.csv {
         let mut bytes = Vec::new();
         write_csv(&joint_rows(&evaluation), &mut bytes)?;
         outputs.add(path, bytes);
     }
-    if let Some(path) = &args.json {
+    if let Some(path) = &args.results_json {
         outputs.add(path, to_json(&evaluation)? + "\n");
     }
     if let Some(path) = &args.html {

@@ -1,6 +1,6 @@
-//! `skelfit info MESH [--json]`.
+//! `skelfit info MESH [--json]` (`--json`: the statistics as JSON on stdout).
 
-use super::common::load_mesh;
+use super::common::{load_mesh, say};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -9,34 +9,30 @@ use std::path::PathBuf;
 pub struct InfoArgs {
     /// Mesh file (.obj, .gltf, .glb, .stl, .ply).
     pub mesh: PathBuf,
-    /// Print JSON instead of text.
-    #[arg(long)]
-    pub json: bool,
 }
 
 /// Prints the statistics of one mesh.
 pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
     let mesh = load_mesh(&args.mesh)?;
     let stats = mesh.stats();
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&stats)?);
-        return Ok(());
+    if super::common::json_mode() {
+        return super::common::print_json(&stats);
     }
-    println!("mesh              {}", args.mesh.display());
-    println!("vertices          {}", stats.vertices);
-    println!("triangles         {}", stats.triangles);
-    println!("components        {}", stats.components);
-    println!("boundary edges    {}", stats.boundary_edges);
-    println!("non-manifold edges {}", stats.non_manifold_edges);
-    println!("closed            {}", stats.closed);
-    println!("degenerate tris   {}", stats.degenerate_triangles);
+    say!("mesh              {}", args.mesh.display());
+    say!("vertices          {}", stats.vertices);
+    say!("triangles         {}", stats.triangles);
+    say!("components        {}", stats.components);
+    say!("boundary edges    {}", stats.boundary_edges);
+    say!("non-manifold edges {}", stats.non_manifold_edges);
+    say!("closed            {}", stats.closed);
+    say!("degenerate tris   {}", stats.degenerate_triangles);
     if let (Some(min), Some(max)) = (stats.bbox_min, stats.bbox_max) {
-        println!("bounding box      {min:?} .. {max:?}");
+        say!("bounding box      {min:?} .. {max:?}");
     }
-    println!("surface area      {:.6}", stats.surface_area);
+    say!("surface area      {:.6}", stats.surface_area);
     match stats.signed_volume {
-        Some(v) => println!("signed volume     {v:.6}"),
-        None => println!("signed volume     n/a (the mesh is not closed)"),
+        Some(v) => say!("signed volume     {v:.6}"),
+        None => say!("signed volume     n/a (the mesh is not closed)"),
     }
     Ok(())
 }

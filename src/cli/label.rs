@@ -161,6 +161,9 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     }
     .with_context(|| format!("labelling {}", mesh_path.display()))?;
     let json = serde_json::to_string_pretty(&labels_json(&labels, Some(&source)))?;
+    if super::common::json_mode() {
+        println!("{json}");
+    }
     outputs.add(&args.output, json);
     if let Some(p) = &args.ply {
         outputs.add(p, labels_ply(&mesh, &labels));
@@ -169,13 +172,13 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
         outputs.add(p, labels_svg(&mesh, &labels, 320.0));
     }
     outputs.write()?;
-    println!("figure          {}", labels.figure.name());
-    println!("parts           {}", labels.parts_summary());
+    super::common::say!("figure          {}", labels.figure.name());
+    super::common::say!("parts           {}", labels.parts_summary());
     let fell_back = labels
         .warnings
         .iter()
         .any(|w| matches!(w, Warning::Rig(RigWarning::MedialLabels { .. })));
-    println!(
+    super::common::say!(
         "vertex labels   {}",
         match args.vertex_labels {
             VertexLabels::Bones if !fell_back => "nearest bone of the fitted skeleton",
@@ -183,13 +186,13 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
             VertexLabels::Medial => "medial surface",
         }
     );
-    println!("wrote           {}", args.output.display());
+    super::common::say!("wrote           {}", args.output.display());
     for p in [&args.ply, &args.svg].into_iter().flatten() {
-        println!("wrote           {}", p.display());
+        super::common::say!("wrote           {}", p.display());
     }
     super::common::print_warnings(&labels.warnings);
     if let Some(hint) = super::common::orientation_hint(&labels, labels.frame.up) {
-        eprintln!("skelfit: hint: {hint}");
+        super::common::note(&format!("skelfit: hint: {hint}"));
     }
     Ok(())
 }
@@ -201,22 +204,23 @@ fn table(refdata: &Path, out: &Path, options: &LabelPipelineOptions) -> anyhow::
     super::common::output_folder(out)?;
     let mut rows = Vec::new();
     for (name, model) in label_table_models(refdata) {
-        eprintln!("labelling {name}");
+        super::common::note(&format!("labelling {name}"));
         let mesh = load_mesh(&model.join("mesh.obj"))?;
         let row = label_table_row(&name, &model, &mesh, options)
             .with_context(|| format!("labelling {name}"))?;
         for note in &row.notes {
-            eprintln!("  {note}");
+            super::common::note(&format!("  {note}"));
         }
         rows.push(row);
     }
     let md = label_table_markdown(&rows);
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     write_file(&out.join("labels.md"), md.as_bytes())?;
-    write_file(
-        &out.join("labels.json"),
-        label_table_json(&rows)?.as_bytes(),
-    )?;
-    print!("{md}");
+    let json = label_table_json(&rows)?;
+    write_file(&out.join("labels.json"), json.as_bytes())?;
+    if super::common::json_mode() {
+        println!("{}", json.trim_end());
+    }
+    super::common::say!("{}", md.trim_end());
     Ok(())
 }

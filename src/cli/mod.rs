@@ -34,6 +34,8 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    #[command(flatten)]
+    global: common::GlobalArgs,
 }
 
 #[derive(Debug, Subcommand)]
@@ -93,10 +95,11 @@ enum Command {
 
 /// Parses the command line. Every option that takes a value accepts a negative number
 /// (`--voxel-size -0.01` reaches validation, which names the option, instead of being read as
-/// an unknown flag `-0`).
+/// an unknown flag `-0`). `--help` lists the main commands first ([`common::help_order`]).
 fn parse() -> Cli {
     let command = Cli::command().mut_subcommands(|sub| {
-        sub.mut_args(|arg| {
+        let order = common::help_order(sub.get_name());
+        sub.display_order(order).mut_args(|arg| {
             if arg.get_action().takes_values() && !arg.is_positional() {
                 arg.allow_negative_numbers(true)
             } else {
@@ -110,6 +113,7 @@ fn parse() -> Cli {
 /// Runs the tool and maps the outcome to an exit code.
 pub fn main() -> ExitCode {
     let cli = parse();
+    common::set_global(cli.global);
     // On SIGINT, SIGTERM or SIGHUP: remove the temporary output files, write nothing more.
     let _ = ctrlc::set_handler(|| {
         skelfit::output::remove_temporaries();

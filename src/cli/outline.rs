@@ -2,7 +2,7 @@
 //! [--json OUT.json] [level-of-detail options]`: animatable skeletons from closed 2D outlines
 //! (seed 003), inflated into a skinned 3D model.
 
-use super::common::{millis, require_mesh_output, Outputs};
+use super::common::{millis, require_mesh_output, say, Outputs};
 use super::simplify::LodArgs;
 use anyhow::Context;
 use clap::Args;
@@ -45,9 +45,9 @@ pub struct OutlineArgs {
     /// OUT.svg, OUT_2.svg, ...).
     #[arg(long, value_name = "OUT.svg")]
     pub svg: Option<PathBuf>,
-    /// Also write the skeleton as skelfit JSON.
+    /// Also write the skeleton as skelfit JSON (`--json` prints a summary on stdout).
     #[arg(long, value_name = "OUT.json")]
-    pub json: Option<PathBuf>,
+    pub skeleton_json: Option<PathBuf>,
     /// Voxels along the longest side for skinning.
     #[arg(long, value_name = "N", default_value_t = 96)]
     pub resolution: u32,
@@ -58,9 +58,6 @@ pub struct OutlineArgs {
     pub place: Vec<String>,
     #[command(flatten)]
     pub lod: LodArgs,
-    /// Print the summary as JSON on stdout.
-    #[arg(long = "print-json")]
-    pub print_json: bool,
 }
 
 fn svg_path(base: &Path, k: usize) -> PathBuf {
@@ -144,7 +141,7 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
     };
     let mut outputs = Outputs::check(
         std::iter::once(args.output.as_path())
-            .chain(args.json.as_deref())
+            .chain(args.skeleton_json.as_deref())
             .chain(svgs.iter().map(PathBuf::as_path)),
         args.outlines.iter().map(PathBuf::as_path),
     )?;
@@ -178,7 +175,7 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
         &args.output,
         glb_bytes(&assembly.mesh, &skeleton, &skin, &GltfOptions::default())?,
     )?;
-    if let Some(path) = &args.json {
+    if let Some(path) = &args.skeleton_json {
         let model = args.outlines[0]
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned());
@@ -205,20 +202,19 @@ pub fn run(args: &OutlineArgs) -> anyhow::Result<()> {
         "timings_ms": {"skeleton_and_inflate": skeleton_ms, "skin": skin_ms, "total": millis(start)},
         "warnings": skin_warnings,
     });
-    if args.print_json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
-    } else {
-        println!("outlines        {}", args.outlines.len());
-        println!("joints          {}", skeleton.len());
-        println!(
-            "mesh            {} vertices, {} triangles",
-            assembly.mesh.positions.len(),
-            assembly.mesh.triangles.len()
-        );
-        println!("timings (ms)    skeleton+inflate {skeleton_ms:.1}, skin {skin_ms:.1}");
-        for path in std::iter::once(&args.output).chain(args.json.iter()) {
-            println!("wrote           {}", path.display());
-        }
+    if super::common::json_mode() {
+        super::common::print_json(&summary)?;
+    }
+    say!("outlines        {}", args.outlines.len());
+    say!("joints          {}", skeleton.len());
+    say!(
+        "mesh            {} vertices, {} triangles",
+        assembly.mesh.positions.len(),
+        assembly.mesh.triangles.len()
+    );
+    say!("timings (ms)    skeleton+inflate {skeleton_ms:.1}, skin {skin_ms:.1}");
+    for path in std::iter::once(&args.output).chain(args.skeleton_json.iter()) {
+        say!("wrote           {}", path.display());
     }
     super::common::print_warnings(&skin_warnings);
     Ok(())

@@ -1,8 +1,11 @@
-//! `skelfit rig MESH -o OUT.glb [--json OUT.json] [--bvh OUT.bvh] [--template ...] [--preset ...]
-//! [--up ..] [--forward ..] [--labels OVERRIDE.json]`: the anatomical control skeleton from a
-//! template (dissertation ch.7-8), skinned and exported.
+//! `skelfit rig MESH -o OUT.glb [--skeleton-json OUT.json] [--bvh OUT.bvh] [--template ...]
+//! [--preset ...] [--up ..] [--forward ..] [--labels OVERRIDE.json]`: the anatomical control
+//! skeleton from a template (dissertation ch.7-8), skinned and exported; `--json` prints the
+//! skeleton JSON on stdout.
 
-use super::common::{load_model, millis, output_frame, require_mesh_output, Outputs, VoxelArgs};
+use super::common::{
+    load_model, millis, note, output_frame, require_mesh_output, say, Outputs, VoxelArgs,
+};
 use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
@@ -49,9 +52,10 @@ pub struct RigArgs {
     /// Skinned binary glTF to write (mesh, armature, weights).
     #[arg(short, long, value_name = "OUT.glb")]
     pub output: PathBuf,
-    /// Also write the skeleton as skelfit JSON (joints, `canonical` map, timings under "run").
+    /// Also write the skeleton as skelfit JSON (joints, `canonical` map, timings under "run";
+    /// `--json` prints the same on stdout).
     #[arg(long, value_name = "OUT.json")]
-    pub json: Option<PathBuf>,
+    pub skeleton_json: Option<PathBuf>,
     /// Also write the skeleton as BVH.
     #[arg(long, value_name = "OUT.bvh")]
     pub bvh: Option<PathBuf>,
@@ -108,9 +112,6 @@ pub struct RigArgs {
     pub bones: bool,
     #[command(flatten)]
     pub voxel: VoxelArgs,
-    /// Print the summary as JSON on stdout.
-    #[arg(long = "print-json")]
-    pub print_json: bool,
 }
 
 impl RigArgs {
@@ -161,7 +162,7 @@ impl RigArgs {
     pub fn outputs<'a>(&'a self, extra: &[Option<&'a Path>]) -> anyhow::Result<Outputs> {
         let outputs = [
             Some(self.output.as_path()),
-            self.json.as_deref(),
+            self.skeleton_json.as_deref(),
             self.bvh.as_deref(),
         ]
         .into_iter()
@@ -228,8 +229,9 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     outputs.add_mesh(&args.output, glb)?;
     let mut info = run_info(&args.mesh, &rigged, load_ms);
     info["output_frame"] = frame.json();
-    if let Some(path) = &args.json {
-        outputs.add(path, rig_json(&args.mesh, &rigged, Some(info.clone()))?);
+    let json_text = rig_json(&args.mesh, &rigged, Some(info))?;
+    if let Some(path) = &args.skeleton_json {
+        outputs.add(path, json_text.clone());
     }
     if let Some(path) = &args.bvh {
         outputs.add(
@@ -239,16 +241,13 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     }
     outputs.write()?;
     let export_ms = millis(clock);
-    if args.print_json {
-        let mut info = info;
-        info["timings_ms"]["export"] = json!(export_ms);
-        println!("{}", serde_json::to_string_pretty(&info)?);
-    } else {
-        print_summary(args, &rigged, load_ms, export_ms);
-        println!("frame           {}", frame.note);
+    if super::common::json_mode() {
+        println!("{}", json_text.trim_end());
     }
+    print_summary(args, &rigged, load_ms, export_ms);
+    say!("frame           {}", frame.note);
     if let Some(warning) = &frame.warning {
-        eprintln!("skelfit: warning: {warning} [export, notice]");
+        super::common::warn(warning, "export", "notice");
     }
     let mut warnings = rigged.warnings.clone();
     warnings.extend(bone_warnings.into_iter().map(Warning::Bones));
@@ -257,20 +256,20 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
         super::common::print_model_warnings(model, args.bones);
     }
     if let Some(hint) = super::common::orientation_hint(&rigged.labelling, rigged.input.up) {
-        eprintln!("skelfit: hint: {hint}");
+        note(&format!("skelfit: hint: {hint}"));
     }
     if general {
-        eprintln!(
-            "skelfit: general: no template fits the figure, so it has the general control skeleton (no canonical joints; --template forces one, --strict makes this an error)"
+        note(
+            "skelfit: general: no template fits the figure, so it has the general control skeleton (no canonical joints; --template forces one, --strict makes this an error)",
         );
     }
     if !rigged.missing.is_empty() {
-        eprintln!(
+        note(&format!(
             "skelfit: missing: the rig lacks {} that the {} template expects (no joints for {}; --strict makes this an error)",
             rigged.missing.join(", "),
             rigged.fit.template,
             if rigged.missing.len() == 1 { "it" } else { "them" }
-        );
+        ));
     }
     Ok(())
 }
@@ -355,14 +354,14 @@ pub fn run_info(mesh: &Path, rigged: &Rig, load_ms: f64) -> serde_json::Value {
 
 fn print_summary(args: &RigArgs, rigged: &Rig, load_ms: f64, export_ms: f64) {
     let grid = &rigged.solid.grid;
-    println!("mesh            {}", args.mesh.display());
-    println!(
+    say!("mesh            {}", args.mesh.display());
+    say!(
         "figure          {} (trunk {:.0} degrees from up), template {}",
         rigged.labelling.figure.name(),
         rigged.labelling.trunk_angle,
         rigged.fit.template
     );
-    println!(
+    say!(
         "grid            {} x {} x {} ({} interior voxels of {:.6}){}",
         grid.dims[0],
         grid.dims[1],
@@ -377,7 +376,7 @@ fn print_summary(args: &RigArgs, rigged: &Rig, load_ms: f64, export_ms: f64) {
             None => String::new(),
         }
     );
-    println!(
+    say!(
         "skeleton        {} joints, {} canonical",
         rigged.fit.skeleton.len(),
         rigged.fit.canonical.len()
@@ -386,9 +385,9 @@ fn print_summary(args: &RigArgs, rigged: &Rig, load_ms: f64, export_ms: f64) {
         .chain(rigged.timings.iter().map(|(s, ms)| format!("{s} {ms:.1}")))
         .chain(std::iter::once(format!("export {export_ms:.1}")))
         .collect();
-    println!("timings (ms)    {}", stages.join(", "));
-    println!("wrote           {}", args.output.display());
-    for path in [&args.json, &args.bvh].into_iter().flatten() {
-        println!("wrote           {}", path.display());
+    say!("timings (ms)    {}", stages.join(", "));
+    say!("wrote           {}", args.output.display());
+    for path in [&args.skeleton_json, &args.bvh].into_iter().flatten() {
+        say!("wrote           {}", path.display());
     }
 }

@@ -109,13 +109,17 @@ pub fn run(args: &SimplifyArgs) -> anyhow::Result<()> {
         canonical,
         run: None,
     };
-    outputs.add(&args.output, skeleton_json(&simplified, &options)?);
+    let json = skeleton_json(&simplified, &options)?;
+    if super::common::json_mode() {
+        super::common::say!("{}", json.trim_end());
+    }
+    outputs.add(&args.output, json);
     outputs.write()?;
-    println!(
+    super::common::say!(
         "joints          {} -> {}",
         rig.skeleton.len(),
         simplified.len()
     );
-    println!("wrote           {}", args.output.display());
+    super::common::say!("wrote           {}", args.output.display());
     Ok(())
 }

@@ -1,7 +1,8 @@
-//! `skelfit skeleton MESH -o OUT.glb [--json OUT.json] [--bvh OUT.bvh] [parameters]`: the
-//! general control skeleton of any figure (dissertation ch.5), skinned and exported.
+//! `skelfit skeleton MESH -o OUT.glb [--skeleton-json OUT.json] [--bvh OUT.bvh] [parameters]`:
+//! the general control skeleton of any figure (dissertation ch.5), skinned and exported;
+//! `--json` prints the skeleton JSON on stdout.
 
-use super::common::{load_mesh, require_mesh_output, Outputs, VoxelArgs};
+use super::common::{load_mesh, require_mesh_output, say, Outputs, VoxelArgs};
 use super::simplify::LodArgs;
 use anyhow::Context;
 use clap::Args;
@@ -19,9 +20,10 @@ pub struct SkeletonArgs {
     /// Skinned binary glTF to write (mesh, armature, weights).
     #[arg(short, long, value_name = "OUT.glb")]
     pub output: PathBuf,
-    /// Also write the skeleton as skelfit JSON (with stage timings under "run").
+    /// Also write the skeleton as skelfit JSON (with stage timings under "run"; `--json`
+    /// prints the same on stdout).
     #[arg(long, value_name = "OUT.json")]
-    pub json: Option<PathBuf>,
+    pub skeleton_json: Option<PathBuf>,
     /// Also write the skeleton as BVH.
     #[arg(long, value_name = "OUT.bvh")]
     pub bvh: Option<PathBuf>,
@@ -51,9 +53,6 @@ pub struct SkeletonArgs {
     pub root_at_lowest: bool,
     #[command(flatten)]
     pub lod: LodArgs,
-    /// Print the summary as JSON on stdout.
-    #[arg(long = "print-json")]
-    pub print_json: bool,
 }
 
 impl SkeletonArgs {
@@ -85,7 +84,11 @@ impl SkeletonArgs {
 
 /// A spinner on stderr while `work` runs (drawn only when stderr is a terminal).
 pub fn with_spinner<T>(message: String, work: impl FnOnce() -> T) -> T {
-    let spinner = indicatif::ProgressBar::new_spinner();
+    let spinner = if super::common::quiet() {
+        indicatif::ProgressBar::hidden()
+    } else {
+        indicatif::ProgressBar::new_spinner()
+    };
     spinner.set_message(message);
     spinner.enable_steady_tick(Duration::from_millis(120));
     let out = work();
@@ -99,7 +102,7 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     let mut outputs = Outputs::check(
         [
             Some(args.output.as_path()),
-            args.json.as_deref(),
+            args.skeleton_json.as_deref(),
             args.bvh.as_deref(),
         ]
         .into_iter()
@@ -126,13 +129,14 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
         )?,
     )?;
     let run = run_info(&args.mesh, &rig, load_ms);
-    if let Some(path) = &args.json {
-        let json_options = JsonOptions {
-            model: model_name(&args.mesh),
-            run: Some(run.clone()),
-            ..Default::default()
-        };
-        outputs.add(path, skeleton_json(&rig.general.skeleton, &json_options)?);
+    let json_options = JsonOptions {
+        model: model_name(&args.mesh),
+        run: Some(run),
+        ..Default::default()
+    };
+    let json_text = skeleton_json(&rig.general.skeleton, &json_options)?;
+    if let Some(path) = &args.skeleton_json {
+        outputs.add(path, json_text.clone());
     }
     if let Some(path) = &args.bvh {
         outputs.add(
@@ -142,13 +146,10 @@ pub fn run(args: &SkeletonArgs) -> anyhow::Result<()> {
     }
     outputs.write()?;
     let export_ms = clock.elapsed().as_secs_f64() * 1e3;
-    if args.print_json {
-        let mut run = run;
-        run["timings_ms"]["export"] = json!(export_ms);
-        println!("{}", serde_json::to_string_pretty(&run)?);
-    } else {
-        print_summary(args, &rig, load_ms, export_ms);
+    if super::common::json_mode() {
+        println!("{}", json_text.trim_end());
     }
+    print_summary(args, &rig, load_ms, export_ms);
     super::common::print_warnings(&rig.warnings);
     Ok(())
 }
@@ -217,8 +218,8 @@ pub fn run_info(mesh: &Path, rig: &GeneralRig, load_ms: f64) -> serde_json::Valu
 
 fn print_summary(args: &SkeletonArgs, rig: &GeneralRig, load_ms: f64, export_ms: f64) {
     let g = &rig.general;
-    println!("mesh            {}", args.mesh.display());
-    println!(
+    say!("mesh            {}", args.mesh.display());
+    say!(
         "grid            {} x {} x {} ({} interior voxels of {:.6})",
         rig.grid.dims[0],
         rig.grid.dims[1],
@@ -226,7 +227,7 @@ fn print_summary(args: &SkeletonArgs, rig: &GeneralRig, load_ms: f64, export_ms:
         rig.voxels.interior_voxels,
         rig.grid.voxel_size
     );
-    println!(
+    say!(
         "skeleton        {} joints, {} segments, {} end effectors",
         g.skeleton.len(),
         g.segments.len(),
@@ -236,9 +237,9 @@ fn print_summary(args: &SkeletonArgs, rig: &GeneralRig, load_ms: f64, export_ms:
         .chain(g.timings.iter().map(|(s, ms)| format!("{s} {ms:.1}")))
         .chain(std::iter::once(format!("export {export_ms:.1}")))
         .collect();
-    println!("timings (ms)    {}", stages.join(", "));
-    println!("wrote           {}", args.output.display());
-    for path in [&args.json, &args.bvh].into_iter().flatten() {
-        println!("wrote           {}", path.display());
+    say!("timings (ms)    {}", stages.join(", "));
+    say!("wrote           {}", args.output.display());
+    for path in [&args.skeleton_json, &args.bvh].into_iter().flatten() {
+        say!("wrote           {}", path.display());
     }
 }

@@ -1,9 +1,9 @@
-//! `skelfit skin MESH --skeleton SKELETON -o OUT.glb [--json OUT.json] [--bvh OUT.bvh]
+//! `skelfit skin MESH --skeleton SKELETON -o OUT.glb [--skeleton-json OUT.json] [--bvh OUT.bvh]
 //! [--skeleton-scale F]`: skin a mesh to a skeleton the user already has (refdata or skelfit
 //! JSON, BVH, a glTF/GLB's skin) with `skelfit rig`'s weights, keeping the skeleton's own
 //! joint names and hierarchy.
 
-use super::common::{load_mesh, millis, require_mesh_output, Outputs, VoxelArgs};
+use super::common::{load_mesh, millis, require_mesh_output, say, Outputs, VoxelArgs};
 use super::skeleton::with_spinner;
 use anyhow::{bail, Context};
 use clap::Args;
@@ -28,9 +28,9 @@ pub struct SkinArgs {
     #[arg(short, long, value_name = "OUT.glb")]
     pub output: PathBuf,
     /// Also write the skeleton as skelfit JSON (with its `canonical` map when the file had
-    /// one, run information under "run").
+    /// one, run information under "run"; `--json` prints the same on stdout).
     #[arg(long, value_name = "OUT.json")]
-    pub json: Option<PathBuf>,
+    pub skeleton_json: Option<PathBuf>,
     /// Also write the skeleton as BVH.
     #[arg(long, value_name = "OUT.bvh")]
     pub bvh: Option<PathBuf>,
@@ -40,9 +40,6 @@ pub struct SkinArgs {
     pub skeleton_scale: f64,
     #[command(flatten)]
     pub voxel: VoxelArgs,
-    /// Print the summary as JSON on stdout.
-    #[arg(long = "print-json")]
-    pub print_json: bool,
 }
 
 impl SkinArgs {
@@ -65,7 +62,7 @@ impl SkinArgs {
         let checked = Outputs::check(
             [
                 Some(self.output.as_path()),
-                self.json.as_deref(),
+                self.skeleton_json.as_deref(),
                 self.bvh.as_deref(),
             ]
             .into_iter()
@@ -116,7 +113,8 @@ pub fn run(args: &SkinArgs) -> anyhow::Result<()> {
         glb_bytes(&mesh, &rig.skeleton, &skinned.skin, &GltfOptions::default())?,
     )?;
     let info = run_info(args, &rig, &skinned, load_ms, skin_ms);
-    if let Some(path) = &args.json {
+    let mut json_text = None;
+    if args.skeleton_json.is_some() || super::common::json_mode() {
         let canonical = rig
             .canonical
             .iter()
@@ -126,22 +124,23 @@ pub fn run(args: &SkinArgs) -> anyhow::Result<()> {
             model: Some(rig.model.clone()),
             units: rig.units.clone().filter(|_| args.skeleton_scale == 1.0),
             canonical,
-            run: Some(info.clone()),
+            run: Some(info),
         };
-        outputs.add(path, skeleton_json(&rig.skeleton, &options)?);
+        let text = skeleton_json(&rig.skeleton, &options)?;
+        if let Some(path) = &args.skeleton_json {
+            outputs.add(path, text.clone());
+        }
+        json_text = Some(text);
     }
     if let Some(path) = &args.bvh {
         outputs.add(path, bvh_text(&rig.skeleton, &BvhOptions::default())?);
     }
     outputs.write()?;
     let export_ms = millis(clock);
-    if args.print_json {
-        let mut info = info;
-        info["timings_ms"]["export"] = json!(export_ms);
-        println!("{}", serde_json::to_string_pretty(&info)?);
-    } else {
-        print_summary(args, &rig, &skinned, [load_ms, skin_ms, export_ms]);
+    if let (true, Some(text)) = (super::common::json_mode(), &json_text) {
+        say!("{}", text.trim_end());
     }
+    print_summary(args, &rig, &skinned, [load_ms, skin_ms, export_ms]);
     super::common::print_warnings(&skinned.warnings);
     Ok(())
 }
@@ -245,15 +244,15 @@ fn print_summary(
 ) {
     let grid = &skinned.solid.grid;
     let deforming = rig.skeleton.joints.iter().filter(|j| j.deform).count();
-    println!("mesh            {}", args.mesh.display());
-    println!(
+    say!("mesh            {}", args.mesh.display());
+    say!(
         "skeleton        {} ({} joints, {} deforming; {:.2} of the figure's size)",
         args.skeleton.display(),
         rig.skeleton.len(),
         deforming,
         skinned.placement.size_ratio
     );
-    println!(
+    say!(
         "grid            {} x {} x {} ({} interior voxels of {:.6})",
         grid.dims[0],
         grid.dims[1],
@@ -263,11 +262,13 @@ fn print_summary(
     );
     let unweighted = unweighted_joints(rig, skinned);
     if !unweighted.is_empty() {
-        println!("no vertex on    {}", unweighted.join(", "));
+        say!("no vertex on    {}", unweighted.join(", "));
     }
-    println!("timings (ms)    load {load_ms:.1}, skin {skin_ms:.1}, export {export_ms:.1}");
-    for path in std::iter::once(&args.output).chain([&args.json, &args.bvh].into_iter().flatten()) {
-        println!("wrote           {}", path.display());
+    say!("timings (ms)    load {load_ms:.1}, skin {skin_ms:.1}, export {export_ms:.1}");
+    for path in
+        std::iter::once(&args.output).chain([&args.skeleton_json, &args.bvh].into_iter().flatten())
+    {
+        say!("wrote           {}", path.display());
     }
 }
 

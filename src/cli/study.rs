@@ -176,11 +176,18 @@ fn run_study(
             study_html(&result, &title, &preamble, input.as_ref()).as_bytes(),
         )?;
     }
-    print!("{}", study_table(&result).plain());
-    println!("tables in {}", common.out.display());
+    if super::common::json_mode() {
+        super::common::print_json(&result)?;
+    }
+    super::common::say!("{}", study_table(&result).plain().trim_end());
+    super::common::say!("tables in {}", common.out.display());
     for v in &result.variants {
         if let Some(f) = &v.failure {
-            eprintln!("skelfit: warning: variant {} failed: {f}", v.label);
+            super::common::warn(
+                &format!("variant {} failed: {f}", v.label),
+                "study",
+                "part_missing",
+            );
         }
     }
     Ok(())

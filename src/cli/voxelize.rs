@@ -1,6 +1,6 @@
 //! `skelfit voxelize MESH [--voxel-size F] [--json] [--slices DIR]`.
 
-use super::common::{load_mesh, millis, write_file, VoxelArgs};
+use super::common::{load_mesh, millis, say, write_file, VoxelArgs};
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
@@ -18,9 +18,6 @@ pub struct VoxelizeArgs {
     pub mesh: PathBuf,
     #[command(flatten)]
     pub voxel: VoxelArgs,
-    /// Print JSON instead of text.
-    #[arg(long)]
-    pub json: bool,
     /// Write PNG pictures of distance-map slices into this folder (created if missing).
     #[arg(long, value_name = "DIR")]
     pub slices: Option<PathBuf>,
@@ -61,11 +58,10 @@ pub fn run(args: &VoxelizeArgs) -> anyhow::Result<()> {
         super::common::output_folder(dir)?;
     }
     let summary = summarize(&args.mesh, &options, args.slices.as_deref())?;
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
-    } else {
-        print_text(&summary);
+    if super::common::json_mode() {
+        super::common::print_json(&summary)?;
     }
+    print_text(&summary);
     Ok(())
 }
 
@@ -133,23 +129,27 @@ pub fn summarize(
 
 /// Prints a summary as aligned text (warnings to stderr).
 pub fn print_text(s: &VoxelSummary) {
-    println!("mesh                 {}", s.mesh);
-    println!(
+    say!("mesh                 {}", s.mesh);
+    say!(
         "grid                 {} x {} x {} voxels of {:.6} (origin {:?})",
-        s.dims[0], s.dims[1], s.dims[2], s.voxel_size, s.origin
+        s.dims[0],
+        s.dims[1],
+        s.dims[2],
+        s.voxel_size,
+        s.origin
     );
-    println!("interior voxels      {}", s.interior_voxels);
+    say!("interior voxels      {}", s.interior_voxels);
     match s.mesh_volume {
-        Some(v) => println!(
+        Some(v) => say!(
             "interior volume      {:.6} (mesh {:.6}, {:+.2} %)",
             s.interior_volume,
             v,
             100.0 * (s.interior_volume - v) / v
         ),
-        None => println!("interior volume      {:.6}", s.interior_volume),
+        None => say!("interior volume      {:.6}", s.interior_volume),
     }
-    println!("max inscribed radius {:.6}", s.max_inscribed_radius);
-    println!(
+    say!("max inscribed radius {:.6}", s.max_inscribed_radius);
+    say!(
         "timings              load {:.1} ms, voxelize {:.1} ms ({:.1} M voxels/s), distance {:.1} ms ({:.1} M voxels/s)",
         s.timings_ms.load,
         s.timings_ms.voxelize,
@@ -158,7 +158,7 @@ pub fn print_text(s: &VoxelSummary) {
         s.timings_ms.distance_voxels_per_second / 1e6
     );
     for path in &s.slices {
-        println!("wrote                {path}");
+        say!("wrote                {path}");
     }
     super::common::print_warnings(&s.warnings);
 }

@@ -9,6 +9,7 @@
 mod chart;
 mod error;
 mod html;
+mod index;
 mod pages;
 mod slices;
 mod svg;
@@ -18,7 +19,8 @@ mod tests;
 pub use chart::{bar_chart, error_bar_chart, line_chart, ChartOptions, LineChartOptions, Series};
 pub use error::ReportError;
 pub use html::{failure_report, html_report, write_html_report, ReportInput, ReportOptions};
-pub use pages::{bench_html, study_html, table_html};
+pub use index::{index_entries, index_html, IndexEntry};
+pub use pages::{bench_html, bench_verdict, study_html, table_html};
 pub use slices::{distance_slice, png_bytes, RgbImage};
 pub use svg::{projection_svg, SvgOptions, View};
 

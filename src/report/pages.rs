@@ -113,6 +113,11 @@ pub fn bench_html(
     model_page: &dyn Fn(usize) -> Option<String>,
 ) -> String {
     let mut html = page_start(title, preamble);
+    let _ = write!(
+        html,
+        "<p class=\"verdict\"><strong>Verdict:</strong> {}</p>",
+        escape(&bench_verdict(results))
+    );
     let counts = bench_counts(results);
     let evaluations: Vec<Evaluation> = results
         .iter()
@@ -307,4 +312,78 @@ pub fn study_html(
     }
     html.push_str("</body></html>\n");
     html
+}
+
+/// The one-line verdict a bench page opens with: what is good, what is not, against which
+/// reference. Core joints (upright figures, % of height) when any model has them, else the
+/// mean per-joint error, else CD-J2J (% of figure size); "good" is within 1 % (2 % for
+/// CD-J2J); the worst model is named, and failed models are counted.
+pub fn bench_verdict(results: &[BenchResult]) -> String {
+    let mut references: Vec<&str> = results.iter().map(|r| r.reference.as_str()).collect();
+    references.sort_unstable();
+    references.dedup();
+    let against = format!(
+        "against each model's reference rig ({})",
+        references.join(", ")
+    );
+    let core: Vec<(&str, f64)> = results
+        .iter()
+        .filter_map(|r| {
+            Some((
+                r.model.as_str(),
+                r.core.as_ref().filter(|c| c.paired > 0)?.mean_percent,
+            ))
+        })
+        .collect();
+    let joints: Vec<(&str, f64)> = results
+        .iter()
+        .filter_map(|r| {
+            let e = r.evaluation.as_ref().filter(|e| e.has_joint_errors())?;
+            Some((r.model.as_str(), e.summary_percent.mean))
+        })
+        .collect();
+    let chamfer: Vec<(&str, f64)> = results
+        .iter()
+        .filter_map(|r| Some((r.model.as_str(), r.evaluation.as_ref()?.chamfer_percent.j2j)))
+        .collect();
+    let (what, of, values, bound) = if !core.is_empty() {
+        (
+            "core joints (mean) within 1 % of height",
+            "upright figures",
+            core,
+            1.0,
+        )
+    } else if !joints.is_empty() {
+        (
+            "mean joint error within 1 % of figure size",
+            "models",
+            joints,
+            1.0,
+        )
+    } else {
+        ("CD-J2J within 2 % of figure size", "models", chamfer, 2.0)
+    };
+    let mut line = if values.is_empty() {
+        "no model was evaluated".to_string()
+    } else {
+        let good = values.iter().filter(|(_, v)| *v <= bound).count();
+        let (worst, w) = values
+            .iter()
+            .copied()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .expect("not empty");
+        format!(
+            "{what} on {good} of {} {of} {against}; worst: {worst} {w:.1} %",
+            values.len()
+        )
+    };
+    let failed: Vec<&str> = results
+        .iter()
+        .filter(|r| r.failure.is_some())
+        .map(|r| r.model.as_str())
+        .collect();
+    if !failed.is_empty() {
+        line.push_str(&format!("; {} failed: {}", failed.len(), failed.join(", ")));
+    }
+    line
 }

@@ -68,7 +68,7 @@ fn eval_and_bench_agree_on_the_same_files() {
         "--mesh",
         model.join("mesh.obj").to_str().unwrap(),
         "--chamfer-only",
-        "--json",
+        "--results-json",
         eval_json.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", text(&o.stderr));

@@ -789,8 +789,14 @@ fn bones_glb_nests_bones_under_their_joints() {
     let back = skelfit::mesh::load(&obj).unwrap();
     assert_eq!(back.triangles.len(), b.world_mesh().triangles.len());
     let svg = skelfit::bones::bones_svg(&b, None, 300.0);
-    assert!(svg.starts_with("<svg") && svg.matches("<polygon").count() > 100);
-    assert_eq!(svg.matches("<title>").count(), 3);
+    // Three views; in each, a titled group per bone that shows, filled and outlined.
+    assert!(svg.starts_with("<svg"));
+    let groups = svg.matches("<g><title>").count();
+    assert!(
+        groups > 3 + b.bones.len() && groups <= 3 + 3 * b.bones.len(),
+        "{groups}"
+    );
+    assert_eq!(svg.matches("<path").count(), 2 * (groups - 3));
 }
 
 /// Removes the joints below `name` (keeping it), re-indexing parents and the canonical map.

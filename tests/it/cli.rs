@@ -166,7 +166,7 @@ fn rig_writes_a_skinned_glb_json_with_canonical_map_and_bvh_in_a_preset() {
         mesh.to_str().unwrap(),
         "-o",
         glb.to_str().unwrap(),
-        "--json",
+        "--skeleton-json",
         json.to_str().unwrap(),
         "--bvh",
         bvh.to_str().unwrap(),
@@ -267,7 +267,7 @@ fn check_poses_the_bundled_rig_through_the_sweep_without_tearing() {
     let o = skelfit(&[
         "check",
         glb.to_str().unwrap(),
-        "--json",
+        "--results-json",
         report.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -309,7 +309,7 @@ fn rig_names_missing_parts_and_strict_fails_on_them() {
     let glb = dir.path().join("out.glb");
     let json = dir.path().join("out.json");
     let (g, j) = (glb.display().to_string(), json.display().to_string());
-    let out = skelfit(&["rig", &path, "-o", &g, "--json", &j]);
+    let out = skelfit(&["rig", &path, "-o", &g, "--skeleton-json", &j]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let last = stderr(&out).lines().last().unwrap_or_default().to_string();
     assert!(
@@ -324,7 +324,7 @@ fn rig_names_missing_parts_and_strict_fails_on_them() {
     );
     std::fs::remove_file(&glb).unwrap();
     std::fs::remove_file(&json).unwrap();
-    let out = skelfit(&["rig", &path, "-o", &g, "--json", &j, "--strict"]);
+    let out = skelfit(&["rig", &path, "-o", &g, "--skeleton-json", &j, "--strict"]);
     assert_eq!(out.status.code(), Some(1));
     assert!(stderr(&out).contains("--strict") && stderr(&out).contains("arm R"));
     assert!(!glb.exists() && !json.exists());

@@ -308,7 +308,7 @@ fn missing_output_folder_is_refused_before_the_voxelization_starts() {
         "0.0015",
         "-o",
         glb.to_str().unwrap(),
-        "--json",
+        "--skeleton-json",
         json.to_str().unwrap(),
     ]);
     assert!(
@@ -332,7 +332,7 @@ fn unwritable_json_output_leaves_no_output_at_all() {
         dir.path().join("o.glb").to_str().unwrap(),
         "--bvh",
         dir.path().join("o.bvh").to_str().unwrap(),
-        "--json",
+        "--skeleton-json",
         dir.path().join("file.txt/o.json").to_str().unwrap(),
     ]);
     assert_eq!(out.status.code(), Some(1));
@@ -365,14 +365,19 @@ fn output_that_is_an_input_or_named_twice_is_refused() {
             vec![
                 "-o",
                 glb.to_str().unwrap(),
-                "--json",
+                "--skeleton-json",
                 mesh.to_str().unwrap(),
             ],
             2,
         ),
         (vec!["-o", mesh.to_str().unwrap()], 2),
         (
-            vec!["-o", glb.to_str().unwrap(), "--json", glb.to_str().unwrap()],
+            vec![
+                "-o",
+                glb.to_str().unwrap(),
+                "--skeleton-json",
+                glb.to_str().unwrap(),
+            ],
             1,
         ),
     ] {
@@ -433,7 +438,7 @@ fn interrupted_rig_leaves_every_output_or_none_and_no_temporaries() {
                 &humanoid(),
                 "-o",
                 dir.path().join("o.glb").to_str().unwrap(),
-                "--json",
+                "--skeleton-json",
                 dir.path().join("o.json").to_str().unwrap(),
                 "--bvh",
                 dir.path().join("o.bvh").to_str().unwrap(),

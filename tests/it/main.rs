@@ -5,6 +5,7 @@ mod batch;
 mod bench;
 mod bones;
 mod cli;
+mod cli_convention;
 mod common;
 mod distance;
 mod eval;

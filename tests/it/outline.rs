@@ -492,7 +492,7 @@ fn cli_outline_writes_a_skinned_glb_svg_and_json() {
         glb.to_str().unwrap(),
         "--svg",
         svg.to_str().unwrap(),
-        "--json",
+        "--skeleton-json",
         json.to_str().unwrap(),
         "--thickness",
         "0.8",
@@ -642,7 +642,7 @@ fn cli_outline_reads_svg_and_applies_level_of_detail() {
             input.to_str().unwrap(),
             "-o",
             glb.to_str().unwrap(),
-            "--json",
+            "--skeleton-json",
             json.to_str().unwrap(),
         ];
         args.extend_from_slice(extra);
@@ -696,7 +696,7 @@ fn cli_skeleton_level_of_detail_gives_fewer_joints_and_a_valid_rig() {
             obj.to_str().unwrap(),
             "-o",
             glb.to_str().unwrap(),
-            "--json",
+            "--skeleton-json",
             json.to_str().unwrap(),
             "--approx-error",
             "0",
@@ -802,9 +802,9 @@ fn cli_outline_places_parts_and_rejects_bad_placements() {
         wing.to_str().unwrap(),
         "-o",
         glb.to_str().unwrap(),
-        "--json",
+        "--skeleton-json",
         json.to_str().unwrap(),
-        "--print-json",
+        "--json",
     ];
     let mut args = base.to_vec();
     args.extend(["--place", "2:50,0,0,-90"]);

@@ -49,7 +49,7 @@ fn an_output_onto_the_input_is_refused_with_exit_code_two_and_the_input_kept() {
         );
     }
     let glb = dir.path().join("out.glb").display().to_string();
-    let out = skelfit(&["rig", &mesh, "-o", &glb, "--json", &mesh]);
+    let out = skelfit(&["rig", &mesh, "-o", &glb, "--skeleton-json", &mesh]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert_eq!(std::fs::read(&mesh).unwrap(), before);
     assert!(!Path::new(&glb).exists(), "nothing is written");

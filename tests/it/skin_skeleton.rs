@@ -82,7 +82,7 @@ fn skin_keeps_the_skeletons_names_and_weights_only_deforming_joints() {
         rig.to_str().unwrap(),
         "-o",
         glb.to_str().unwrap(),
-        "--json",
+        "--skeleton-json",
         json.to_str().unwrap(),
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
