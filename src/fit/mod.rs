@@ -86,14 +86,16 @@ impl Fit {
             .collect()
     }
 
-    /// Names the joints by `preset` from the canonical map (a taken name gets `_2`, `_3`...):
-    /// the fit's last step, which the rig repeats after the refinement has moved the
-    /// canonical keys of a fit made with anatomical names.
+    /// Turns the skeleton into `preset`'s engine skeleton ([`apply_preset`]: the engine's
+    /// joints, names and parents, its spine joints spread along the fitted spine, joints the
+    /// engine lacks left out) and remaps the canonical map: the fit's last step, which the rig
+    /// repeats after the refinement has moved the canonical keys of a fit made with anatomical
+    /// names. `up` is the figure's up (an engine root goes on the ground below the pelvis).
     ///
     /// # Errors
     /// [`FitError::Preset`] when the preset file cannot be read.
-    pub fn name_joints(&mut self, preset: Preset) -> Result<(), FitError> {
-        apply_preset(&mut self.skeleton, &self.canonical, preset)
+    pub fn name_joints(&mut self, preset: Preset, up: DVec3) -> Result<(), FitError> {
+        apply_preset(&mut self.skeleton, &mut self.canonical, preset, up)
             .map_err(|e| FitError::Preset(e.to_string()))
     }
 }
@@ -211,7 +213,7 @@ pub fn fit_with_probe(
         warnings,
         template: template.name.clone(),
     };
-    fit.name_joints(options.preset)?;
+    fit.name_joints(options.preset, frame.up)?;
     Ok(fit)
 }
 
