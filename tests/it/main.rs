@@ -17,6 +17,7 @@ mod medial;
 mod mesh;
 mod outline;
 mod outputs;
+mod presets;
 mod refine;
 mod rig;
 mod robust;
