@@ -1,6 +1,6 @@
 use super::*;
 use crate::skeleton::canonical::{is_canonical_key, Tail, CANONICAL_KEYS};
-use crate::skeleton::{Canonical, Joint, JointId, LocalAxis, Side, Skeleton};
+use crate::skeleton::{Canonical, Joint, JointId, LocalAxis, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
 
