@@ -91,12 +91,21 @@ impl Fit {
     /// engine lacks left out) and remaps the canonical map: the fit's last step, which the rig
     /// repeats after the refinement has moved the canonical keys of a fit made with anatomical
     /// names. `up` is the figure's up (an engine root goes on the ground below the pelvis).
+    /// Canonical joints the engine has no joint for are left out with a
+    /// [`FitWarning::NotInPreset`] in [`Fit::warnings`].
     ///
     /// # Errors
     /// [`FitError::Preset`] when the preset file cannot be read.
     pub fn name_joints(&mut self, preset: Preset, up: DVec3) -> Result<(), FitError> {
-        apply_preset(&mut self.skeleton, &mut self.canonical, preset, up)
-            .map_err(|e| FitError::Preset(e.to_string()))
+        let dropped = apply_preset(&mut self.skeleton, &mut self.canonical, preset, up)
+            .map_err(|e| FitError::Preset(e.to_string()))?;
+        if !dropped.is_empty() {
+            self.warnings.push(FitWarning::NotInPreset {
+                preset: preset.file_stem().into(),
+                keys: dropped,
+            });
+        }
+        Ok(())
     }
 }
 

@@ -200,7 +200,7 @@ impl EngineSkeleton {
 /// children hang from its nearest placed engine ancestor. Fitted joints the engine has no
 /// joint for are dropped. `canonical` is remapped: each key to the engine joint the preset's
 /// `joints` table names for it, else to the engine joint placed at the key's fitted joint;
-/// keys with neither are dropped. `up` (the figure's up) sets the ground for
+/// keys with neither are dropped and returned. `up` (the figure's up) sets the ground for
 /// [`EnginePlacement::GroundBelow`]. [`Preset::Anatomical`] changes nothing.
 ///
 /// # Errors
@@ -210,13 +210,13 @@ pub fn apply_preset(
     canonical: &mut BTreeMap<String, JointId>,
     preset: Preset,
     up: DVec3,
-) -> Result<(), TemplateError> {
+) -> Result<Vec<String>, TemplateError> {
     let table = preset.names()?;
     let Some(engine) = &table.skeleton else {
-        return Ok(());
+        return Ok(Vec::new());
     };
     let (built, origin) = build(skeleton, canonical, engine, up);
-    let remapped = canonical
+    let remapped: BTreeMap<String, JointId> = canonical
         .iter()
         .filter_map(|(key, fitted)| {
             let by_name = table
@@ -228,9 +228,14 @@ pub fn apply_preset(
             by_name.or(by_place).map(|id| (key.clone(), id))
         })
         .collect();
+    let dropped = canonical
+        .keys()
+        .filter(|k| !remapped.contains_key(*k))
+        .cloned()
+        .collect();
     *skeleton = built;
     *canonical = remapped;
-    Ok(())
+    Ok(dropped)
 }
 
 /// An engine joint's place on the fitted skeleton.

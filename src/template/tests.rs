@@ -279,7 +279,8 @@ fn names_and_parents(s: &Skeleton) -> Vec<(&str, Option<&str>)> {
 #[test]
 fn mixamo_gets_its_own_spine_and_drops_joints_it_lacks() {
     let (mut s, mut c) = little();
-    apply_preset(&mut s, &mut c, Preset::Mixamo, DVec3::Y).unwrap();
+    let dropped = apply_preset(&mut s, &mut c, Preset::Mixamo, DVec3::Y).unwrap();
+    assert!(dropped.is_empty(), "{dropped:?}");
     let m = |n: &str| format!("mixamorig:{n}");
     let expected = [
         ("Hips", None),
@@ -349,7 +350,11 @@ fn engine_roots_stand_on_the_ground_and_missing_joints_are_bridged() {
     let (mut s, mut c) = little();
     c.remove("clavicle_L");
     s.joints[7].name = "collar".into();
-    apply_preset(&mut s, &mut c, Preset::Unity, DVec3::Y).unwrap();
+    // A canonical joint the engine has no joint for is left out and returned.
+    c.insert("tail_base".into(), JointId(9));
+    let dropped = apply_preset(&mut s, &mut c, Preset::Unity, DVec3::Y).unwrap();
+    assert_eq!(dropped, ["tail_base"]);
+    assert!(!c.contains_key("tail_base"));
     let got = names_and_parents(&s);
     assert!(
         got.contains(&("LeftUpperArm", Some("UpperChest"))),
