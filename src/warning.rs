@@ -272,7 +272,8 @@ fn fit_severity(w: &FitWarning) -> Severity {
         FitWarning::KindMismatch { .. }
         | FitWarning::InsideGirdle { .. }
         | FitWarning::NoLimbs
-        | FitWarning::NoFrontPair => Severity::Degraded,
+        | FitWarning::NoFrontPair
+        | FitWarning::NotInPreset { .. } => Severity::Degraded,
         FitWarning::ExtraDigits { .. } => Severity::Info,
     }
 }
@@ -291,6 +292,7 @@ fn fit_code(w: &FitWarning) -> &'static str {
         FitWarning::MissingTail => "missing_tail",
         FitWarning::ExtraDigits { .. } => "extra_digits",
         FitWarning::MissingCanonical { .. } => "missing_canonical",
+        FitWarning::NotInPreset { .. } => "not_in_preset",
     }
 }
 

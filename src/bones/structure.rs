@@ -154,11 +154,23 @@ pub(crate) fn body(fit: &Fit, warnings: &mut Vec<BoneWarning>) -> Body {
         .iter()
         .map(|(k, id)| (*id, k.parse::<Canonical>().ok()))
         .collect();
+    // The pelvis when it is the root or hangs only from non-deforming joints (an engine
+    // preset's `root` on the ground), else the skeleton's root.
+    let below_controls = |id: JointId| {
+        let mut at = s.joint(id).parent;
+        while let Some(p) = at {
+            if s.joint(p).deform {
+                return false;
+            }
+            at = s.joint(p).parent;
+        }
+        true
+    };
     let root = fit
         .canonical
         .get(Canonical::Pelvis.as_str())
         .copied()
-        .filter(|id| s.joint(*id).parent.is_none())
+        .filter(|id| below_controls(*id))
         .unwrap_or(JointId(0));
     let head = fit.canonical.get(Canonical::Head.as_str()).copied();
     let spine = spine(s, root, head, warnings);

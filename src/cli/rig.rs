@@ -20,17 +20,19 @@ use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Naming preset of the output joints (`--preset`).
+/// Engine skeleton of the output (`--preset`): joint set, names and parents.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum PresetArg {
-    /// skelfit's anatomical names (pelvis, spine_01, shoulder_L, ...).
+    /// skelfit's anatomical skeleton (pelvis, spine_01..05, shoulder_L, ...).
     Anatomical,
-    /// Adobe Mixamo (`mixamorig:Hips`, ...).
+    /// Adobe Mixamo (mixamorig:Hips, Spine, Spine1, Spine2, Neck, Head, LeftArm, ...).
     Mixamo,
-    /// Unity Humanoid (HumanBodyBones names).
+    /// Unity Humanoid avatar (Hips, Spine, Chest, UpperChest, Neck, LeftUpperArm, ...).
     Unity,
-    /// MakeHuman / MPFB2 game_engine (Unreal-style: pelvis, upperarm_l, ...).
+    /// MakeHuman / MPFB2 game_engine (Root, pelvis, spine_01..03, neck_01, upperarm_l, ...).
     Makehuman,
+    /// Unreal Engine 5 Mannequin (root, pelvis, spine_01..05, neck_01..02, upperarm_l, ...).
+    Unreal,
 }
 
 impl From<PresetArg> for Preset {
@@ -40,6 +42,7 @@ impl From<PresetArg> for Preset {
             PresetArg::Mixamo => Preset::Mixamo,
             PresetArg::Unity => Preset::Unity,
             PresetArg::Makehuman => Preset::MakeHuman,
+            PresetArg::Unreal => Preset::Unreal,
         }
     }
 }
@@ -63,7 +66,9 @@ pub struct RigArgs {
     /// template .toml file.
     #[arg(long, value_name = "NAME|FILE", default_value = "auto")]
     pub template: String,
-    /// Naming preset of the output joints.
+    /// Engine skeleton of the output: the engine's joints, names and parents for every joint
+    /// skelfit places (spine joints spread along the fitted spine; joints the engine lacks
+    /// left out, their skin going to the engine joints around them).
     #[arg(long, value_enum, default_value_t = PresetArg::Anatomical)]
     pub preset: PresetArg,
     /// Up direction: an axis (+Y, -Z, ...), a vector x,y,z, or `auto` (found from the figure:

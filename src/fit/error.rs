@@ -127,6 +127,14 @@ pub enum FitWarning {
         /// The key.
         key: String,
     },
+    /// The preset's engine skeleton has no joint for these fitted canonical joints (a
+    /// quadruped's tail in a humanoid engine's skeleton): they are left out.
+    NotInPreset {
+        /// The preset's file stem.
+        preset: String,
+        /// The canonical keys left out.
+        keys: Vec<String>,
+    },
 }
 
 impl fmt::Display for FitWarning {
@@ -180,6 +188,11 @@ impl fmt::Display for FitWarning {
                     "canonical joint {key} is missing (its body part was not found)"
                 )
             }
+            Self::NotInPreset { preset, keys } => write!(
+                f,
+                "the {preset} skeleton has no joint for {}: left out (--preset anatomical keeps them)",
+                keys.join(", ")
+            ),
         }
     }
 }

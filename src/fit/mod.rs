@@ -86,15 +86,26 @@ impl Fit {
             .collect()
     }
 
-    /// Names the joints by `preset` from the canonical map (a taken name gets `_2`, `_3`...):
-    /// the fit's last step, which the rig repeats after the refinement has moved the
-    /// canonical keys of a fit made with anatomical names.
+    /// Turns the skeleton into `preset`'s engine skeleton ([`apply_preset`]: the engine's
+    /// joints, names and parents, its spine joints spread along the fitted spine, joints the
+    /// engine lacks left out) and remaps the canonical map: the fit's last step, which the rig
+    /// repeats after the refinement has moved the canonical keys of a fit made with anatomical
+    /// names. `up` is the figure's up (an engine root goes on the ground below the pelvis).
+    /// Canonical joints the engine has no joint for are left out with a
+    /// [`FitWarning::NotInPreset`] in [`Fit::warnings`].
     ///
     /// # Errors
     /// [`FitError::Preset`] when the preset file cannot be read.
-    pub fn name_joints(&mut self, preset: Preset) -> Result<(), FitError> {
-        apply_preset(&mut self.skeleton, &self.canonical, preset)
-            .map_err(|e| FitError::Preset(e.to_string()))
+    pub fn name_joints(&mut self, preset: Preset, up: DVec3) -> Result<(), FitError> {
+        let dropped = apply_preset(&mut self.skeleton, &mut self.canonical, preset, up)
+            .map_err(|e| FitError::Preset(e.to_string()))?;
+        if !dropped.is_empty() {
+            self.warnings.push(FitWarning::NotInPreset {
+                preset: preset.file_stem().into(),
+                keys: dropped,
+            });
+        }
+        Ok(())
     }
 }
 
@@ -211,7 +222,7 @@ pub fn fit_with_probe(
         warnings,
         template: template.name.clone(),
     };
-    fit.name_joints(options.preset)?;
+    fit.name_joints(options.preset, frame.up)?;
     Ok(fit)
 }
 

@@ -266,7 +266,9 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         }
         lap.lap("symmetry", &mut timings);
     }
-    fit.name_joints(options.fit.preset)?;
+    let before = fit.warnings.len();
+    fit.name_joints(options.fit.preset, input.up)?;
+    warnings.extend(fit.warnings[before..].iter().cloned().map(Warning::Fit));
     let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);

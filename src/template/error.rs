@@ -67,7 +67,7 @@ pub enum TemplateError {
         name: String,
     },
     /// No naming preset has this name.
-    #[error("unknown naming preset {name:?}: use anatomical, mixamo, unity or makehuman")]
+    #[error("unknown naming preset {name:?}: use anatomical, mixamo, unity, makehuman or unreal")]
     UnknownPreset {
         /// The name asked for.
         name: String,
@@ -79,17 +79,5 @@ pub enum TemplateError {
         name: String,
         /// What is wrong.
         message: String,
-    },
-    /// Renaming would give two joints the same name.
-    #[error("naming preset {preset} would call two joints {name:?}: add a distinct name for {joint:?} to templates/presets/{file}.json")]
-    PresetCollision {
-        /// Preset name.
-        preset: String,
-        /// Preset file stem.
-        file: String,
-        /// The colliding name.
-        name: String,
-        /// The anatomical joint name that collided.
-        joint: String,
     },
 }

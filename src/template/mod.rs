@@ -39,7 +39,7 @@ pub use model::{
     RefineKind, Sections, Template, TemplateJoint, VertebraRules, AXIAL_PLACES, BUILTIN_TEMPLATES,
     SIDED_PLACES,
 };
-pub use preset::{apply_preset, Preset, PresetNames};
+pub use preset::{apply_preset, EngineJoint, EnginePlacement, EngineSkeleton, Preset, PresetNames};
 
 #[cfg(test)]
 mod tests;

@@ -1,6 +1,6 @@
 use super::*;
 use crate::skeleton::canonical::{is_canonical_key, Tail, CANONICAL_KEYS};
-use crate::skeleton::{Canonical, Joint, JointId, LocalAxis, Side, Skeleton};
+use crate::skeleton::{Canonical, Joint, JointId, LocalAxis, Skeleton};
 use glam::DVec3;
 use std::collections::BTreeMap;
 
@@ -233,84 +233,167 @@ fn template_files_on_disk_load() {
     ));
 }
 
+/// A small upright skeleton: pelvis at height 2, a three-joint spine up to the neck at 6,
+/// head and its end, a left arm with a joint no engine has (`finger_01_L`), a left hip at the
+/// ground.
 fn little() -> (Skeleton, BTreeMap<String, JointId>) {
     let mut s = Skeleton::default();
-    for (k, n) in [
-        Canonical::Pelvis.as_str(),
-        "spine_01",
-        "spine_02",
-        Canonical::Shoulder(Side::Left).as_str(),
-        "thumb_01_L",
-        "index_02_L",
+    let mut add = |name: &str, parent: Option<usize>, at: DVec3| {
+        s.joints.push(Joint::new(name, parent.map(JointId), at));
+    };
+    add("pelvis", None, DVec3::new(0.0, 2.0, 0.0));
+    add("spine_01", Some(0), DVec3::new(0.0, 3.0, 0.0));
+    add("spine_02", Some(1), DVec3::new(0.0, 4.0, 0.0));
+    add("spine_03", Some(2), DVec3::new(0.0, 5.0, 0.0));
+    add("neck_01", Some(3), DVec3::new(0.0, 6.0, 0.0));
+    add("head", Some(4), DVec3::new(0.0, 7.0, 0.0));
+    add("head_end", Some(5), DVec3::new(0.0, 8.0, 0.0));
+    add("clavicle_L", Some(3), DVec3::new(0.5, 5.0, 0.0));
+    add("shoulder_L", Some(7), DVec3::new(1.0, 5.0, 0.0));
+    add("finger_01_L", Some(8), DVec3::new(2.0, 5.0, 0.0));
+    add("hip_L", Some(0), DVec3::new(0.5, 0.0, 0.0));
+    s.joints[6].deform = false;
+    let canonical = [
+        ("pelvis", 0),
+        ("spine", 1),
+        ("chest", 2),
+        ("neck", 4),
+        ("head", 5),
+        ("clavicle_L", 7),
+        ("shoulder_L", 8),
+        ("hip_L", 10),
     ]
-    .iter()
-    .enumerate()
-    {
-        s.joints.push(Joint::new(
-            *n,
-            (k > 0).then(|| JointId(k - 1)),
-            DVec3::Y * k as f64,
-        ));
-    }
-    let canonical = BTreeMap::from([
-        (Canonical::Pelvis.to_string(), JointId(0)),
-        (Canonical::Spine.to_string(), JointId(2)),
-        (Canonical::Shoulder(Side::Left).to_string(), JointId(3)),
-    ]);
+    .into_iter()
+    .map(|(k, j)| (k.to_string(), JointId(j)))
+    .collect();
     (s, canonical)
 }
 
+fn names_and_parents(s: &Skeleton) -> Vec<(&str, Option<&str>)> {
+    s.joints
+        .iter()
+        .map(|j| (j.name.as_str(), j.parent.map(|p| s.joint(p).name.as_str())))
+        .collect()
+}
+
 #[test]
-fn presets_rename_canonical_and_listed_joints() {
-    let (mut s, c) = little();
-    apply_preset(&mut s, &c, Preset::Mixamo).unwrap();
-    let names: Vec<&str> = s.joints.iter().map(|j| j.name.as_str()).collect();
-    assert_eq!(
-        names,
-        [
-            "mixamorig:Hips",
-            "mixamorig:Spine",
-            "mixamorig:Spine1",
-            "mixamorig:LeftArm",
-            "mixamorig:LeftHandThumb1",
-            "mixamorig:LeftHandIndex1"
-        ]
-    );
-    let (mut s, c) = little();
-    apply_preset(&mut s, &c, Preset::MakeHuman).unwrap();
-    // spine_01 is not canonical and keeps its name; canonical spine is spine_02 in game_engine.
-    assert_eq!(s.joints[1].name, "spine_01");
-    assert_eq!(s.joints[2].name, "spine_02");
-    assert_eq!(s.joints[5].name, "index_01_l");
-    let (mut s, c) = little();
-    apply_preset(&mut s, &c, Preset::Unity).unwrap();
-    assert_eq!(s.joints[4].name, "LeftThumbProximal");
+fn mixamo_gets_its_own_spine_and_drops_joints_it_lacks() {
+    let (mut s, mut c) = little();
+    let dropped = apply_preset(&mut s, &mut c, Preset::Mixamo, DVec3::Y).unwrap();
+    assert!(dropped.is_empty(), "{dropped:?}");
+    let m = |n: &str| format!("mixamorig:{n}");
+    let expected = [
+        ("Hips", None),
+        ("Spine", Some("Hips")),
+        ("Spine1", Some("Spine")),
+        ("Spine2", Some("Spine1")),
+        ("Neck", Some("Spine2")),
+        ("Head", Some("Neck")),
+        ("HeadTop_End", Some("Head")),
+        ("LeftShoulder", Some("Spine2")),
+        ("LeftArm", Some("LeftShoulder")),
+        ("LeftUpLeg", Some("Hips")),
+    ];
+    let expected: Vec<(String, Option<String>)> =
+        expected.iter().map(|(n, p)| (m(n), p.map(m))).collect();
+    let got: Vec<(String, Option<String>)> = names_and_parents(&s)
+        .into_iter()
+        .map(|(n, p)| (n.to_string(), p.map(str::to_string)))
+        .collect();
+    assert_eq!(got, expected);
+    // Spine, Spine1, Spine2 at 20.3 %, 40.4 %, 65.4 % of the 4-long pelvis-to-neck chain.
+    for (k, f) in [(1, 0.203), (2, 0.404), (3, 0.654)] {
+        let y = s.joints[k].position.y;
+        assert!(
+            (y - (2.0 + 4.0 * f)).abs() < 1e-9,
+            "{} at {y}",
+            s.joints[k].name
+        );
+    }
+    // Placed joints keep the fitted joint's position and `deform`.
+    assert_eq!(s.joints[4].position, DVec3::new(0.0, 6.0, 0.0));
+    assert!(!s.joints[6].deform);
+    // The canonical map points at the preset's names.
+    assert_eq!(s.joint(c["spine"]).name, "mixamorig:Spine1");
+    assert_eq!(s.joint(c["chest"]).name, "mixamorig:Spine2");
+    assert_eq!(s.joint(c["neck"]).name, "mixamorig:Neck");
+    assert_eq!(c.len(), 8);
     assert!(s.validate().is_ok());
-    let (mut s, c) = little();
-    apply_preset(&mut s, &c, Preset::Anatomical).unwrap();
-    assert_eq!(s.joints[3].name, Canonical::Shoulder(Side::Left).as_str());
+}
+
+#[test]
+fn engine_roots_stand_on_the_ground_and_missing_joints_are_bridged() {
+    let (mut s, mut c) = little();
+    apply_preset(&mut s, &mut c, Preset::MakeHuman, DVec3::Y).unwrap();
+    assert_eq!(s.joints[0].name, "Root");
+    assert_eq!(s.joints[0].position, DVec3::ZERO);
+    assert!(!s.joints[0].deform);
+    assert_eq!(s.joints[1].name, "pelvis");
+    assert_eq!(s.joints[1].parent, Some(JointId(0)));
+    let (mut s, mut c) = little();
+    apply_preset(&mut s, &mut c, Preset::Unreal, DVec3::Y).unwrap();
+    let got = names_and_parents(&s);
+    for pair in [
+        ("root", None),
+        ("spine_05", Some("spine_04")),
+        ("neck_02", Some("neck_01")),
+        ("head", Some("neck_02")),
+        ("clavicle_l", Some("spine_05")),
+        ("thigh_l", Some("pelvis")),
+    ] {
+        assert!(got.contains(&pair), "{pair:?} in {got:?}");
+    }
+    // neck_02 halfway from neck to head.
+    let neck_02 = s.find("neck_02").unwrap();
+    assert!((s.joint(neck_02).position.y - 6.5).abs() < 1e-9);
+    // Without a clavicle, Unity's upper arm hangs from the clavicle's engine parent; no jaw, no Jaw.
+    let (mut s, mut c) = little();
+    c.remove("clavicle_L");
+    s.joints[7].name = "collar".into();
+    // A canonical joint the engine has no joint for is left out and returned.
+    c.insert("tail_base".into(), JointId(9));
+    let dropped = apply_preset(&mut s, &mut c, Preset::Unity, DVec3::Y).unwrap();
+    assert_eq!(dropped, ["tail_base"]);
+    assert!(!c.contains_key("tail_base"));
+    let got = names_and_parents(&s);
+    assert!(
+        got.contains(&("LeftUpperArm", Some("UpperChest"))),
+        "{got:?}"
+    );
+    assert!(s.find("LeftShoulder").is_none() && s.find("Jaw").is_none());
+    assert!(s.validate().is_ok());
+}
+
+#[test]
+fn anatomical_keeps_the_skeleton_and_preset_files_are_checked() {
+    let (mut s, mut c) = little();
+    let before = (s.clone(), c.clone());
+    apply_preset(&mut s, &mut c, Preset::Anatomical, DVec3::Y).unwrap();
+    assert_eq!((s, c), before);
     assert!(matches!(
         Preset::parse("blender"),
         Err(TemplateError::UnknownPreset { .. })
     ));
-    for p in ["anatomical", "mixamo", "unity", "makehuman"] {
-        let preset = Preset::parse(p).unwrap();
+    for preset in Preset::ALL {
         let names = preset.names().unwrap();
         assert!(names.joints.keys().all(|k| is_canonical_key(k)));
+        assert_eq!(names.skeleton.is_some(), preset != Preset::Anatomical);
+        assert_eq!(Preset::parse(preset.file_stem()).unwrap(), preset);
     }
-}
-
-#[test]
-fn preset_renaming_never_duplicates_names() {
-    // A non-canonical joint already called like a canonical target gets a suffix.
-    let mut s = Skeleton::default();
-    s.joints.push(Joint::new("spine_02", None, DVec3::ZERO));
-    s.joints
-        .push(Joint::new("spine_01", Some(JointId(0)), DVec3::Y));
-    let c = BTreeMap::from([(Canonical::Spine.as_str().to_string(), JointId(1))]);
-    apply_preset(&mut s, &c, Preset::MakeHuman).unwrap();
-    assert_eq!(s.joints[1].name, "spine_02");
-    assert_eq!(s.joints[0].name, "spine_02_2");
+    let bad: EngineSkeleton = serde_json::from_str(
+        r#"{"engine": "e", "source": "s", "joints": [
+            {"name": "b", "parent": "a", "place": {"at": "pelvis"}},
+            {"name": "a", "parent": null, "place": {"at": "pelvis"}}]}"#,
+    )
+    .unwrap();
+    assert!(bad.check().unwrap_err().contains("does not come before"));
+    let bad: EngineSkeleton = serde_json::from_str(
+        r#"{"engine": "e", "source": "s", "joints": [
+            {"name": "a", "parent": null,
+             "place": {"along": {"from": "pelvis", "to": "neck", "fraction": 1.5}}}]}"#,
+    )
+    .unwrap();
+    assert!(bad.check().unwrap_err().contains("fraction"));
 }
 
 #[test]

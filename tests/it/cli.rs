@@ -179,9 +179,17 @@ fn rig_writes_a_skinned_glb_json_with_canonical_map_and_bvh_in_a_preset() {
     assert_eq!(doc["run"]["template"], "quadruped");
     let canonical = doc["canonical"].as_object().unwrap();
     assert_eq!(canonical["pelvis"], "mixamorig:Hips");
-    for key in ["tail_base", "tail_end", "shoulder_L", "hip_R"] {
+    for key in ["shoulder_L", "hip_R"] {
         assert!(canonical.contains_key(key), "{key} missing: {canonical:?}");
     }
+    // Mixamo's skeleton has no tail: the tail is left out, and the output says so.
+    assert!(!canonical.contains_key("tail_base"), "{canonical:?}");
+    assert!(
+        stderr(&out).contains("the mixamo skeleton has no joint for")
+            && stderr(&out).contains("tail_base"),
+        "{}",
+        stderr(&out)
+    );
     assert!(std::fs::read_to_string(&bvh)
         .unwrap()
         .starts_with("HIERARCHY"));

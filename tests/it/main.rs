@@ -19,6 +19,7 @@ mod medial;
 mod mesh;
 mod outline;
 mod outputs;
+mod presets;
 mod refine;
 mod rig;
 mod robust;
