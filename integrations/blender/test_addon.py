@@ -19,6 +19,8 @@ import traceback
 
 import bpy
 
+sys.dont_write_bytecode = True
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
