@@ -11,6 +11,7 @@ material count unchanged, nothing left of the import, the rest pose deforming no
 bpy.ops.skelfit.check(). Exits non-zero on the first failure.
 """
 
+import importlib.util
 import os
 import sys
 import tempfile
@@ -25,21 +26,27 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def enable_addon():
-    if os.environ.get("BLENDER_USER_SCRIPTS"):
-        sys.path.insert(0, HERE)
-        import make_zip
-
+    user_scripts = os.environ.get("BLENDER_USER_SCRIPTS")
+    if user_scripts:
+        # This folder stays off sys.path, so that the add-on can only come from the zip.
+        spec = importlib.util.spec_from_file_location("make_zip", os.path.join(HERE, "make_zip.py"))
+        make_zip = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(make_zip)
         zip_path = make_zip.build(os.path.join(tempfile.mkdtemp(prefix="skelfit_zip_"), "skelfit_blender.zip"))
         bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
         how = f"installed from {zip_path}"
+        home = os.path.realpath(user_scripts)
     else:
         sys.path.insert(0, HERE)
         how = f"enabled from {HERE}"
+        home = os.path.realpath(HERE)
     bpy.ops.preferences.addon_enable(module="skelfit_blender")
     import skelfit_blender
 
+    where = os.path.realpath(skelfit_blender.__file__)
+    assert where.startswith(home + os.sep), f"the add-on was loaded from {where}, not from {home}"
     assert hasattr(bpy.ops.skelfit, "rig"), "the add-on did not register skelfit.rig"
-    print(f"add-on {how} ({skelfit_blender.__file__})")
+    print(f"add-on {how} ({where})")
 
 
 def import_mesh(path):
@@ -68,7 +75,8 @@ def import_mesh(path):
     for obj in [o for o in bpy.data.objects if o.type != "MESH"]:
         bpy.data.objects.remove(obj)
     view_layer = bpy.context.view_layer
-    for obj in view_layer.objects:
+    view_layer.update()
+    for obj in bpy.context.scene.objects:
         obj.select_set(obj.type == "MESH")
     target = max(meshes, key=lambda o: len(o.data.vertices))
     view_layer.objects.active = target

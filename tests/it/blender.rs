@@ -17,7 +17,9 @@ fn blender() -> Option<PathBuf> {
             .find(|candidate| candidate.is_file())
     });
     if found.is_none() {
-        eprintln!("SKIPPED: blender is not on PATH (apt-get install blender to run the add-on test)");
+        eprintln!(
+            "SKIPPED: blender is not on PATH (apt-get install blender to run the add-on test)"
+        );
     }
     found
 }

@@ -14,10 +14,11 @@ class Selection:
 
     def __enter__(self):
         view_layer = self.context.view_layer
-        self.previous = [o for o in view_layer.objects if o.select_get()]
+        self.previous = [o for o in view_layer.objects if o is not None and o.select_get()]
         self.active = view_layer.objects.active
-        for obj in self.previous:
-            obj.select_set(False)
+        for obj in view_layer.objects:
+            if obj is not None:
+                obj.select_set(False)
         for obj in self.objects:
             obj.select_set(True)
         view_layer.objects.active = self.objects[0]
@@ -26,7 +27,8 @@ class Selection:
     def __exit__(self, *exc):
         view_layer = self.context.view_layer
         for obj in view_layer.objects:
-            obj.select_set(obj in self.previous)
+            if obj is not None:
+                obj.select_set(obj in self.previous)
         view_layer.objects.active = self.active if self.active in view_layer.objects[:] else None
         return False
 

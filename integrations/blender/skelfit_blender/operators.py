@@ -115,7 +115,8 @@ class SKELFIT_OT_rig(bpy.types.Operator):
         compat.move_modifier_first(obj, modifier)
         context.view_layer.update()
         for other in context.view_layer.objects:
-            other.select_set(False)
+            if other is not None:
+                other.select_set(False)
         obj.select_set(True)
         context.view_layer.objects.active = obj
         return armature, len(armature.data.bones), farthest
