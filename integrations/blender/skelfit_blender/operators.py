@@ -71,8 +71,11 @@ class SKELFIT_OT_rig(bpy.types.Operator):
                 modifier.show_viewport = show
             self.report({"ERROR"}, str(error))
             return {"CANCELLED"}
+        earlier = {m.object.name for m in old if m.object is not None}
         for modifier in old:
             obj.modifiers.remove(modifier)
+        if earlier:
+            self.report({"INFO"}, f"skelfit: replaced the Armature modifier of {', '.join(sorted(earlier))} (left in the scene)")
         size = max(obj.dimensions) or 1.0
         if farthest > 0.01 * size:
             self.report(
@@ -130,8 +133,12 @@ class SKELFIT_OT_rig(bpy.types.Operator):
         armature.parent = None
         frame = obj.matrix_world.copy()
         armature.data.transform(frame.inverted() @ current)
-        if obj.parent is not None and obj.parent.type != "ARMATURE":
-            armature.parent = obj.parent
+        # Re-rigging: the object hangs from its earlier rig; the new rig takes that one's place.
+        anchor = obj.parent
+        if anchor is not None and anchor.type == "ARMATURE":
+            anchor = anchor.parent
+        if anchor is not None:
+            armature.parent = anchor
             armature.parent_type = "OBJECT"
             armature.matrix_parent_inverse.identity()
         armature.matrix_world = frame
