@@ -3,6 +3,7 @@
 mod anatomy;
 mod batch;
 mod bench;
+mod blender;
 mod bones;
 mod cli;
 mod cli_convention;
