@@ -36,6 +36,7 @@ class SkelfitSettings(bpy.types.PropertyGroup):
             ("mixamo", "Mixamo", "Adobe Mixamo (mixamorig:Hips, ...)"),
             ("unity", "Unity", "Unity Humanoid (HumanBodyBones names)"),
             ("makehuman", "MakeHuman", "MakeHuman / MPFB2 game_engine (pelvis, upperarm_l, ...)"),
+            ("unreal", "Unreal", "Unreal Engine 5 Mannequin (root, pelvis, spine_01, upperarm_l, ...)"),
         ],
         default="anatomical",
     )
