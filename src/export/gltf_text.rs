@@ -40,13 +40,27 @@ pub fn gltf_text_from_glb(glb: &[u8]) -> Result<Vec<u8>, ExportError> {
         let bin = glb
             .get(bin_at + 8..bin_at + 8 + bin_len as usize)
             .ok_or_else(|| invalid("truncated BIN chunk"))?;
-        let length = document["buffers"][0]["byteLength"]
-            .as_u64()
+        let length = document
+            .get("buffers")
+            .and_then(|b| b.get(0))
+            .and_then(|b| b.get("byteLength"))
+            .and_then(Value::as_u64)
             .map_or(bin.len(), |n| (n as usize).min(bin.len()));
-        document["buffers"][0] = json!({
+        let embedded = json!({
             "byteLength": length,
             "uri": format!("data:application/octet-stream;base64,{}", base64(&bin[..length])),
         });
+        // A document without a buffers array (or with an empty one) gets one for the chunk.
+        let Some(map) = document.as_object_mut() else {
+            return Err(invalid("the JSON chunk is not an object"));
+        };
+        match map.get_mut("buffers").and_then(Value::as_array_mut) {
+            Some(buffers) if !buffers.is_empty() => buffers[0] = embedded,
+            Some(buffers) => buffers.push(embedded),
+            None => {
+                map.insert("buffers".into(), json!([embedded]));
+            }
+        }
     }
     serde_json::to_vec(&document).map_err(|e| invalid(&e.to_string()))
 }

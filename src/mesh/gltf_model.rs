@@ -2,7 +2,9 @@
 
 use super::gltf::read_welded;
 use super::load::parse_error;
-use super::model::{image_file, SourceInstance, SourceModel, SourcePrimitive, PLACEHOLDER_PNG};
+use super::model::{
+    image_file, ModelWarning, SourceInstance, SourceModel, SourcePrimitive, PLACEHOLDER_PNG,
+};
 use super::{Mesh, MeshError};
 use serde_json::{json, Value};
 use std::path::Path;
@@ -41,7 +43,11 @@ pub(super) fn load_gltf_model(path: &Path) -> Result<(Mesh, SourceModel), MeshEr
             .and_then(Value::as_array)
             .map_or(0, Vec::len);
         if count > 0 {
-            warnings.push(format!("the input's {count} {key} were left out: {why}"));
+            warnings.push(ModelWarning::LeftOut {
+                count,
+                what: key,
+                why,
+            });
         }
         if let Some(map) = document.as_object_mut() {
             map.remove(key);
@@ -66,12 +72,10 @@ pub(super) fn load_gltf_model(path: &Path) -> Result<(Mesh, SourceModel), MeshEr
             .as_array()
             .map_or(0, Vec::len);
         if total > primitives.len() {
-            warnings.push(format!(
-                "mesh {}: {} primitives of points or lines were left out (only triangles are \
-                 skinned)",
-                instance.mesh,
-                total - primitives.len()
-            ));
+            warnings.push(ModelWarning::NotTriangles {
+                mesh: instance.mesh,
+                primitives: total - primitives.len(),
+            });
         }
         instances.push(SourceInstance {
             name: node["name"].as_str().map(str::to_string),
@@ -98,7 +102,7 @@ fn embed_images(
     document: &mut Value,
     buffers: &mut Vec<Vec<u8>>,
     input: &Path,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ModelWarning>,
 ) {
     let Some(images) = document.get("images").and_then(Value::as_array).cloned() else {
         return;
@@ -114,9 +118,11 @@ fn embed_images(
         let uri = image.get("uri").and_then(Value::as_str).map(str::to_string);
         if let Some(uri) = uri.filter(|u| !u.starts_with("data:")) {
             let (data, mime) = image_file(&uri, input).unwrap_or_else(|reason| {
-                warnings.push(format!(
-                    "image {i} (uri \"{uri}\") {reason}; a 1x1 white placeholder stands in for it"
-                ));
+                warnings.push(ModelWarning::ImageUnreadable {
+                    image: i,
+                    uri: uri.clone(),
+                    reason,
+                });
                 (PLACEHOLDER_PNG.to_vec(), "image/png")
             });
             views.push(json!({"buffer": buffers.len(), "byteOffset": 0, "byteLength": data.len()}));

@@ -42,7 +42,7 @@ mod weld;
 pub use self::gltf::{load_gltf, load_gltf_scene, GltfScene};
 pub use error::MeshError;
 pub use load::{load, load_with_source_map};
-pub use model::{load_model, SourceInstance, SourceModel, SourcePrimitive};
+pub use model::{load_model, ModelWarning, SourceInstance, SourceModel, SourcePrimitive};
 pub use obj::load_obj;
 pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION, FLAT_VOLUME_FRACTION};
 pub use ply::load_ply;

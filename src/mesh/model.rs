@@ -22,8 +22,8 @@ pub struct SourceModel {
     /// Every mesh node of the scene, in the loader's reading order.
     pub instances: Vec<SourceInstance>,
     /// What could not be kept (an image that could not be read, primitives that are not
-    /// triangles, the input's skins and animations), one sentence each.
-    pub warnings: Vec<String>,
+    /// triangles, the input's skins and animations).
+    pub warnings: Vec<ModelWarning>,
 }
 
 /// A mesh node of the input: its mesh and how its vertices map onto the welded mesh.
@@ -139,5 +139,116 @@ mod tests {
         assert_eq!(image_mime_type(&PLACEHOLDER_PNG, ""), Some("image/png"));
         assert_eq!(image_mime_type(b"xx", "a.JPG"), Some("image/jpeg"));
         assert_eq!(image_mime_type(b"xx", "a.tga"), None);
+    }
+}
+
+/// What [`load_model`](super::load_model) could not keep of the user's file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ModelWarning {
+    /// Top-level glTF objects dropped because the rig replaces them (`animations`, `skins`).
+    LeftOut {
+        /// How many.
+        count: usize,
+        /// The glTF key.
+        what: &'static str,
+        /// Why.
+        why: &'static str,
+    },
+    /// Primitives of points or lines (only triangles are skinned).
+    NotTriangles {
+        /// The glTF mesh index.
+        mesh: usize,
+        /// How many primitives.
+        primitives: usize,
+    },
+    /// An image file that could not be read; a 1×1 white placeholder stands in for it.
+    ImageUnreadable {
+        /// The glTF image index.
+        image: usize,
+        /// Its URI.
+        uri: String,
+        /// Why it could not be read.
+        reason: String,
+    },
+    /// An OBJ material used but defined by no material library; written white.
+    MaterialUndefined {
+        /// The material's name.
+        name: String,
+    },
+    /// A material's `map_Kd` image that could not be read; the material has no texture.
+    TextureUnreadable {
+        /// The material's name.
+        material: String,
+        /// The image file as written in the MTL.
+        file: String,
+        /// Why it could not be read.
+        reason: String,
+    },
+    /// A material library (`mtllib`) that could not be read; its materials are written white.
+    LibraryUnreadable {
+        /// The library's file name.
+        name: String,
+        /// Why it could not be read.
+        reason: String,
+    },
+}
+
+impl ModelWarning {
+    /// A stable snake_case id.
+    pub fn code(&self) -> &'static str {
+        match self {
+            Self::LeftOut { .. } => "left_out",
+            Self::NotTriangles { .. } => "not_triangles",
+            Self::ImageUnreadable { .. } => "image_unreadable",
+            Self::MaterialUndefined { .. } => "material_undefined",
+            Self::TextureUnreadable { .. } => "texture_unreadable",
+            Self::LibraryUnreadable { .. } => "library_unreadable",
+        }
+    }
+
+    /// How much it matters: what the rig replaces is worth knowing; a lost image, texture or
+    /// material degrades the output.
+    pub fn severity(&self) -> crate::warning::Severity {
+        match self {
+            Self::LeftOut { .. } | Self::NotTriangles { .. } => crate::warning::Severity::Info,
+            _ => crate::warning::Severity::Degraded,
+        }
+    }
+}
+
+impl std::fmt::Display for ModelWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::LeftOut { count, what, why } => {
+                write!(f, "the input's {count} {what} were left out: {why}")
+            }
+            Self::NotTriangles { mesh, primitives } => write!(
+                f,
+                "mesh {mesh}: {primitives} primitives of points or lines were left out (only \
+                 triangles are skinned)"
+            ),
+            Self::ImageUnreadable { image, uri, reason } => write!(
+                f,
+                "image {image} (uri \"{uri}\") {reason}; a 1x1 white placeholder stands in for it"
+            ),
+            Self::MaterialUndefined { name } => write!(
+                f,
+                "material {name:?} is used but no material library defines it; it is written \
+                 white"
+            ),
+            Self::TextureUnreadable {
+                material,
+                file,
+                reason,
+            } => write!(
+                f,
+                "material {material:?}: image \"{file}\" {reason}; the material is written \
+                 without it"
+            ),
+            Self::LibraryUnreadable { name, reason } => write!(
+                f,
+                "material library \"{name}\" {reason}; its materials are written white"
+            ),
+        }
     }
 }

@@ -1,5 +1,6 @@
 //! Wavefront MTL material libraries: the few statements a glTF material can hold.
 
+use super::model::ModelWarning;
 use std::path::Path;
 
 /// A material of an MTL file, as far as glTF's metallic-roughness model takes it.
@@ -25,7 +26,7 @@ pub(super) struct MtlMaterial {
 pub(super) fn read_libraries(
     libraries: &[String],
     obj: &Path,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ModelWarning>,
 ) -> Vec<MtlMaterial> {
     let mut materials = Vec::new();
     for name in libraries {
@@ -37,9 +38,10 @@ pub(super) fn read_libraries(
             });
         match text {
             Ok(text) => materials.extend(parse_mtl(&text)),
-            Err(reason) => warnings.push(format!(
-                "material library \"{name}\" {reason}; its materials are written white"
-            )),
+            Err(reason) => warnings.push(ModelWarning::LibraryUnreadable {
+                name: name.to_string(),
+                reason,
+            }),
         }
     }
     materials

@@ -1,7 +1,7 @@
 //! The [`SourceModel`] of an OBJ file: a glTF document with a primitive per material, a vertex
 //! per distinct position/UV/normal corner, and the MTL materials with their images.
 
-use super::model::{image_file, SourceInstance, SourceModel, SourcePrimitive};
+use super::model::{image_file, ModelWarning, SourceInstance, SourceModel, SourcePrimitive};
 use super::mtl::{read_libraries, MtlMaterial};
 use super::obj::{read_obj_parsed, ParsedObj};
 use super::{Mesh, MeshError};
@@ -40,10 +40,7 @@ pub(super) fn load_obj_model(path: &Path) -> Result<(Mesh, SourceModel), MeshErr
         .map(|name| {
             let found = library.iter().find(|m| m.name == *name);
             if found.is_none() {
-                warnings.push(format!(
-                    "material {name:?} is used but no material library defines it; it is written \
-                     white"
-                ));
+                warnings.push(ModelWarning::MaterialUndefined { name: name.clone() });
             }
             material(
                 name,
@@ -127,7 +124,7 @@ fn material(
     images: &mut Images,
     bin: &mut Vec<u8>,
     views: &mut Vec<Value>,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<ModelWarning>,
 ) -> Value {
     let default = MtlMaterial::default();
     let m = found.unwrap_or(&default);
@@ -156,10 +153,11 @@ fn material(
                     Some(images.textures.len() - 1)
                 }
                 Err(reason) => {
-                    warnings.push(format!(
-                        "material {name:?}: image \"{file}\" {reason}; the material is written \
-                         without it"
-                    ));
+                    warnings.push(ModelWarning::TextureUnreadable {
+                        material: name.to_string(),
+                        file: file.clone(),
+                        reason,
+                    });
                     None
                 }
             },
