@@ -416,6 +416,11 @@ fn check_skinned(mesh: &Mesh, skin: &Skin, joint_count: usize) -> Result<(), Exp
             index,
         });
     }
+    check_engine_rows(skin, joint_count)
+}
+
+/// The engine rows of a skin: finite non-negative weights on joints below `joint_count`.
+pub(super) fn check_engine_rows(skin: &Skin, joint_count: usize) -> Result<(), ExportError> {
     if let Some(index) = skin
         .engine
         .weights

@@ -4,8 +4,8 @@
 
 use super::frame::OutputFrame;
 use super::gltf::{
-    accessor, joint_nodes, link_children, pack_glb, Binary, GltfOptions, ARRAY_BUFFER, FLOAT,
-    FOREST_ROOT_NAME, UNSIGNED_SHORT,
+    accessor, check_engine_rows, joint_nodes, link_children, pack_glb, Binary, GltfOptions,
+    ARRAY_BUFFER, FLOAT, FOREST_ROOT_NAME, UNSIGNED_SHORT,
 };
 use super::{check_skeleton, ExportError};
 use crate::mesh::{SourceInstance, SourceModel};
@@ -238,31 +238,7 @@ fn check_skin(model: &SourceModel, skeleton: &Skeleton, skin: &Skin) -> Result<(
             found: rows,
         });
     }
-    if let Some(index) = skin
-        .engine
-        .weights
-        .iter()
-        .position(|w| w.iter().any(|x| !x.is_finite() || *x < 0.0))
-    {
-        return Err(ExportError::NonFinite {
-            what: "weight of vertex",
-            index,
-        });
-    }
-    if let Some(&bad) = skin
-        .engine
-        .joints
-        .iter()
-        .flatten()
-        .find(|&&j| usize::from(j) >= joint_count)
-    {
-        return Err(ExportError::SizeMismatch {
-            what: "a skin joint index",
-            expected: joint_count,
-            found: usize::from(bad) + 1,
-        });
-    }
-    Ok(())
+    check_engine_rows(skin, joint_count)
 }
 
 /// Copies the accessors and buffer views the output uses from the input into one binary
