@@ -1,15 +1,9 @@
 //! End-to-end tests of `skelfit bench`, `skelfit study` and the bad-input paths of
 //! `skelfit eval`. Rigging uses a coarse voxel size (0.02) to keep CI time modest.
 
+use crate::common::skelfit;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn skelfit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args(args)
-        .output()
-        .expect("the skelfit binary runs")
-}
+use std::process::Command;
 
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()

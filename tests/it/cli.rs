@@ -1,18 +1,7 @@
 //! End-to-end tests of the `skelfit` binary: outputs, errors and exit codes.
 
+use crate::common::{skelfit, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn skelfit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args(args)
-        .output()
-        .expect("the skelfit binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 fn bundled_humanoid() -> String {
     crate::common::data_dir()

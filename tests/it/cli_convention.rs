@@ -3,15 +3,8 @@
 //! (`-v` lists each, `-q` prints errors only), `--help` lists the main commands first, the
 //! bones preview stays small, and report folders get an index page with verdict lines.
 
+use crate::common::skelfit;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn skelfit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args(args)
-        .output()
-        .expect("the skelfit binary runs")
-}
 
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 use std::path::PathBuf;
+use std::process::{Command, Output};
 
 /// The reference data directory `../shared/refdata` beside the checkout (or `SKELFIT_REFDATA`),
 /// or `None` with a printed reason so that tests needing it skip visibly.
@@ -54,4 +55,17 @@ pub fn awaits_real_character_work(dir: &std::path::Path, test: &str) -> bool {
         );
     }
     new
+}
+
+/// Runs the built `skelfit` binary with `args`.
+pub fn skelfit(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_skelfit"))
+        .args(args)
+        .output()
+        .expect("the skelfit binary runs")
+}
+
+/// A command's stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
 }

@@ -1,23 +1,13 @@
 //! Regression tests of issue 23 (hardening against untrusted files and invalid options), each
 //! named after the defect it came from.
 
+use crate::common::{skelfit, stderr};
 use crate::mesh::{cube, gltf_parts, write};
 use skelfit::mesh::{load, MeshError};
 use skelfit::voxel::{grid_for, VoxelError, VoxelOptions, VoxelSize};
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 use std::time::{Duration, Instant};
-
-fn skelfit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args(args)
-        .output()
-        .expect("the skelfit binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// A cube .gltf in `dir` named `name` whose only buffer has `uri`; returns its path.
 fn gltf_with_uri(dir: &Path, name: &str, uri: &str) -> std::path::PathBuf {

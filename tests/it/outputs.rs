@@ -2,19 +2,8 @@
 //! untouched; `.gltf` writes glTF JSON with the data embedded, `.glb` binary; another
 //! extension is refused naming the accepted ones.
 
+use crate::common::{skelfit, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn skelfit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args(args)
-        .output()
-        .expect("the skelfit binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// A copy of the bundled humanoid in `dir`.
 fn humanoid_copy(dir: &Path) -> String {

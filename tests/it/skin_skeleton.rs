@@ -1,6 +1,7 @@
 //! `skelfit skin` and `skin::skin_skeleton`: skinning a skeleton the user already has, and
 //! the errors and warnings for skeletons that do not fit their mesh.
 
+use crate::common::{skelfit, stderr};
 use skelfit::eval::load_skeleton;
 use skelfit::mesh::{load, load_gltf_scene};
 use skelfit::skeleton::{JointId, Skeleton};
@@ -8,18 +9,7 @@ use skelfit::skin::check::{check_deformation, sweep, SweepKind};
 use skelfit::skin::{skin_skeleton, SkeletonSkinOptions};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn skelfit(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args(args)
-        .output()
-        .expect("the skelfit binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use std::process::Output;
 
 fn bundled() -> PathBuf {
     crate::common::data_dir().join("humanoid/mh_neutral_default")
