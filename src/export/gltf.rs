@@ -134,18 +134,7 @@ pub fn glb_bytes_with(
         nodes.push(json!({"name": options.mesh_name, "mesh": 0, "skin": 0}));
         nodes.len() - 1
     });
-    let roots: Vec<usize> = (0..joint_count)
-        .filter(|&k| skeleton.joints[k].parent.is_none())
-        .collect();
-    // glTF requires the joints of a skin to share a root node: a skeleton with several root
-    // joints hangs them under one plain (identity) node that is not a joint.
-    let skeleton_root = match roots[..] {
-        [root] => root,
-        _ => {
-            nodes.push(json!({"name": FOREST_ROOT_NAME, "children": roots}));
-            nodes.len() - 1
-        }
-    };
+    let skeleton_root = skeleton_root(&mut nodes, skeleton);
     scene_nodes.push(skeleton_root);
     scene_nodes.extend(mesh_node);
     for a in attachments {
@@ -284,6 +273,22 @@ fn push_skinned(
         accessor(weights_view, FLOAT, vertices, "VEC4"),
         accessor(ibm_view, FLOAT, skeleton.len(), "MAT4"),
     ]);
+}
+
+/// The node at the root of the joint nodes (which come first in `nodes`, one per joint): the
+/// root joint, or, since glTF requires the joints of a skin to share a root node, a plain
+/// (identity) node pushed to hang a skeleton's several root joints under.
+pub(super) fn skeleton_root(nodes: &mut Vec<Value>, skeleton: &Skeleton) -> usize {
+    let roots: Vec<usize> = (0..skeleton.len())
+        .filter(|&k| skeleton.joints[k].parent.is_none())
+        .collect();
+    match roots[..] {
+        [root] => root,
+        _ => {
+            nodes.push(json!({"name": FOREST_ROOT_NAME, "children": roots}));
+            nodes.len() - 1
+        }
+    }
 }
 
 /// A node per joint: its name and its rest transform relative to its parent's.

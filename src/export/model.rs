@@ -4,8 +4,8 @@
 
 use super::frame::OutputFrame;
 use super::gltf::{
-    accessor, check_engine_rows, joint_nodes, link_children, pack_glb, Binary, GltfOptions,
-    ARRAY_BUFFER, FLOAT, FOREST_ROOT_NAME, UNSIGNED_SHORT,
+    accessor, check_engine_rows, joint_nodes, link_children, pack_glb, skeleton_root, Binary,
+    GltfOptions, ARRAY_BUFFER, FLOAT, UNSIGNED_SHORT,
 };
 use super::{check_skeleton, ExportError};
 use crate::mesh::{SourceInstance, SourceModel};
@@ -101,16 +101,7 @@ pub fn model_glb_bytes(
         nodes.push(node);
         mesh_nodes.push(nodes.len() - 1);
     }
-    let roots: Vec<usize> = (0..joint_count)
-        .filter(|&k| placed.joints[k].parent.is_none())
-        .collect();
-    let skeleton_root = match roots[..] {
-        [root] => root,
-        _ => {
-            nodes.push(json!({"name": FOREST_ROOT_NAME, "children": roots}));
-            nodes.len() - 1
-        }
-    };
+    let skeleton_root = skeleton_root(&mut nodes, &placed);
     link_children(&mut nodes, &placed, &vec![Vec::new(); joint_count]);
     let skins: Vec<Value> = skins
         .into_iter()
