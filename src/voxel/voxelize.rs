@@ -11,10 +11,13 @@ use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
 
+/// [`voxelize_figure`] shrinks the voxel edge at most to this fraction.
+const MAX_REFINE: f64 = 0.5;
+
 /// Voxelizes a figure to be rigged: [`voxelize`], then, when the size is a fraction of the
 /// longest side and the figure holds fewer than [`VoxelOptions::min_interior`] interior voxels,
-/// once more with the voxel edge shrunk by the cube root of the shortfall (within
-/// `max_voxels`; the first grid stands when the finer one fails). The solid's
+/// once more with the voxel edge shrunk by the cube root of the shortfall, at most to half
+/// (within `max_voxels`; the first grid stands when the finer one fails). The solid's
 /// [`VoxelReport::refined_from`] gives the size first tried.
 ///
 /// # Errors
@@ -28,11 +31,13 @@ pub fn voxelize_figure(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, Vox
     if interior == 0 || interior >= options.min_interior {
         return Ok(solid);
     }
-    let shrink = (interior as f64 / options.min_interior as f64).cbrt();
+    // A little finer than the cube root (the interior grows a little slower than the volume:
+    // fewer boundary voxels count as inside on a coarse grid), and at most twice as fine
+    // (eight times the voxels): a figure holding a few dozen voxels is degenerate or flat, and
+    // a grid sized to its shortfall would run into `max_voxels`.
+    let shrink = (0.97 * (interior as f64 / options.min_interior as f64).cbrt()).max(MAX_REFINE);
     let finer = VoxelOptions {
-        // A little finer than the cube root: the interior grows a little slower than the
-        // volume (fewer boundary voxels count as inside on a coarse grid).
-        size: VoxelSize::Fraction(fraction * shrink * 0.97),
+        size: VoxelSize::Fraction(fraction * shrink),
         ..*options
     };
     match voxelize(mesh, &finer) {

@@ -391,17 +391,18 @@ fn makehuman_with_a_punched_hole_gives_nearly_the_closed_solid() {
     );
 }
 
-/// A long thin figure (a capsule 40 times as long as it is thick) holds a few hundred interior
-/// voxels at 1 % of its length: `voxelize_figure` refines the grid until it holds about
-/// `min_interior`; the bundled human body already holds more and keeps the first grid.
+/// A long thin figure (a capsule ten times as long as it is thick) holds about two thousand
+/// interior voxels at 1 % of its length: `voxelize_figure` refines the grid until it holds
+/// about `min_interior`; a needle (80 times) is refined at most to half the voxel edge; the
+/// bundled human body already holds more and keeps the first grid.
 #[test]
 fn thin_figures_get_a_finer_grid_and_bodies_keep_theirs() {
     use skelfit::voxel::voxelize_figure;
-    let thin = Mesh::capsule(DVec3::ZERO, 0.05, 4.0, 16, 32);
+    let thin = Mesh::capsule(DVec3::ZERO, 0.2, 4.0, 16, 32);
     let options = VoxelOptions::default();
     let first = voxelize(&thin, &options).unwrap();
     let refined = voxelize_figure(&thin, &options).unwrap();
-    assert!(first.report.interior_voxels < options.min_interior / 4);
+    assert!(first.report.interior_voxels < options.min_interior / 2);
     let (fraction, held) = refined.report.refined_from.expect("refined");
     assert_eq!((fraction, held), (0.01, first.report.interior_voxels));
     let n = refined.report.interior_voxels;
@@ -410,6 +411,12 @@ fn thin_figures_get_a_finer_grid_and_bodies_keep_theirs() {
         "{n} interior voxels"
     );
     assert!(refined.grid.voxel_size < first.grid.voxel_size);
+    let needle = Mesh::capsule(DVec3::ZERO, 0.05, 8.0, 16, 32);
+    let coarse = voxelize(&needle, &options).unwrap();
+    let finer = voxelize_figure(&needle, &options).unwrap();
+    let ratio = finer.grid.voxel_size / coarse.grid.voxel_size;
+    assert!((ratio - 0.5).abs() < 1e-9, "{ratio}");
+    assert!(finer.report.interior_voxels > coarse.report.interior_voxels);
     let body = skelfit::mesh::load(
         &crate::common::data_dir().join("humanoid/mh_neutral_default/mesh.obj"),
     )
