@@ -69,7 +69,21 @@ pub(super) fn leg(
             };
             found.insert(Canonical::Ankle(side), a);
         }
-        None => warnings.push(RefineWarning::NoAnkle(side)),
+        // The trace stopped short (a gap between armour pieces, a boot that is a separate
+        // shell): the ankle stands at the ankle's height above the sole under the rough one.
+        None => {
+            let placed = options.ankle_height.and_then(|f| {
+                sole_under(mesh, frame, ank, SOLE_REACH * height)
+                    .map(|sole| frame.at_height(ank, sole + f * height))
+            });
+            if let Some(a) = placed {
+                found.insert(Canonical::Ankle(side), a);
+            }
+            warnings.push(RefineWarning::NoAnkle {
+                side,
+                placed: placed.is_some(),
+            });
+        }
     }
     let distal = found.get(&Canonical::Ankle(side)).copied().unwrap_or(ank);
     let by_ratio = || {
@@ -83,13 +97,22 @@ pub(super) fn leg(
     let knee = if crotch_hidden {
         by_ratio()
     } else {
-        bend_knee(&profile, hip, distal, step, scene)
-    };
-    match knee {
-        Some(k) => {
-            found.insert(Canonical::Knee(side), k);
+        match bend_knee(&profile, hip, distal, step, scene) {
+            Some(k) => Some(k),
+            // No bend on the curve (it ends above the knee's part of the leg): the surface
+            // says nothing, the proportions place it.
+            None => {
+                let k = by_ratio();
+                warnings.push(RefineWarning::NoKnee {
+                    side,
+                    placed: k.is_some(),
+                });
+                k
+            }
         }
-        None => warnings.push(RefineWarning::NoKnee(side)),
+    };
+    if let Some(k) = knee {
+        found.insert(Canonical::Knee(side), k);
     }
 }
 

@@ -39,10 +39,22 @@ pub enum RefineWarning {
     LegJointsMissing(Side),
     /// This side's leg could not be sliced.
     LegNotSliced(Side),
-    /// This side's leg's centroid curve ends above the ankle.
-    NoAnkle(Side),
-    /// No knee on this side's centroid curve.
-    NoKnee(Side),
+    /// This side's leg's centroid curve ends above the ankle: the ankle goes at the ankle's
+    /// height above the sole under the rough one when `placed`, else it stays rough.
+    NoAnkle {
+        /// The leg's side.
+        side: Side,
+        /// Whether the sole gave the ankle's height.
+        placed: bool,
+    },
+    /// No knee on this side's centroid curve: the knee goes at the leg ratio between hip and
+    /// ankle when `placed`, else it stays rough.
+    NoKnee {
+        /// The leg's side.
+        side: Side,
+        /// Whether the leg ratio placed it.
+        placed: bool,
+    },
     /// The spine curve's control points are out of order: the spine joints were carried along.
     SpineOutOfOrder,
     /// No spine without the head joint and the torso silhouette.
@@ -77,8 +89,9 @@ impl RefineWarning {
                 vec![C::Hip(Side::Left), C::Hip(Side::Right), C::Pelvis]
             }
             Self::LegJointsMissing(s) | Self::LegNotSliced(s) => vec![C::Knee(s), C::Ankle(s)],
-            Self::NoAnkle(s) => vec![C::Ankle(s)],
-            Self::NoKnee(s) => vec![C::Knee(s)],
+            Self::NoAnkle { placed: true, .. } | Self::NoKnee { placed: true, .. } => Vec::new(),
+            Self::NoAnkle { side, .. } => vec![C::Ankle(side)],
+            Self::NoKnee { side, .. } => vec![C::Knee(side)],
             Self::Kept(key) | Self::TooFar { key, .. } => vec![key],
             Self::NoUprightLegs | Self::SpineOutOfOrder | Self::NoSpine => Vec::new(),
         }
@@ -161,12 +174,26 @@ impl fmt::Display for RefineWarning {
                 C::Knee(*s),
                 C::Ankle(*s)
             ),
-            Self::NoAnkle(s) => write!(
+            Self::NoAnkle { side, placed } => write!(
                 f,
-                "{}: the leg's centroid curve ends above the ankle",
-                C::Ankle(*s)
+                "{}: the leg's centroid curve ends above the ankle; {}",
+                C::Ankle(*side),
+                if *placed {
+                    "placed at the ankle's height above the sole"
+                } else {
+                    "kept where the template fit put it"
+                }
             ),
-            Self::NoKnee(s) => write!(f, "{}: no knee on the leg's centroid curve", C::Knee(*s)),
+            Self::NoKnee { side, placed } => write!(
+                f,
+                "{}: no knee on the leg's centroid curve; {}",
+                C::Knee(*side),
+                if *placed {
+                    "placed by the leg's proportions between hip and ankle"
+                } else {
+                    "kept where the template fit put it"
+                }
+            ),
             Self::SpineOutOfOrder => write!(
                 f,
                 "spine: the spine curve's control points are out of order; spine joints carried along"
