@@ -1,9 +1,11 @@
 //! The refinement's leg phase: ankle and knee of one side (seed 004, 3.3).
 
 use super::driver::{Found, Rough, Scene};
+use super::geometry::nearest_loop;
 use super::limb::trace_limb;
 use super::limb_joints::{ankle, arc_near, bend, on_axis, sole_under, transverse_point, BendRule};
 use super::RefineWarning;
+use crate::mesh::slice_plane_outer;
 use crate::skeleton::{Canonical, Side};
 
 /// The sole under an ankle is searched within this fraction of height across the body.
@@ -45,6 +47,25 @@ pub(super) fn leg(
         warnings.push(RefineWarning::LegNotSliced(side));
         return;
     };
+    // The leg's own transverse section at the height of `p`: the closed loop nearest it lies
+    // wholly on this side of the body's centre (a leg apart from the other one, not a blob
+    // with the legs fused); its point at the knee depth.
+    let own_section = |p: glam::DVec3| {
+        let h = frame.h(p);
+        let origin = frame.at_height(p, h);
+        let loops = slice_plane_outer(mesh, origin, frame.up);
+        let apart = nearest_loop(&loops, origin)
+            .filter(|l| l.closed)
+            .is_some_and(|l| {
+                l.points
+                    .iter()
+                    .all(|q| (*q - centre).dot(frame.left) * side.sign() > 0.0)
+            });
+        if !apart {
+            return None;
+        }
+        transverse_point(mesh, frame, p, h, options.knee_depth.unwrap_or(0.5))
+    };
     let step = 0.25 * options.limb_step * height;
     let (sk, sa) = (arc_near(&profile, knee), arc_near(&profile, ank));
     let from = sk + options.ankle_search_from * (sa - sk);
@@ -70,11 +91,13 @@ pub(super) fn leg(
             found.insert(Canonical::Ankle(side), a);
         }
         // The trace stopped short (a gap between armour pieces, a boot that is a separate
-        // shell): the ankle stands at the ankle's height above the sole under the rough one.
+        // shell): the ankle stands at the ankle's height above the sole under the rough one,
+        // when the leg has its own cross-section there (not on a blob with fused legs).
         None => {
             let placed = options.ankle_height.and_then(|f| {
-                sole_under(mesh, frame, ank, SOLE_REACH * height)
-                    .map(|sole| frame.at_height(ank, sole + f * height))
+                let sole = sole_under(mesh, frame, ank, SOLE_REACH * height)?;
+                let a = frame.at_height(ank, sole + f * height);
+                own_section(a).map(|_| a)
             });
             if let Some(a) = placed {
                 found.insert(Canonical::Ankle(side), a);
@@ -100,9 +123,10 @@ pub(super) fn leg(
         match bend_knee(&profile, hip, distal, step, scene) {
             Some(k) => Some(k),
             // No bend on the curve (it ends above the knee's part of the leg): the surface
-            // says nothing, the proportions place it.
+            // says nothing, the proportions place it, inside the leg's own section.
             None => {
-                let k = by_ratio();
+                let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+                let k = own_section(frame.at_height(knee, h));
                 warnings.push(RefineWarning::NoKnee {
                     side,
                     placed: k.is_some(),
