@@ -170,7 +170,8 @@ pub fn label_graph(
         warnings,
     };
 
-    let mut legs = rules.legs();
+    let centre = trunk.centre();
+    let mut legs = rules.legs(centre);
     rules.wings();
     // Tail: an animal's before the head (its tail may reach as high as its head); a human-like
     // figure's after the head and the arms, which it may never take (a T-posed arm reaching
@@ -189,7 +190,6 @@ pub fn label_graph(
     if !human_like {
         rules.tail(&tail, &mut legs.single);
     }
-    let centre = trunk.centre();
     rules.head(trunk.has_junction, centre);
     let arms = rules.arms();
     if human_like {
@@ -270,14 +270,21 @@ impl Rules<'_> {
     }
 
     /// Legs: sections reaching the bottom of the figure, paired by where they join the trunk.
-    /// With two or more pairs the most anterior pair is fore, the others hind.
-    fn legs(&mut self) -> Legs {
+    /// With two or more pairs the most anterior pair is fore, the others hind. Paired limbs
+    /// mirror each other across the median plane (through `centre`): a section reaching the
+    /// back of the figure along that plane (a tail resting on the ground) is nobody's partner
+    /// and stays single, for the tail rule to consider.
+    fn legs(&mut self, centre: DVec3) -> Legs {
         let legs: Vec<usize> = self
             .unlabelled()
             .into_iter()
             .filter(|&s| self.sections[s].extreme.down)
             .collect();
-        let (mut pairs, single) = pair_up(&legs, self.sections, self.graph, f64::INFINITY);
+        let (median, lateral): (Vec<usize>, Vec<usize>) = legs.iter().partition(|&&s| {
+            self.sections[s].extreme.backward && self.on_median_plane(s, &legs, centre)
+        });
+        let (mut pairs, mut single) = pair_up(&lateral, self.sections, self.graph, f64::INFINITY);
+        single.extend(median);
         pairs.sort_by(|x, y| {
             (self.anterior(y.0) + self.anterior(y.1))
                 .total_cmp(&(self.anterior(x.0) + self.anterior(x.1)))
@@ -297,6 +304,23 @@ impl Rules<'_> {
             };
         }
         Legs { pairs, single }
+    }
+
+    /// Whether section `s` lies on the median plane through `centre` (normal `left`) where the
+    /// other sections of `among` stand off it: its voxel mean and its distal end are nearer to
+    /// the plane than a quarter of the farthest other section's mean. Paired limbs stand off
+    /// the plane by about the trunk's half-width on both sides; a median part mirrors onto
+    /// itself. Never with no other section to compare with.
+    fn on_median_plane(&self, s: usize, among: &[usize], centre: DVec3) -> bool {
+        let offset = |p: DVec3| (p - centre).dot(self.frame.left).abs();
+        let apart = among
+            .iter()
+            .filter(|&&t| t != s)
+            .map(|&t| offset(self.sections[t].mean))
+            .fold(0.0, f64::max);
+        let section = &self.sections[s];
+        let tolerance = 0.25 * apart;
+        apart > 0.0 && offset(section.mean) < tolerance && offset(section.distal) < tolerance
     }
 
     /// Wings: long sections with mostly linear cross-sections, in pairs.

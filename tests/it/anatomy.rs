@@ -159,6 +159,38 @@ fn quadrupeds_have_a_head_a_trunk_four_legs_and_a_tail() {
     }
 }
 
+/// A tail resting on the ground reaches the bottom of the figure like a leg but lies on the
+/// median plane, where no leg has a mirror partner: the rat's was paired with a hind leg
+/// (five legs, one unpaired) until legs on that plane stayed single for the tail rule.
+#[test]
+fn a_tail_lying_on_the_ground_is_a_tail_not_a_fifth_leg() {
+    let Some(dir) = common::model("quadruped/quaternius_rat") else {
+        return;
+    };
+    let (_, labels) = labelled(&dir, &LabelOptions::default());
+    assert_eq!(labels.count(Label::Tail), 1, "{:?}", parts(&labels));
+    let tail = &labels.parts[one(&labels, Label::Tail, None, None)];
+    assert!(
+        tail.distal.x.abs() < 0.05 * labels_extent(&labels),
+        "tail off the median plane"
+    );
+    for p in labels.parts.iter().filter(|p| p.label == Label::Leg) {
+        assert!(
+            p.side.is_some() && p.limb_pair.is_some(),
+            "an unpaired leg: {:?}",
+            parts(&labels)
+        );
+    }
+}
+
+/// The largest distance between two parts' distal ends: a size for tolerances.
+fn labels_extent(labels: &Labelling) -> f64 {
+    let ends: Vec<DVec3> = labels.parts.iter().map(|p| p.distal).collect();
+    ends.iter()
+        .flat_map(|a| ends.iter().map(move |b| a.distance(*b)))
+        .fold(0.0, f64::max)
+}
+
 /// Regression: CesiumMan's hair (protrusions behind the head, merged into the trunk beyond the
 /// arms' junction) and neck were labelled trunk, 512 of its 1388 head vertices.
 #[test]
