@@ -31,6 +31,8 @@ pub struct SkinOptions {
     /// from the nearest's path length to zero at this ratio, so blends stay local to the
     /// joints (a forearm does not move the waist beside it). Default 2.
     pub blend_ratio: f64,
+    /// Experimental: blend width in local radii (0: off).
+    pub blend_width: f64,
     /// Exponent of the depth weighting of the geodesic distance ([`SkinMethod::Geodesic`]
     /// only): a step into a voxel at depth `d` (voxels from the outside) costs its length
     /// times `d^-depth_exponent`, so a bone's distance leaks less through a thin contact of
@@ -86,6 +88,7 @@ impl Default for SkinOptions {
             falloff: 2.0,
             depth_exponent: 1.0,
             blend_ratio: 2.0,
+            blend_width: 0.0,
             voxel_smoothing_iterations: 75,
             smoothing_iterations: 32,
             sphere_scale: 1.0,
