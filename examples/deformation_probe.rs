@@ -85,7 +85,7 @@ fn blend_width(mesh: &Mesh, skeleton: &Skeleton, weights: &Weights) -> f64 {
         let (mut band, mut radius) = (Vec::new(), Vec::new());
         for (v, w) in weights.iter().enumerate() {
             let wp = w.iter().find(|x| x.0 == p).map_or(0.0, |x| x.1);
-            let wc = w.iter().find(|x| x.0.0 == c).map_or(0.0, |x| x.1);
+            let wc = w.iter().find(|x| x.0 .0 == c).map_or(0.0, |x| x.1);
             if wp + wc < 0.8 {
                 continue;
             }
@@ -129,7 +129,6 @@ fn main() {
             "depth_exponent" => skin.depth_exponent = v.parse().unwrap(),
             "voxel_smoothing" => skin.voxel_smoothing_iterations = v.parse().unwrap(),
             "smoothing" => skin.smoothing_iterations = v.parse().unwrap(),
-            "width" => skin.blend_width = v.parse().unwrap(),
             "leaf" => skin.leaf_extension = v.parse().unwrap(),
             "rig" => do_rig = v != "0",
             "only" => only = v.into(),
@@ -139,7 +138,10 @@ fn main() {
     let root = PathBuf::from("../shared/refdata");
     let (mut sum_ours, mut n_artist, mut lower) = (0.0, 0, 0);
     println!("model | rig>2x | on-artist>2x | artist>2x | mean% | blender% | rigid ours/artist | width ours/artist");
-    for (folder, kind) in [("humanoid", SweepKind::Humanoid), ("quadruped", SweepKind::Animal)] {
+    for (folder, kind) in [
+        ("humanoid", SweepKind::Humanoid),
+        ("quadruped", SweepKind::Animal),
+    ] {
         let mut dirs: Vec<PathBuf> = std::fs::read_dir(root.join(folder))
             .unwrap()
             .filter_map(Result::ok)
@@ -156,8 +158,14 @@ fn main() {
                 let mut options = RigOptions::default();
                 options.skin = skin;
                 match rig(&mesh, &options) {
-                    Ok(r) => over2(&mesh, &r.fit.skeleton, &r.fit.canonical, &exported(&r.skin.engine), kind)
-                        .to_string(),
+                    Ok(r) => over2(
+                        &mesh,
+                        &r.fit.skeleton,
+                        &r.fit.canonical,
+                        &exported(&r.skin.engine),
+                        kind,
+                    )
+                    .to_string(),
                     Err(e) => format!("err {e}"),
                 }
             } else {
@@ -208,7 +216,12 @@ fn artist_line(
     let canonical: BTreeMap<String, JointId> = reference
         .canonical
         .iter()
-        .filter_map(|(key, &id)| Some((key.clone(), skeleton.find(&reference.skeleton.joint(id).name)?)))
+        .filter_map(|(key, &id)| {
+            Some((
+                key.clone(),
+                skeleton.find(&reference.skeleton.joint(id).name)?,
+            ))
+        })
         .collect();
     let options = SkeletonSkinOptions {
         skin: *skin,
@@ -218,27 +231,43 @@ fn artist_line(
     let ours = exported(&skinned.skin.engine);
     let (low, high) = mesh.bounding_box()?;
     let size = (high - low).max_element();
-    let d = pose_distance(&mesh, &skeleton, &ours, &artist, &RandomPoseOptions::default()).ok()?;
+    let d = pose_distance(
+        &mesh,
+        &skeleton,
+        &ours,
+        &artist,
+        &RandomPoseOptions::default(),
+    )
+    .ok()?;
     let mean = 100.0 * d.mean / size;
-    let blender: Option<f64> = std::fs::read_to_string(Path::new("reports/deformation/deformation.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|j| {
-            let model = format!("{folder}/{name}");
-            j.as_array()
-                .or_else(|| j.get("models").and_then(|m| m.as_array()))?
-                .iter()
-                .find(|m| m.get("model").and_then(|x| x.as_str()) == Some(model.as_str()))
-                .and_then(|m| m.pointer("/blender_bone_heat_on_artist_skeleton/random_pose_distance/mean"))
-                .and_then(|x| x.as_f64())
-                .map(|x| 100.0 * x / size)
-        });
+    let blender: Option<f64> =
+        std::fs::read_to_string(Path::new("reports/deformation/deformation.json"))
+            .ok()
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+            .and_then(|j| {
+                let model = format!("{folder}/{name}");
+                j.as_array()
+                    .or_else(|| j.get("models").and_then(|m| m.as_array()))?
+                    .iter()
+                    .find(|m| m.get("model").and_then(|x| x.as_str()) == Some(model.as_str()))
+                    .and_then(|m| {
+                        m.pointer("/blender_bone_heat_on_artist_skeleton/random_pose_distance/mean")
+                    })
+                    .and_then(|x| x.as_f64())
+                    .map(|x| 100.0 * x / size)
+            });
     if std::env::var("PROBE_DIAG").is_ok() {
         diag(&mesh, &skeleton, &ours, &artist);
     }
     let on = over2(&mesh, &skeleton, &canonical, &ours, kind);
     let art = over2(&mesh, &skeleton, &canonical, &artist, kind);
-    let fmt = |x: usize| if x == usize::MAX { "-".to_string() } else { x.to_string() };
+    let fmt = |x: usize| {
+        if x == usize::MAX {
+            "-".to_string()
+        } else {
+            x.to_string()
+        }
+    };
     Some((
         format!(
             "{} | {} | {mean:.2} | {} | {:.2}/{:.2} | {:.2}/{:.2}",
@@ -262,8 +291,12 @@ fn diag(mesh: &Mesh, skeleton: &Skeleton, ours: &Weights, artist: &Weights) {
     let mut moved: BTreeMap<(usize, usize), (f64, usize)> = BTreeMap::new();
     let mut hist = [0usize; 11];
     for (o, a) in ours.iter().zip(artist) {
-        let Some(&(dom, wd)) = a.iter().max_by(|x, y| x.1.total_cmp(&y.1)) else { continue };
-        if wd < 0.95 { continue; }
+        let Some(&(dom, wd)) = a.iter().max_by(|x, y| x.1.total_cmp(&y.1)) else {
+            continue;
+        };
+        if wd < 0.95 {
+            continue;
+        }
         let mine = o.iter().find(|x| x.0 == dom).map_or(0.0, |x| x.1);
         hist[(mine * 10.0) as usize] += 1;
         for &(j, w) in o {
@@ -298,15 +331,39 @@ fn diag(mesh: &Mesh, skeleton: &Skeleton, ours: &Weights, artist: &Weights) {
     }
     let mut per: Vec<_> = per.into_iter().collect();
     per.sort_by(|a, b| b.1.total_cmp(&a.1));
-    let listed: Vec<String> = per.iter().take(10).map(|(j, e)| format!("{} {:.0}%", skeleton.joint(JointId(*j)).name, 100.0 * e / total)).collect();
-    println!("  error share by the artist's dominant joint: {}", listed.join(", "));
+    let listed: Vec<String> = per
+        .iter()
+        .take(10)
+        .map(|(j, e)| {
+            format!(
+                "{} {:.0}%",
+                skeleton.joint(JointId(*j)).name,
+                100.0 * e / total
+            )
+        })
+        .collect();
+    println!(
+        "  error share by the artist's dominant joint: {}",
+        listed.join(", ")
+    );
     let mut list: Vec<_> = moved.into_iter().collect();
     list.sort_by(|a, b| b.1 .0.total_cmp(&a.1 .0));
     for ((d, j), (w, n)) in list.into_iter().take(12) {
-        let rel = if skeleton.joint(JointId(j)).parent == Some(JointId(d)) { "child" }
-            else if skeleton.joint(JointId(d)).parent == Some(JointId(j)) { "parent" }
-            else if skeleton.joint(JointId(d)).parent.is_some() && skeleton.joint(JointId(d)).parent == skeleton.joint(JointId(j)).parent { "sibling" }
-            else { "other" };
-        println!("  {} -> {} ({rel}): {w:.1} over {n}", skeleton.joint(JointId(d)).name, skeleton.joint(JointId(j)).name);
+        let rel = if skeleton.joint(JointId(j)).parent == Some(JointId(d)) {
+            "child"
+        } else if skeleton.joint(JointId(d)).parent == Some(JointId(j)) {
+            "parent"
+        } else if skeleton.joint(JointId(d)).parent.is_some()
+            && skeleton.joint(JointId(d)).parent == skeleton.joint(JointId(j)).parent
+        {
+            "sibling"
+        } else {
+            "other"
+        };
+        println!(
+            "  {} -> {} ({rel}): {w:.1} over {n}",
+            skeleton.joint(JointId(d)).name,
+            skeleton.joint(JointId(j)).name
+        );
     }
 }

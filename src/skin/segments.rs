@@ -40,8 +40,9 @@ impl SegmentVoxels {
 /// tree chains (the anatomical fit, reference rigs, tests).
 ///
 /// Every deforming joint gets one segment per child (the bone from it to the child); a
-/// deforming leaf joint gets a segment continuing its parent bone's direction for
-/// [`SkinOptions::leaf_extension`] of its length, cut where it leaves the figure. The chain
+/// deforming leaf joint gets a segment continuing its parent bone's direction for at most
+/// [`SkinOptions::leaf_extension`] of its length, to the end of its body part (see
+/// `leaf_tip`: where the figure ends or another bone's part begins). The chain
 /// voxels are the interior voxels nearest to sample points every
 /// [`SkinOptions::bone_sample_spacing`] voxels along the segment (searched within
 /// [`SkinOptions::bone_search_radius`]). Segments come in joint order, children in joint order.
@@ -119,7 +120,11 @@ fn leaf_tip(
         return joint.position;
     };
     let bone = joint.position - skeleton.joint(parent).position;
-    let far = joint.position + bone * options.leaf_extension.max(0.0);
+    // No farther than across the grid: the figure ends before.
+    let grid_size =
+        (DVec3::from(solid.grid.dims.map(|d| d as f64)) * solid.grid.voxel_size).length();
+    let reach = (bone.length() * options.leaf_extension.max(0.0)).min(grid_size);
+    let far = joint.position + bone.normalize_or_zero() * reach;
     let grid = &solid.grid;
     let steps = samples(
         joint.position,

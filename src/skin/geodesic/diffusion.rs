@@ -76,20 +76,6 @@ fn voxel_row(
     };
     let blend_ratio = options.blend_ratio;
     let slot = c as usize * LABELS;
-    if options.blend_width > 0.0 {
-        let nearest = f64::from(field.distances[slot]);
-        for k in 0..LABELS {
-            let joint = field.labels[slot + k];
-            if joint == NONE {
-                break;
-            }
-            let t = (f64::from(field.distances[slot + k]) - nearest) / options.blend_width;
-            if t < 1.0 {
-                mixer.add(joint, (1.0 - t).powi(2));
-            }
-        }
-        return mixer.pruned(0.0);
-    }
     for k in 0..LABELS {
         let joint = field.labels[slot + k];
         if joint == NONE {
