@@ -255,6 +255,53 @@ mod tests {
     use crate::skeleton::Joint;
     use crate::voxel::{voxelize, VoxelOptions, VoxelSize};
 
+    /// Regression (issue 20): a head beyond a short neck took only one neck length of segment,
+    /// and the neck shared the head's skin. The leaf runs to the end of the figure, and stops
+    /// where another bone's part begins.
+    #[test]
+    fn a_leaf_runs_to_the_end_of_its_part_but_not_into_another_bone() {
+        // A box 4 long in y: a short "neck" bone 1.0 -> 1.2, its leaf "head" runs to the top.
+        let mesh = Mesh::cuboid(DVec3::new(-0.5, 0.0, -0.5), DVec3::new(0.5, 4.0, 0.5));
+        let options = VoxelOptions {
+            size: VoxelSize::Absolute(0.1),
+            ..Default::default()
+        };
+        let solid = voxelize(&mesh, &options).unwrap();
+        let distance = edt(&solid);
+        let mut skeleton = Skeleton {
+            joints: vec![
+                Joint::new("neck", None, DVec3::new(0.0, 1.0, 0.0)),
+                Joint::new("head", Some(JointId(0)), DVec3::new(0.0, 1.2, 0.0)),
+            ],
+        };
+        let tip = |skeleton: &Skeleton| {
+            let segments = bone_segments(skeleton, &solid, &distance, &SkinOptions::default());
+            segments
+                .iter()
+                .find(|s| s.joint == JointId(1))
+                .unwrap()
+                .tip
+                .unwrap()
+        };
+        let head = tip(&skeleton);
+        assert!(head.y > 3.8, "the head's segment ends at {head}");
+        // A bone of another chain in the way (an IK foot joint and its bone at y 3..3.3):
+        // the leaf stops about the local radius (0.5) before it.
+        skeleton
+            .joints
+            .push(Joint::new("ik", None, DVec3::new(0.0, 3.0, 0.0)));
+        skeleton.joints.push(Joint::new(
+            "toe",
+            Some(JointId(2)),
+            DVec3::new(0.0, 3.3, 0.0),
+        ));
+        let head = tip(&skeleton);
+        assert!(
+            head.y > 2.2 && head.y < 2.7,
+            "the head's segment ends at {head}"
+        );
+    }
+
     #[test]
     fn bones_get_interior_chains_and_leaves_stop_at_the_surface() {
         // A box 4 long in y; the chain ends 1 below the top.
