@@ -155,8 +155,10 @@ fn main() {
             }
             let rig_over = if do_rig {
                 let mesh = load(&dir.join("mesh.obj")).unwrap();
-                let mut options = RigOptions::default();
-                options.skin = skin;
+                let options = RigOptions {
+                    skin,
+                    ..Default::default()
+                };
                 match rig(&mesh, &options) {
                     Ok(r) => over2(
                         &mesh,
