@@ -316,6 +316,7 @@ fn refine_code(w: &RefineWarning) -> &'static str {
         RefineWarning::NoKnee(_) => "no_knee",
         RefineWarning::SpineOutOfOrder => "spine_out_of_order",
         RefineWarning::NoSpine => "no_spine",
+        RefineWarning::CoarseSpineKept(_) => "coarse_spine_kept",
         RefineWarning::Kept(_) => "kept",
         RefineWarning::TooFar { .. } => "too_far",
     }

@@ -47,6 +47,8 @@ pub enum RefineWarning {
     SpineOutOfOrder,
     /// No spine without the head joint and the torso silhouette.
     NoSpine,
+    /// `--spine full` was asked for, but the rig keeps the template's spine joints: why.
+    CoarseSpineKept(super::NoFullSpine),
     /// The joint was not found and kept its rough position.
     Kept(Canonical),
     /// The refined position was too far from the rough one ([`super::RefineOptions::max_shift`]).
@@ -80,7 +82,10 @@ impl RefineWarning {
             Self::NoAnkle(s) => vec![C::Ankle(s)],
             Self::NoKnee(s) => vec![C::Knee(s)],
             Self::Kept(key) | Self::TooFar { key, .. } => vec![key],
-            Self::NoUprightLegs | Self::SpineOutOfOrder | Self::NoSpine => Vec::new(),
+            Self::NoUprightLegs
+            | Self::SpineOutOfOrder
+            | Self::NoSpine
+            | Self::CoarseSpineKept(_) => Vec::new(),
         }
     }
 
@@ -174,6 +179,10 @@ impl fmt::Display for RefineWarning {
             Self::NoSpine => write!(
                 f,
                 "spine: no spine without the head joint and the torso silhouette"
+            ),
+            Self::CoarseSpineKept(why) => write!(
+                f,
+                "spine: kept the template's spine joints instead of the full spine: {why}"
             ),
             Self::Kept(key) => write!(f, "{key}: kept at the unrefined position"),
             Self::TooFar { key, distance } => write!(
