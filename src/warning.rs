@@ -317,6 +317,7 @@ fn refine_code(w: &RefineWarning) -> &'static str {
         RefineWarning::SpineOutOfOrder => "spine_out_of_order",
         RefineWarning::NoSpine => "no_spine",
         RefineWarning::CoarseSpineKept(_) => "coarse_spine_kept",
+        RefineWarning::SpineAlongChain => "spine_along_chain",
         RefineWarning::Kept(_) => "kept",
         RefineWarning::TooFar { .. } => "too_far",
     }

@@ -38,10 +38,8 @@ pub enum NoFullSpine {
     NotRefined,
     /// The template has no `[full_spine]` limits.
     NoLimits,
-    /// The refinement found no spine curve.
+    /// The spine joints given are not `C1`..`L5` and `sacrum` in order.
     NoCurve,
-    /// The pelvis, neck or head kept its unrefined position, so the curve does not meet them.
-    EndsNotRefined,
     /// The skeleton has no pelvis and head with the head above the pelvis in the tree.
     NoChain,
 }
@@ -51,8 +49,7 @@ impl fmt::Display for NoFullSpine {
         f.write_str(match self {
             Self::NotRefined => "the figure's template has no slicing refinement (or it is off)",
             Self::NoLimits => "the template declares no [full_spine] limits",
-            Self::NoCurve => "the refinement found no spine curve",
-            Self::EndsNotRefined => "the pelvis, neck or head kept its unrefined position",
+            Self::NoCurve => "the spine joints are not C1..L5 and the sacrum in order",
             Self::NoChain => "the skeleton has no chain from the pelvis to the head",
         })
     }
@@ -188,19 +185,28 @@ pub fn full_spine(
 /// [`RefineWarning::CoarseSpineKept`] saying why not.
 pub(super) fn with_full_spine(mut refined: Refinement, template: &Template) -> Refinement {
     let ends = [Canonical::Pelvis, Canonical::Neck, Canonical::Head];
+    let on_curve =
+        !refined.spine.is_empty() && ends.iter().all(|k| refined.moved.contains_key(k.as_str()));
     let result = match template.full_spine.as_ref() {
         None => Err(NoFullSpine::NoLimits),
-        Some(_) if refined.spine.is_empty() => Err(NoFullSpine::NoCurve),
-        Some(_) if ends.iter().any(|k| !refined.moved.contains_key(k.as_str())) => {
-            Err(NoFullSpine::EndsNotRefined)
+        Some(dofs) => {
+            let spine = match on_curve {
+                true => Some(refined.spine.clone()),
+                false => along_chain(&refined.skeleton, &refined.canonical),
+            };
+            if !on_curve && spine.is_some() {
+                refined.warnings.push(RefineWarning::SpineAlongChain);
+            }
+            spine.ok_or(NoFullSpine::NoChain).and_then(|spine| {
+                full_spine(
+                    &refined.skeleton,
+                    &refined.canonical,
+                    &spine,
+                    -refined.frame.forward,
+                    dofs,
+                )
+            })
         }
-        Some(dofs) => full_spine(
-            &refined.skeleton,
-            &refined.canonical,
-            &refined.spine,
-            -refined.frame.forward,
-            dofs,
-        ),
     };
     match result {
         Ok((skeleton, mut canonical)) => {
@@ -211,6 +217,74 @@ pub(super) fn with_full_spine(mut refined: Refinement, template: &Template) -> R
         Err(why) => refined.warnings.push(RefineWarning::CoarseSpineKept(why)),
     }
     refined
+}
+
+/// Length of a lumbar motion segment over a thoracic one: adult columns measure about 27 cm
+/// for T1-T12 and 18 cm for L1-L5 with their discs (Gray's Anatomy, 41st ed., ch. 43).
+const LUMBAR_PER_THORACIC: f64 = 1.6;
+
+/// The full spine's joints spread along the skeleton's own chain when the refinement found no
+/// spine curve (or it does not meet the refined pelvis, neck and head): C1..C6 evenly from
+/// the head down to `C7` at the canonical neck; T1..L5 and the sacrum from the neck down to
+/// the pelvis, lumbar intervals [`LUMBAR_PER_THORACIC`] times the thoracic ones, the sacrum
+/// half an interval above the pelvis. Top first, named as [`VERTEBRA_NAMES`]; `None` without a
+/// pelvis → neck → head chain.
+pub fn along_chain(
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+) -> Option<Vec<(String, DVec3)>> {
+    let key = |k: Canonical| canonical.get(k.as_str()).copied();
+    let (pelvis, neck, head) = (
+        key(Canonical::Pelvis)?,
+        key(Canonical::Neck)?,
+        key(Canonical::Head)?,
+    );
+    let path = |from: JointId, to: JointId| -> Option<Vec<DVec3>> {
+        let mut points: Vec<DVec3> = between(skeleton, from, to)?
+            .iter()
+            .map(|j| skeleton.joint(*j).position)
+            .collect();
+        points.insert(0, skeleton.joint(to).position);
+        points.push(skeleton.joint(from).position);
+        Some(points) // `to` first
+    };
+    let neck_to_head: Vec<DVec3> = path(neck, head)?.into_iter().rev().collect();
+    let neck_to_pelvis = path(pelvis, neck)?;
+    let mut out = Vec::with_capacity(VERTEBRA_NAMES.len());
+    // C1..C7: fractions 1/7..7/7 of the way from the head to the neck.
+    for k in 1..=7 {
+        let p = at_fraction(&neck_to_head, 1.0 - f64::from(k) / 7.0);
+        out.push(p);
+    }
+    // T1..T12, L1..L5, sacrum below the neck.
+    let (a, b) = (1.0, LUMBAR_PER_THORACIC);
+    let total = 12.0 * a + 6.5 * b;
+    let mut along = 0.0;
+    for k in 0..18 {
+        along += if k < 12 { a } else { b };
+        out.push(at_fraction(&neck_to_pelvis, along / total));
+    }
+    Some(
+        VERTEBRA_NAMES
+            .iter()
+            .map(|n| n.to_string())
+            .zip(out)
+            .collect(),
+    )
+}
+
+/// The point at `t` (0..1) of a polyline's length.
+fn at_fraction(points: &[DVec3], t: f64) -> DVec3 {
+    let total: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+    let mut s = t.clamp(0.0, 1.0) * total;
+    for w in points.windows(2) {
+        let l = w[0].distance(w[1]);
+        if s <= l && l > 0.0 {
+            return w[0].lerp(w[1], s / l);
+        }
+        s -= l;
+    }
+    points.last().copied().unwrap_or(DVec3::ZERO)
 }
 
 /// A joint of the new skeleton: an old one by index, or a spine joint by its index from the
@@ -364,6 +438,23 @@ mod tests {
         let f = out.joint(map["T6"]).frame;
         assert!((f * DVec3::Z).distance(DVec3::Y) < 1e-9);
         assert!((f * DVec3::Y).distance(DVec3::NEG_Z) < 1e-9);
+    }
+
+    #[test]
+    fn along_the_chain_the_joints_descend_from_head_to_pelvis() {
+        let (skeleton, canonical) = coarse();
+        let spine = along_chain(&skeleton, &canonical).expect("a chain");
+        let names: Vec<&str> = spine.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, VERTEBRA_NAMES);
+        assert!(
+            (spine[6].1.y - 1.45).abs() < 1e-9,
+            "C7 at the neck: {spine:?}"
+        );
+        let mut above = 1.55;
+        for (n, p) in &spine {
+            assert!(p.y < above && p.y > 1.0, "{n} {p}");
+            above = p.y;
+        }
     }
 
     #[test]

@@ -49,6 +49,9 @@ pub enum RefineWarning {
     NoSpine,
     /// `--spine full` was asked for, but the rig keeps the template's spine joints: why.
     CoarseSpineKept(super::NoFullSpine),
+    /// `--spine full`: no spine curve meeting the refined pelvis, neck and head, so the
+    /// vertebrae were spread along the skeleton's trunk and neck ([`super::along_chain`]).
+    SpineAlongChain,
     /// The joint was not found and kept its rough position.
     Kept(Canonical),
     /// The refined position was too far from the rough one ([`super::RefineOptions::max_shift`]).
@@ -85,7 +88,8 @@ impl RefineWarning {
             Self::NoUprightLegs
             | Self::SpineOutOfOrder
             | Self::NoSpine
-            | Self::CoarseSpineKept(_) => Vec::new(),
+            | Self::CoarseSpineKept(_)
+            | Self::SpineAlongChain => Vec::new(),
         }
     }
 
@@ -183,6 +187,10 @@ impl fmt::Display for RefineWarning {
             Self::CoarseSpineKept(why) => write!(
                 f,
                 "spine: kept the template's spine joints instead of the full spine: {why}"
+            ),
+            Self::SpineAlongChain => write!(
+                f,
+                "spine: no spine curve through the refined pelvis, neck and head; vertebrae spread along the fitted trunk and neck"
             ),
             Self::Kept(key) => write!(f, "{key}: kept at the unrefined position"),
             Self::TooFar { key, distance } => write!(
