@@ -12,7 +12,8 @@ use crate::medial::{dms, MedialOptions, MedialSurface};
 use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
 use crate::refine::{
-    refine_fit, symmetrize, NoFullSpine, RefineError, RefineOptions, RefineWarning, SpineDetail,
+    pull_inside, refine_fit, symmetrize, NoFullSpine, RefineError, RefineOptions, RefineWarning,
+    SpineDetail,
 };
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
@@ -344,6 +345,13 @@ fn refine_stage(
             fit.skeleton = refined.skeleton;
             fit.canonical = refined.canonical;
             warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
+            if options.spine == SpineDetail::Full {
+                let (skeleton, canonical) = (&mut fit.skeleton, &fit.canonical);
+                let moved = pull_inside(skeleton, canonical, mesh, solid, input.forward);
+                if !moved.is_empty() {
+                    warnings.push(Warning::Refine(RefineWarning::VertebraeMovedInside(moved)));
+                }
+            }
         }
         Err(e) => warnings.push(
             RigWarning::RefineFailed {

@@ -11,9 +11,11 @@
 
 use super::{RefineWarning, Refinement};
 use crate::fit::assign_trunk_keys;
+use crate::mesh::{winding_number, Mesh};
 use crate::skeleton::canonical::{Vertebra, VERTEBRA_NAMES};
 use crate::skeleton::{Canonical, Joint, JointId, Skeleton};
 use crate::template::{FullSpineDofs, Template};
+use crate::voxel::Solid;
 use glam::{DMat3, DQuat, DVec3};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -285,6 +287,74 @@ fn at_fraction(points: &[DVec3], t: f64) -> DVec3 {
         s -= l;
     }
     points.last().copied().unwrap_or(DVec3::ZERO)
+}
+
+/// Moves each full-spine joint of `skeleton` (the [`VERTEBRA_NAMES`] keys of `canonical`)
+/// that is outside the body (its voxel outside `solid`, or `mesh`'s [`winding_number`] there
+/// below one half) along ±`forward`, keeping its height so that the order along the back
+/// holds, to the nearest inside point on that line in half-voxel steps, a step deeper when
+/// that is inside too; at most a fifth of the grid's longest side. Clothes or armour layered
+/// over a body leave gaps between shells (which the joined solid bridges) where the spine
+/// curve can pass; the joints belong in the body. Frames of the moved joints and of those
+/// below them turn to their new segments. Returns the names of the joints moved.
+pub fn pull_inside(
+    skeleton: &mut Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    mesh: &Mesh,
+    solid: &Solid,
+    forward: DVec3,
+) -> Vec<String> {
+    let grid = &solid.grid;
+    let inside = |p: DVec3| {
+        grid.voxel_at(p)
+            .is_some_and(|v| solid.inside[grid.index(v)])
+            && winding_number(mesh, p) > 0.5
+    };
+    let Some(forward) = forward.try_normalize() else {
+        return Vec::new();
+    };
+    let h = grid.voxel_size * 0.5;
+    let max_steps = grid.dims.iter().copied().max().unwrap_or(0) * 2 / 5;
+    let ids: Vec<JointId> = VERTEBRA_NAMES
+        .iter()
+        .filter_map(|n| canonical.get(*n).copied())
+        .filter(|id| id.0 < skeleton.len())
+        .collect();
+    let mut moved = Vec::new();
+    for &id in &ids {
+        let p = skeleton.joint(id).position;
+        if inside(p) {
+            continue;
+        }
+        let found = (1..=max_steps).find_map(|k| {
+            [1.0, -1.0].into_iter().find_map(|sign| {
+                let step = forward * (sign * h);
+                let q = p + step * k as f64;
+                inside(q).then(|| if inside(q + step) { q + step } else { q })
+            })
+        });
+        if let Some(q) = found {
+            skeleton.joints[id.0].position = q;
+            moved.push(id);
+        }
+    }
+    // Frames: each vertebral joint's z points at the joint above it (its only chain child).
+    for (k, &id) in ids.iter().enumerate() {
+        let above = match k {
+            0 => skeleton.children(id).first().copied(),
+            _ => Some(ids[k - 1]),
+        };
+        let touched = moved.contains(&id) || above.is_some_and(|a| moved.contains(&a));
+        if let (true, Some(above)) = (touched, above) {
+            let dorsal = skeleton.joint(id).frame * DVec3::Y;
+            let (at, next) = (skeleton.joint(id).position, skeleton.joint(above).position);
+            skeleton.joints[id.0].frame = axial_frame(at, next, dorsal);
+        }
+    }
+    moved
+        .iter()
+        .map(|id| skeleton.joint(*id).name.clone())
+        .collect()
 }
 
 /// A joint of the new skeleton: an old one by index, or a spine joint by its index from the

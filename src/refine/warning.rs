@@ -52,6 +52,9 @@ pub enum RefineWarning {
     /// `--spine full`: no spine curve meeting the refined pelvis, neck and head, so the
     /// vertebrae were spread along the skeleton's trunk and neck ([`super::along_chain`]).
     SpineAlongChain,
+    /// `--spine full`: these vertebral joints were outside the body (a gap between layered
+    /// shells) and were moved inside along the forward axis ([`super::pull_inside`]).
+    VertebraeMovedInside(Vec<String>),
     /// The joint was not found and kept its rough position.
     Kept(Canonical),
     /// The refined position was too far from the rough one ([`super::RefineOptions::max_shift`]).
@@ -89,7 +92,8 @@ impl RefineWarning {
             | Self::SpineOutOfOrder
             | Self::NoSpine
             | Self::CoarseSpineKept(_)
-            | Self::SpineAlongChain => Vec::new(),
+            | Self::SpineAlongChain
+            | Self::VertebraeMovedInside(_) => Vec::new(),
         }
     }
 
@@ -191,6 +195,11 @@ impl fmt::Display for RefineWarning {
             Self::SpineAlongChain => write!(
                 f,
                 "spine: no spine curve through the refined pelvis, neck and head; vertebrae spread along the fitted trunk and neck"
+            ),
+            Self::VertebraeMovedInside(names) => write!(
+                f,
+                "spine: {} outside the body, moved inside along the forward axis",
+                names.join(", ")
             ),
             Self::Kept(key) => write!(f, "{key}: kept at the unrefined position"),
             Self::TooFar { key, distance } => write!(
