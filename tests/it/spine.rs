@@ -5,7 +5,7 @@
 
 use crate::common;
 use glam::{DAffine3, DQuat, DVec3};
-use skelfit::mesh::{load, load_gltf_scene, Mesh};
+use skelfit::mesh::{load, load_gltf_scene, winding_number, Mesh};
 use skelfit::pipeline::{rig, Rig, RigOptions};
 use skelfit::refine::{SpineDetail, GIRDLE_VERTEBRA};
 use skelfit::skeleton::canonical::VERTEBRA_NAMES;
@@ -64,24 +64,6 @@ fn stretch(mesh: &Mesh, posed: &[DVec3]) -> (f64, usize) {
         }
     }
     (worst, over_2)
-}
-
-/// The generalised winding number of `mesh` at `p` (Jacobson et al. 2013): the triangles'
-/// signed solid angles (Van Oosterom and Strackee 1983) over 4π; about 1 inside a closed
-/// outward-wound surface (2 where two shells overlap), 0 outside.
-fn winding_number(mesh: &Mesh, p: DVec3) -> f64 {
-    let total: f64 = mesh
-        .triangles
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| mesh.positions[i as usize] - p);
-            let (la, lb, lc) = (a.length(), b.length(), c.length());
-            let numerator = a.dot(b.cross(c));
-            let denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-            2.0 * numerator.atan2(denominator)
-        })
-        .sum();
-    total / (4.0 * std::f64::consts::PI)
 }
 
 /// The engine weights written to the .glb (four per vertex) as `(joint, weight)` lists.
