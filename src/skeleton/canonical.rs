@@ -151,7 +151,7 @@ impl Vertebra {
 
     /// The joint at `index` from the top (0 = `C1`), if there is one.
     pub fn new(index: usize) -> Option<Self> {
-        (index < VERTEBRA_NAMES.len()).then(|| Self(index as u8))
+        (index < VERTEBRA_NAMES.len()).then_some(Self(index as u8))
     }
 
     /// Its index from the top (0 = `C1`, 24 = `sacrum`).
