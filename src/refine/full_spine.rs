@@ -228,7 +228,7 @@ const LUMBAR_PER_THORACIC: f64 = 1.6;
 /// The full spine's joints spread along the skeleton's own chain when the refinement found no
 /// spine curve (or it does not meet the refined pelvis, neck and head): C1..C6 evenly from
 /// the head down to `C7` at the canonical neck; T1..L5 and the sacrum from the neck down to
-/// the pelvis, lumbar intervals [`LUMBAR_PER_THORACIC`] times the thoracic ones, the sacrum
+/// the pelvis, lumbar intervals 1.6 times the thoracic ones (adult proportions), the sacrum
 /// half an interval above the pelvis. Top first, named as [`VERTEBRA_NAMES`]; `None` without a
 /// pelvis → neck → head chain.
 pub fn along_chain(
