@@ -107,7 +107,15 @@ fn json_is_the_whole_stdout_of_skeleton_skin_simplify_study_and_demo() {
         p(&skinned),
         "--json",
     ]);
-    assert_eq!(skin["joints"], general["joints"]);
+    let names = |v: &serde_json::Value| -> Vec<serde_json::Value> {
+        v["joints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|j| j["name"].clone())
+            .collect()
+    };
+    assert_eq!(names(&skin), names(&general));
 
     let simplified = d.join("simplified.json");
     let simplify = json_of(&[
