@@ -316,6 +316,9 @@ fn refine_code(w: &RefineWarning) -> &'static str {
         RefineWarning::NoKnee { .. } => "no_knee",
         RefineWarning::SpineOutOfOrder => "spine_out_of_order",
         RefineWarning::NoSpine => "no_spine",
+        RefineWarning::CoarseSpineKept(_) => "coarse_spine_kept",
+        RefineWarning::SpineAlongChain => "spine_along_chain",
+        RefineWarning::VertebraeMovedInside(_) => "vertebrae_moved_inside",
         RefineWarning::Kept(_) => "kept",
         RefineWarning::TooFar { .. } => "too_far",
     }

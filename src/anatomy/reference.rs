@@ -33,6 +33,7 @@
 
 use super::{Label, Labelling, LimbPair, Side};
 use crate::mesh::Mesh;
+use crate::skeleton::canonical::SpineRegion;
 use crate::skeleton::Canonical;
 use crate::skeleton::{JointId, Skeleton};
 use glam::DVec3;
@@ -94,6 +95,10 @@ fn key_region(key: &str) -> Option<Region> {
             Region::Hind(None)
         }
         Canonical::Tail(_) => Region::Tail,
+        Canonical::Vertebra(v) => match v.region() {
+            SpineRegion::Cervical => Region::Head,
+            _ => Region::Trunk,
+        },
     };
     Some(region.with_side(key.side()))
 }

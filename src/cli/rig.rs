@@ -4,7 +4,8 @@
 //! skeleton JSON on stdout.
 
 use super::common::{
-    load_model, millis, note, output_frame, require_mesh_output, say, Outputs, VoxelArgs,
+    load_model, millis, note, output_frame, require_mesh_output, say, Outputs, UsageError,
+    VoxelArgs,
 };
 use super::skeleton::with_spinner;
 use anyhow::Context;
@@ -15,6 +16,7 @@ use skelfit::export::{
     bvh_text, glb_bytes, model_glb_bytes, skeleton_json, BvhOptions, GltfOptions, JsonOptions,
 };
 use skelfit::pipeline::{rig, Rig, RigOptions, TemplateChoice, GENERAL};
+use skelfit::refine::SpineDetail;
 use skelfit::template::{Preset, Template};
 use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
@@ -107,6 +109,13 @@ pub struct RigArgs {
     /// median plane (figures that are not symmetric, e.g. posed with one arm raised, keep theirs).
     #[arg(long, value_name = "on|off", default_value = "on", value_parser = ["on", "off"])]
     pub symmetry: String,
+    /// Spine of a humanoid rig: `coarse`, the template's trunk and neck joints placed on the
+    /// spine curve; `full`, the 24 inter-vertebral joints C1..C7, T1..T12, L1..L5 and the
+    /// sacrum from the pelvis to the head (clavicles on T1), with per-region anatomical limits.
+    /// `full` needs `--preset anatomical` and `--refine on`; a figure that is not a humanoid,
+    /// or whose spine the refinement does not find, keeps the coarse spine with a warning.
+    #[arg(long, value_name = "coarse|full", default_value = "coarse", value_parser = ["coarse", "full"])]
+    pub spine: String,
     /// Fail (exit code 1, nothing written) when the rig lacks a body part the template expects
     /// (a head, an arm, a leg, a wing), or when no template fits the figure (`--template auto`
     /// then fits the general control skeleton), instead of writing it with a warning.
@@ -130,6 +139,13 @@ impl RigArgs {
         options.fit.preset = self.preset.into();
         options.refine.in_rig = self.refine == "on";
         options.refine.symmetry = self.symmetry == "on";
+        if self.spine == "full" {
+            options.refine.spine = SpineDetail::Full;
+            // Conflicts (an engine preset, the refinement off) are usage errors.
+            options
+                .full_spine_conflicts()
+                .map_err(|e| UsageError(e.to_string()))?;
+        }
         if let Some(path) = &self.labels {
             options.overrides = Some(Overrides::load(path)?);
         }

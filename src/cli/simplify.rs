@@ -111,7 +111,7 @@ pub fn run(args: &SimplifyArgs) -> anyhow::Result<()> {
     };
     let json = skeleton_json(&simplified, &options)?;
     if super::common::json_mode() {
-        super::common::say!("{}", json.trim_end());
+        println!("{}", json.trim_end());
     }
     outputs.add(&args.output, json);
     outputs.write()?;

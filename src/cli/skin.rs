@@ -138,7 +138,7 @@ pub fn run(args: &SkinArgs) -> anyhow::Result<()> {
     outputs.write()?;
     let export_ms = millis(clock);
     if let (true, Some(text)) = (super::common::json_mode(), &json_text) {
-        say!("{}", text.trim_end());
+        println!("{}", text.trim_end());
     }
     print_summary(args, &rig, &skinned, [load_ms, skin_ms, export_ms]);
     super::common::print_warnings(&skinned.warnings);

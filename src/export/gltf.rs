@@ -145,13 +145,6 @@ pub fn glb_bytes_with(
     link_children(&mut nodes, skeleton, &attached);
 
     let bin_len = bin.bytes.len();
-    if u32::try_from(bin_len).is_err() {
-        return Err(ExportError::TooLarge {
-            what: "the mesh",
-            format: "GLB",
-            detail: format!("{bin_len} bytes of binary data, a GLB holds under 4 GiB"),
-        });
-    }
     let mut document = json!({
         "asset": {"version": "2.0", "generator": options.generator},
         "scene": 0,
@@ -546,6 +539,10 @@ impl Binary {
 
 /// Packs a JSON document and binary data into a GLB container (glTF 2.0 §4.4): a 12-byte
 /// header, the JSON chunk padded with spaces and the BIN chunk padded with zeros to 4 bytes.
+///
+/// # Errors
+/// [`ExportError::TooLarge`] when the container (and so its binary chunk, whose length the
+/// document's `buffers[0].byteLength` also states) would not fit the format's 32-bit sizes.
 pub(super) fn pack_glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, ExportError> {
     while json.len() % 4 != 0 {
         json.push(b' ');
@@ -557,7 +554,10 @@ pub(super) fn pack_glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Result<Vec<u8>, E
     let too_large = || ExportError::TooLarge {
         what: "the file",
         format: "GLB",
-        detail: format!("{total} bytes, a GLB holds under 4 GiB"),
+        detail: format!(
+            "{total} bytes ({} of binary data), a GLB holds under 4 GiB",
+            bin.len()
+        ),
     };
     let total32 = u32::try_from(total).map_err(|_| too_large())?;
     let mut out = Vec::with_capacity(total);

@@ -133,13 +133,6 @@ pub fn model_glb_bytes(
     }
     let Copier { bin, .. } = copy;
     let bin_len = bin.bytes.len();
-    if u32::try_from(bin_len).is_err() {
-        return Err(ExportError::TooLarge {
-            what: "the model",
-            format: "GLB",
-            detail: format!("{bin_len} bytes of binary data, a GLB holds under 4 GiB"),
-        });
-    }
     document["accessors"] = Value::Array(accessors_out);
     document["bufferViews"] = Value::Array(bin.views);
     document["buffers"] = json!([{"byteLength": bin_len}]);

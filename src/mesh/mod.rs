@@ -38,6 +38,7 @@ mod stats;
 mod stl;
 mod topology;
 mod weld;
+mod winding;
 
 pub use self::gltf::{load_gltf, load_gltf_scene, GltfScene};
 pub use error::MeshError;
@@ -52,6 +53,7 @@ pub use slice_sphere::slice_sphere;
 pub use stats::MeshStats;
 pub use stl::load_stl;
 pub use topology::DEGENERATE_AREA_FRACTION;
+pub use winding::winding_number;
 
 use glam::DVec3;
 

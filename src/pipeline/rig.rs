@@ -11,7 +11,10 @@ use crate::general::{control_skeleton, GeneralOptions};
 use crate::medial::{dms, MedialOptions, MedialSurface};
 use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
-use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
+use crate::refine::{
+    pull_inside, refine_fit, symmetrize, NoFullSpine, RefineError, RefineOptions, RefineWarning,
+    SpineDetail,
+};
 use crate::skeleton::Canonical;
 use crate::skin::{skin_from_bones, Skin, SkinOptions};
 use crate::template::{ExpectedPart, Preset, Template};
@@ -91,6 +94,7 @@ impl RigOptions {
         );
         check(self.skin.validate().map_err(Into::into));
         check(self.general.validate().map_err(Into::into));
+        check(self.full_spine_conflicts().map_err(Into::into));
         match errors.len() {
             0 => Ok(()),
             1 => Err(errors.remove(0)),
@@ -100,6 +104,27 @@ impl RigOptions {
 }
 
 impl RigOptions {
+    /// The full spine ([`SpineDetail::Full`]) is the refinement's and anatomical: refused with
+    /// an engine preset (a fixed skeleton without vertebrae) or the refinement off. Part of
+    /// [`Self::validate`].
+    ///
+    /// # Errors
+    /// [`RefineError::FullSpineWithPreset`], [`RefineError::FullSpineWithoutRefinement`].
+    pub fn full_spine_conflicts(&self) -> Result<(), RefineError> {
+        if self.refine.spine != SpineDetail::Full {
+            return Ok(());
+        }
+        if self.fit.preset != Preset::Anatomical {
+            return Err(RefineError::FullSpineWithPreset {
+                preset: self.fit.preset.file_stem().to_string(),
+            });
+        }
+        if !self.refine.in_rig {
+            return Err(RefineError::FullSpineWithoutRefinement);
+        }
+        Ok(())
+    }
+
     /// The options of the labelling stages alone ([`crate::anatomy::label`]).
     pub fn label_pipeline(&self) -> LabelPipelineOptions {
         LabelPipelineOptions {
@@ -308,6 +333,11 @@ fn refine_stage(
         .flatten();
     let surface = joined.as_ref().unwrap_or(mesh);
     let Some(refined) = refine_fit(surface, fit, template, input.up, input.forward, options) else {
+        if options.spine == SpineDetail::Full {
+            warnings.push(Warning::Refine(RefineWarning::CoarseSpineKept(
+                NoFullSpine::NotRefined,
+            )));
+        }
         return false;
     };
     match refined {
@@ -315,6 +345,13 @@ fn refine_stage(
             fit.skeleton = refined.skeleton;
             fit.canonical = refined.canonical;
             warnings.extend(refined.warnings.iter().cloned().map(Warning::Refine));
+            if options.spine == SpineDetail::Full {
+                let (skeleton, canonical) = (&mut fit.skeleton, &fit.canonical);
+                let moved = pull_inside(skeleton, canonical, mesh, solid, input.forward);
+                if !moved.is_empty() {
+                    warnings.push(Warning::Refine(RefineWarning::VertebraeMovedInside(moved)));
+                }
+            }
         }
         Err(e) => warnings.push(
             RigWarning::RefineFailed {

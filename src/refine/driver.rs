@@ -4,6 +4,7 @@
 use super::arms::arm;
 use super::carry::carry;
 use super::frame::{frame_from_head, head_slices, BodyFrame};
+use super::full_spine::{with_full_spine, SpineDetail};
 use super::head::head_joint;
 use super::legs::leg;
 use super::limb_joints::centre_in_depth;
@@ -118,6 +119,8 @@ pub(super) struct Scene<'a> {
 /// [`RefineKind::HumanSlicing`], [`refine`] of the fit's skeleton, with the canonical `spine`
 /// and `chest` then reassigned by the template's trunk rules ([`Refinement::canonical`]).
 /// `None` when the template declares no refinement. `up` and `forward` as for [`refine`].
+/// With [`RefineOptions::spine`] [`SpineDetail::Full`], the full spine replaces the trunk and
+/// neck joints ([`super::full_spine`]), or a [`RefineWarning::CoarseSpineKept`] says why not.
 ///
 /// # Errors
 /// As [`refine`].
@@ -130,15 +133,21 @@ pub fn refine_fit(
     options: &RefineOptions,
 ) -> Option<Result<Refinement, RefineError>> {
     match template.refinement? {
-        RefineKind::HumanSlicing => Some(refine_with(
-            mesh,
-            &fit.skeleton,
-            &fit.canonical,
-            Some(&template.axial),
-            up,
-            forward,
-            options,
-        )),
+        RefineKind::HumanSlicing => Some(
+            refine_with(
+                mesh,
+                &fit.skeleton,
+                &fit.canonical,
+                Some(&template.axial),
+                up,
+                forward,
+                options,
+            )
+            .map(|refined| match options.spine {
+                SpineDetail::Coarse => refined,
+                SpineDetail::Full => with_full_spine(refined, template),
+            }),
+        ),
     }
 }
 

@@ -20,6 +20,15 @@ pub enum RefineError {
         /// The forward direction given.
         forward: DVec3,
     },
+    /// `spine: Full` with an engine preset, whose skeleton has no vertebrae.
+    #[error("--spine full needs --preset anatomical: the {preset} preset is an engine's fixed skeleton without vertebrae (use --spine coarse with it)")]
+    FullSpineWithPreset {
+        /// The preset asked for.
+        preset: String,
+    },
+    /// `spine: Full` with the refinement switched off: the full spine is the refinement's.
+    #[error("--spine full needs the refinement (--refine on): the vertebrae are found by slicing the body")]
+    FullSpineWithoutRefinement,
     /// A canonical key points outside the skeleton.
     #[error("canonical joint {key} has id {id}, but the skeleton has {len} joints")]
     BadJointId {

@@ -28,6 +28,7 @@ mod carry;
 mod driver;
 mod error;
 mod frame;
+mod full_spine;
 mod geometry;
 mod head;
 mod legs;
@@ -44,6 +45,9 @@ pub use carry::carry;
 pub use driver::{refine, refine_fit, Refinement, REFINED, REFINED_KEYS};
 pub use error::RefineError;
 pub use frame::{frame_from_head, head_slices, BodyFrame, HeadSlices};
+pub use full_spine::{
+    along_chain, full_spine, pull_inside, NoFullSpine, SpineDetail, GIRDLE_VERTEBRA,
+};
 pub use head::{head_joint, HeadJoint};
 pub use limb::{trace_limb, LimbProfile, LimbSlice};
 pub use limb_joints::{ankle, arc_near, bend, on_axis, wrist, BendRule};

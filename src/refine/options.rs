@@ -1,5 +1,6 @@
 //! Tunable numbers of the refinement, with their sources.
 
+use super::full_spine::SpineDetail;
 use crate::options::{Checks, OptionProblems};
 use serde::{Deserialize, Serialize};
 
@@ -14,6 +15,9 @@ pub struct RefineOptions {
     /// Whether [`crate::pipeline::rig`] makes the paired joints of a bilaterally symmetric
     /// figure mirror each other ([`super::symmetrize`]), for every template. Default true.
     pub symmetry: bool,
+    /// The spine [`super::refine_fit`] outputs (`skelfit rig --spine coarse|full`). Default
+    /// [`SpineDetail::Coarse`]: the template's trunk and neck joints, placed on the spine curve.
+    pub spine: SpineDetail,
     /// Taubin smoothing passes of the joined voxel solid's boundary, which
     /// [`crate::pipeline::rig`] slices instead of an input made of several shells or not closed.
     /// Default 10 (rounds the voxel staircase; the volume stays within a few percent).
@@ -292,6 +296,7 @@ impl Default for RefineOptions {
         Self {
             in_rig: true,
             symmetry: true,
+            spine: SpineDetail::Coarse,
             joined_smoothing: 10,
             head_slice_step: 0.004,
             head_shrink_ratio: 0.75,

@@ -14,10 +14,7 @@ use nalgebra::DVector;
 
 /// Names of the spine joints from the top: the joint below each vertebra (`C1` joins C1 and
 /// C2, ..., `L5` joins L5 and the sacrum), then the sacrum centre.
-pub const SPINE_JOINTS: [&str; 25] = [
-    "C1", "C2", "C3", "C4", "C5", "C6", "C7", "T1", "T2", "T3", "T4", "T5", "T6", "T7", "T8", "T9",
-    "T10", "T11", "T12", "L1", "L2", "L3", "L4", "L5", "sacrum",
-];
+pub const SPINE_JOINTS: [&str; 25] = crate::skeleton::canonical::VERTEBRA_NAMES;
 
 /// Index in the joint sequence (0 = head joint, then [`SPINE_JOINTS`]) of the joints fixed to
 /// control points: head, C7/T1, T6/T7, L3/L4, sacrum centre.

@@ -59,6 +59,14 @@ pub enum RefineWarning {
     SpineOutOfOrder,
     /// No spine without the head joint and the torso silhouette.
     NoSpine,
+    /// `--spine full` was asked for, but the rig keeps the template's spine joints: why.
+    CoarseSpineKept(super::NoFullSpine),
+    /// `--spine full`: no spine curve meeting the refined pelvis, neck and head, so the
+    /// vertebrae were spread along the skeleton's trunk and neck ([`super::along_chain`]).
+    SpineAlongChain,
+    /// `--spine full`: these vertebral joints were outside the body (a gap between layered
+    /// shells) and were moved inside along the forward axis ([`super::pull_inside`]).
+    VertebraeMovedInside(Vec<String>),
     /// The joint was not found and kept its rough position.
     Kept(Canonical),
     /// The refined position was too far from the rough one ([`super::RefineOptions::max_shift`]).
@@ -93,7 +101,12 @@ impl RefineWarning {
             Self::NoAnkle { side, .. } => vec![C::Ankle(side)],
             Self::NoKnee { side, .. } => vec![C::Knee(side)],
             Self::Kept(key) | Self::TooFar { key, .. } => vec![key],
-            Self::NoUprightLegs | Self::SpineOutOfOrder | Self::NoSpine => Vec::new(),
+            Self::NoUprightLegs
+            | Self::SpineOutOfOrder
+            | Self::NoSpine
+            | Self::CoarseSpineKept(_)
+            | Self::SpineAlongChain
+            | Self::VertebraeMovedInside(_) => Vec::new(),
         }
     }
 
@@ -201,6 +214,19 @@ impl fmt::Display for RefineWarning {
             Self::NoSpine => write!(
                 f,
                 "spine: no spine without the head joint and the torso silhouette"
+            ),
+            Self::CoarseSpineKept(why) => write!(
+                f,
+                "spine: kept the template's spine joints instead of the full spine: {why}"
+            ),
+            Self::SpineAlongChain => write!(
+                f,
+                "spine: no spine curve through the refined pelvis, neck and head; vertebrae spread along the fitted trunk and neck"
+            ),
+            Self::VertebraeMovedInside(names) => write!(
+                f,
+                "spine: {} outside the body, moved inside along the forward axis",
+                names.join(", ")
             ),
             Self::Kept(key) => write!(f, "{key}: kept at the unrefined position"),
             Self::TooFar { key, distance } => write!(

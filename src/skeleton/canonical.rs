@@ -104,6 +104,75 @@ pub enum Canonical {
     Toe(Side),
     /// `tail_base`, `tail_mid`, `tail_end`.
     Tail(Tail),
+    /// `C1`..`C7`, `T1`..`T12`, `L1`..`L5`, `sacrum`: the full spine (`skelfit rig --spine
+    /// full`).
+    Vertebra(Vertebra),
+}
+
+/// Names of the full spine's joints from the top: the joint below each vertebra (`C1` joins C1
+/// and C2, ..., `L5` joins L5 and the sacrum; each rotates its vertebra and everything above),
+/// then the sacrum centre (seed 004, 3.2).
+pub const VERTEBRA_NAMES: [&str; 25] = [
+    "C1", "C2", "C3", "C4", "C5", "C6", "C7", "T1", "T2", "T3", "T4", "T5", "T6", "T7", "T8", "T9",
+    "T10", "T11", "T12", "L1", "L2", "L3", "L4", "L5", "sacrum",
+];
+
+/// A region of the spine: what a vertebral joint's limits depend on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum SpineRegion {
+    /// C1..C7.
+    Cervical,
+    /// T1..T12.
+    Thoracic,
+    /// L1..L5.
+    Lumbar,
+    /// The sacrum (fused, moves with the pelvis).
+    Sacral,
+}
+
+/// One joint of the full spine, by its index in [`VERTEBRA_NAMES`] (0 = `C1`, 24 = `sacrum`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Vertebra(u8);
+
+impl Vertebra {
+    /// The 25 joints from the top: `C1`..`L5`, `sacrum`.
+    pub const ALL: [Vertebra; 25] = {
+        let mut out = [Vertebra(0); 25];
+        let mut i = 0;
+        while i < 25 {
+            out[i] = Vertebra(i as u8);
+            i += 1;
+        }
+        out
+    };
+
+    /// The sacrum centre, the spine's lowest joint.
+    pub const SACRUM: Vertebra = Vertebra(24);
+
+    /// The joint at `index` from the top (0 = `C1`), if there is one.
+    pub fn new(index: usize) -> Option<Self> {
+        (index < VERTEBRA_NAMES.len()).then_some(Self(index as u8))
+    }
+
+    /// Its index from the top (0 = `C1`, 24 = `sacrum`).
+    pub fn index(self) -> usize {
+        usize::from(self.0)
+    }
+
+    /// Its name as written in files (`C1`, `T12`, `sacrum`).
+    pub const fn as_str(self) -> &'static str {
+        VERTEBRA_NAMES[self.0 as usize]
+    }
+
+    /// Its region.
+    pub fn region(self) -> SpineRegion {
+        match self.0 {
+            0..=6 => SpineRegion::Cervical,
+            7..=18 => SpineRegion::Thoracic,
+            19..=23 => SpineRegion::Lumbar,
+            _ => SpineRegion::Sacral,
+        }
+    }
 }
 
 use Side::{Left, Right};
@@ -158,12 +227,13 @@ pub const CANONICAL_KEYS: &[&str] = &TABLE_KEYS;
 /// How every tail key begins.
 pub const TAIL_PREFIX: &str = "tail_";
 
-/// Whether `key` is a canonical anatomical key ([`CANONICAL_KEYS`] or `tail_*`).
+/// Whether `key` is a canonical anatomical key ([`CANONICAL_KEYS`], `tail_*` or a
+/// [`VERTEBRA_NAMES`] entry).
 pub fn is_canonical_key(key: &str) -> bool {
-    CANONICAL_KEYS.contains(&key) || key.starts_with(TAIL_PREFIX)
+    CANONICAL_KEYS.contains(&key) || key.starts_with(TAIL_PREFIX) || VERTEBRA_NAMES.contains(&key)
 }
 
-/// Sort position of a canonical key: [`CANONICAL_KEYS`] order, then `tail_*` keys.
+/// Sort position of a canonical key: [`CANONICAL_KEYS`] order, then the other keys.
 pub fn key_rank(key: &str) -> usize {
     CANONICAL_KEYS
         .iter()
@@ -199,6 +269,7 @@ impl Canonical {
             Self::Tail(Tail::Base) => "tail_base",
             Self::Tail(Tail::Mid) => "tail_mid",
             Self::Tail(Tail::End) => "tail_end",
+            Self::Vertebra(v) => v.as_str(),
         }
     }
 
@@ -236,7 +307,7 @@ impl fmt::Display for Canonical {
 
 /// A string that is not a canonical key.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("`{0}` is not a canonical key (pelvis, spine, chest, neck, head, clavicle/shoulder/elbow/wrist/hip/knee/ankle/toe with _L or _R, tail_base, tail_mid, tail_end)")]
+#[error("`{0}` is not a canonical key (pelvis, spine, chest, neck, head, clavicle/shoulder/elbow/wrist/hip/knee/ankle/toe with _L or _R, tail_base, tail_mid, tail_end, C1..C7, T1..T12, L1..L5, sacrum)")]
 pub struct NotCanonical(pub String);
 
 /// A map from canonical keys to joints: the maps of files and fits, keyed by the written key
@@ -266,6 +337,7 @@ impl FromStr for Canonical {
             .iter()
             .chain(&TAILS)
             .copied()
+            .chain(Vertebra::ALL.map(Canonical::Vertebra))
             .find(|k| k.as_str() == s)
             .ok_or_else(|| NotCanonical(s.to_string()))
     }
@@ -294,6 +366,16 @@ mod tests {
             assert_eq!(key.as_str().parse::<Canonical>(), Ok(*key));
             assert!(is_canonical_key(key.as_str()));
         }
+        for v in Vertebra::ALL {
+            let key = Canonical::Vertebra(v);
+            assert_eq!(key.as_str().parse::<Canonical>(), Ok(key));
+            assert!(is_canonical_key(key.as_str()));
+        }
+        assert_eq!(
+            Vertebra::new(7).map(Vertebra::region),
+            Some(SpineRegion::Thoracic)
+        );
+        assert_eq!(Vertebra::SACRUM.region(), SpineRegion::Sacral);
         assert!("elbow".parse::<Canonical>().is_err());
         assert!("elbow_X".parse::<Canonical>().is_err());
     }

@@ -24,6 +24,16 @@ struct RawTemplate {
     joint: Vec<Spanned<RawJoint>>,
     #[serde(default)]
     limb: Vec<Spanned<RawLimb>>,
+    #[serde(default)]
+    full_spine: Option<RawFullSpine>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFullSpine {
+    cervical: Vec<Spanned<RawDof>>,
+    thoracic: Vec<Spanned<RawDof>>,
+    lumbar: Vec<Spanned<RawDof>>,
 }
 
 #[derive(Deserialize)]

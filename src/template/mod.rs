@@ -35,9 +35,9 @@ mod preset;
 
 pub use error::{TemplateError, TemplateProblem};
 pub use model::{
-    AxialRules, CountRange, ExpectedPart, Girdle, LimbGroup, LimbKind, Manus, Placement, Posture,
-    RefineKind, Sections, Template, TemplateJoint, VertebraRules, AXIAL_PLACES, BUILTIN_TEMPLATES,
-    SIDED_PLACES,
+    AxialRules, CountRange, ExpectedPart, FullSpineDofs, Girdle, LimbGroup, LimbKind, Manus,
+    Placement, Posture, RefineKind, Sections, Template, TemplateJoint, VertebraRules, AXIAL_PLACES,
+    BUILTIN_TEMPLATES, SIDED_PLACES,
 };
 pub use preset::{apply_preset, EngineJoint, EnginePlacement, EngineSkeleton, Preset, PresetNames};
 

@@ -1,5 +1,6 @@
 //! The validated, in-memory template.
 
+use crate::skeleton::canonical::SpineRegion;
 use crate::skeleton::Dof;
 use std::collections::BTreeMap;
 
@@ -313,6 +314,35 @@ pub struct Template {
     pub joints: Vec<TemplateJoint>,
     /// Limb groups, anterior first.
     pub limbs: Vec<LimbGroup>,
+    /// DOFs of the vertebral joints per region (`[full_spine]`), for `skelfit rig --spine
+    /// full`; `None` when the template declares none (the full spine is then not offered).
+    pub full_spine: Option<FullSpineDofs>,
+}
+
+/// The rotational limits of one inter-vertebral joint per spine region (`[full_spine]` of a
+/// template): local x lateral (flexion positive), y dorsal (lateral bending), z along the
+/// spine (axial rotation), as every axial joint's frame. The sacrum is fused and rides on the
+/// pelvis: it gets no DOFs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FullSpineDofs {
+    /// Each of C1..C7.
+    pub cervical: Vec<Dof>,
+    /// Each of T1..T12.
+    pub thoracic: Vec<Dof>,
+    /// Each of L1..L5.
+    pub lumbar: Vec<Dof>,
+}
+
+impl FullSpineDofs {
+    /// The DOFs of a joint of `region` (none for the sacrum).
+    pub fn of(&self, region: SpineRegion) -> &[Dof] {
+        match region {
+            SpineRegion::Cervical => &self.cervical,
+            SpineRegion::Thoracic => &self.thoracic,
+            SpineRegion::Lumbar => &self.lumbar,
+            SpineRegion::Sacral => &[],
+        }
+    }
 }
 
 impl Template {

@@ -378,21 +378,9 @@ fn the_spider_gets_a_best_effort_with_a_warning() {
 
 /// Runs `skelfit label MESH -o JSON ARGS...`, asserts success and returns the JSON.
 fn run_label(mesh: &Path, json: &Path, args: &[&str]) -> serde_json::Value {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .args([
-            "label",
-            mesh.to_str().unwrap(),
-            "-o",
-            json.to_str().unwrap(),
-        ])
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (mesh, json_path) = (mesh.to_str().unwrap(), json.to_str().unwrap());
+    let out = common::skelfit(&[&["label", mesh, "-o", json_path], args].concat());
+    assert!(out.status.success(), "{}", common::stderr(&out));
     serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap()
 }
 

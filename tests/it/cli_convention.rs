@@ -86,6 +86,72 @@ fn json_prints_the_result_on_stdout_for_every_command() {
     assert_eq!(old["closed"], true);
 }
 
+/// `skeleton`, `skin`, `simplify`, `study` and `demo` print their result as one JSON value on
+/// stdout with `--json` and nothing else there (`skin` and `simplify` printed it on stderr).
+#[test]
+fn json_is_the_whole_stdout_of_skeleton_skin_simplify_study_and_demo() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let (glb, file) = (d.join("general.glb"), d.join("general.json"));
+    let general = json_of(&["skeleton", &data(HORSE), "-o", p(&glb), "--json"]);
+    assert!(general["joints"].as_array().is_some_and(|j| !j.is_empty()));
+    std::fs::write(&file, serde_json::to_vec(&general).unwrap()).unwrap();
+
+    let skinned = d.join("skinned.glb");
+    let skin = json_of(&[
+        "skin",
+        &data(HORSE),
+        "--skeleton",
+        p(&file),
+        "-o",
+        p(&skinned),
+        "--json",
+    ]);
+    let names = |v: &serde_json::Value| -> Vec<serde_json::Value> {
+        v["joints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|j| j["name"].clone())
+            .collect()
+    };
+    assert_eq!(names(&skin), names(&general));
+
+    let simplified = d.join("simplified.json");
+    let simplify = json_of(&[
+        "simplify",
+        p(&file),
+        "-o",
+        p(&simplified),
+        "--lod-prune",
+        "0.1",
+        "--json",
+    ]);
+    assert!(simplify["joints"].as_array().is_some_and(|j| !j.is_empty()));
+
+    let study = json_of(&[
+        "study",
+        "rotation",
+        &data(HORSE),
+        "--n",
+        "2",
+        "--out",
+        p(&d.join("study")),
+        "--json",
+    ]);
+    assert!(study.is_object() || study.is_array(), "{study}");
+
+    let demo = json_of(&[
+        "demo",
+        "--data",
+        p(&crate::common::data_dir()),
+        "--out",
+        p(&d.join("demo")),
+        "--json",
+    ]);
+    assert!(demo.is_object() || demo.is_array(), "{demo}");
+}
+
 #[test]
 fn json_and_summary_go_to_different_streams_and_q_keeps_only_the_json() {
     let dir = tempfile::tempdir().unwrap();

@@ -2,19 +2,18 @@
 //! fitted in the mesh's own frame and the whole result turned and scaled on output, unless
 //! `--keep-frame`.
 
+use crate::common;
 use glam::DVec3;
 use skelfit::mesh::load_gltf_scene;
 use std::fmt::Write;
 use std::path::Path;
-use std::process::Command;
 
 /// The bundled humanoid (+Y up, +Z forward, metres) written as OBJ with every position mapped
 /// by `f`.
 fn humanoid_copy(path: &Path, f: impl Fn(DVec3) -> DVec3) {
-    let mesh = skelfit::mesh::load(
-        &crate::common::data_dir().join("humanoid/mh_neutral_default/mesh.obj"),
-    )
-    .unwrap();
+    let mesh =
+        skelfit::mesh::load(&common::data_dir().join("humanoid/mh_neutral_default/mesh.obj"))
+            .unwrap();
     let mut text = String::new();
     for p in &mesh.positions {
         let q = f(*p);
@@ -28,16 +27,8 @@ fn humanoid_copy(path: &Path, f: impl Fn(DVec3) -> DVec3) {
 
 /// Runs `skelfit rig` and returns its stdout; panics on failure.
 fn rig(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_skelfit"))
-        .arg("rig")
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = common::skelfit(&[&["rig"], args].concat());
+    assert!(out.status.success(), "{}", common::stderr(&out));
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 

@@ -28,4 +28,5 @@ mod roundtrip;
 mod skin;
 mod skin_bad_input;
 mod skin_skeleton;
+mod spine;
 mod voxel;

@@ -5,7 +5,7 @@ mod joints;
 mod limbs;
 mod rules;
 
-use super::{topological, Problems, RawTemplate};
+use super::{dofs, topological, Problems, RawTemplate};
 use crate::template::model::*;
 
 /// The template of a parsed file, with every problem pushed to `p` (the template is only used
@@ -19,6 +19,11 @@ pub(super) fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
     let table = joints::joints(&raw.joint, &ratios, p);
     joints::hierarchy(&table, p);
     let (limbs, owner) = limbs::limbs(&raw.limb, &ratios, &table, p);
+    let full_spine = raw.full_spine.map(|raw| FullSpineDofs {
+        cervical: dofs(p, "full_spine.cervical", &raw.cervical),
+        thoracic: dofs(p, "full_spine.thoracic", &raw.thoracic),
+        lumbar: dofs(p, "full_spine.lumbar", &raw.lumbar),
+    });
     joints::unused(&table, &owner, p);
 
     // Parents before children.
@@ -38,5 +43,6 @@ pub(super) fn validate(raw: RawTemplate, p: &mut Problems) -> Template {
         ratios,
         joints,
         limbs,
+        full_spine,
     }
 }
