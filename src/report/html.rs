@@ -58,6 +58,11 @@ pub fn html_report(input: &ReportInput, options: &ReportOptions) -> String {
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{t}</title><style>{STYLE}</style></head><body><h1>{t}</h1>",
         t = escape(&title)
     );
+    let _ = write!(
+        html,
+        "<p class=\"verdict\"><strong>Verdict:</strong> {}</p>",
+        escape(&super::eval_verdict(e))
+    );
     for warning in &e.warnings {
         let _ = write!(
             html,

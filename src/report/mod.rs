@@ -20,7 +20,7 @@ pub use chart::{bar_chart, error_bar_chart, line_chart, ChartOptions, LineChartO
 pub use error::ReportError;
 pub use html::{failure_report, html_report, write_html_report, ReportInput, ReportOptions};
 pub use index::{index_entries, index_html, IndexEntry};
-pub use pages::{bench_html, bench_verdict, study_html, table_html};
+pub use pages::{bench_html, bench_verdict, eval_verdict, study_html, study_verdict, table_html};
 pub use slices::{distance_slice, png_bytes, RgbImage};
 pub use svg::{projection_svg, SvgOptions, View};
 

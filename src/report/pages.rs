@@ -249,6 +249,11 @@ pub fn study_html(
     let mut html = page_start(title, preamble);
     let _ = write!(
         html,
+        "<p class=\"verdict\"><strong>Verdict:</strong> {}</p>",
+        escape(&study_verdict(study))
+    );
+    let _ = write!(
+        html,
         "<p>Model <b>{}</b>{}; figure size {:.4}. All values are % of figure size.</p>",
         escape(&study.model),
         study
@@ -312,6 +317,87 @@ pub fn study_html(
     }
     html.push_str("</body></html>\n");
     html
+}
+
+/// The one-line verdict an evaluation page opens with: the mean per-joint error in % of the
+/// figure's size (height for upright figures), good within 1 %, the worst joint, and the
+/// reference joints the prediction lacks; CD-J2J (good within 2 %) where joints were not
+/// paired.
+pub fn eval_verdict(e: &Evaluation) -> String {
+    let of = match e.figure.measure {
+        crate::eval::FigureMeasure::Height => "height",
+        _ => "figure size",
+    };
+    let mut line = if e.has_joint_errors() {
+        let mean = e.summary_percent.mean;
+        let worst = e
+            .joints
+            .iter()
+            .max_by(|a, b| a.error_percent.total_cmp(&b.error_percent));
+        format!(
+            "{}: mean joint error {mean:.2} % of {of} over {} paired joints{}",
+            if mean <= 1.0 { "good" } else { "not good" },
+            e.joints.len(),
+            worst.map_or(String::new(), |w| format!(
+                "; worst: {} {:.1} %",
+                w.key, w.error_percent
+            ))
+        )
+    } else {
+        let cd = e.chamfer_percent.j2j;
+        format!(
+            "{}: CD-J2J {cd:.2} % of {of} (no joints paired by name)",
+            if cd <= 2.0 { "good" } else { "not good" }
+        )
+    };
+    if !e.unmatched.is_empty() {
+        let _ = write!(
+            line,
+            "; {} reference joints missing ({})",
+            e.unmatched.len(),
+            e.unmatched.join(", ")
+        );
+    }
+    line
+}
+
+/// The one-line verdict a study page opens with: how far the variants' rigs move from the base
+/// rig (mean per-joint displacement, % of figure size; stable within 1 %), the variant that
+/// moves most, and the variants that failed.
+pub fn study_verdict(study: &Study) -> String {
+    let moved: Vec<(&str, f64)> = study
+        .variants
+        .iter()
+        .filter(|v| !v.base && v.failure.is_none())
+        .filter_map(|v| {
+            let d = v
+                .displacement_percent
+                .as_ref()
+                .map(|d| d.mean)
+                .or_else(|| v.chamfer_to_base_percent.as_ref().map(|c| c.j2j))?;
+            Some((v.label.as_str(), d))
+        })
+        .collect();
+    let failed = study
+        .variants
+        .iter()
+        .filter(|v| v.failure.is_some())
+        .count();
+    let mut line = match moved.iter().copied().max_by(|a, b| a.1.total_cmp(&b.1)) {
+        None => "no variant was compared with the base rig".to_string(),
+        Some((worst, w)) => {
+            let stable = moved.iter().filter(|(_, d)| *d <= 1.0).count();
+            format!(
+                "joints within 1 % of figure size of the base rig on {stable} of {} variants; \
+                 largest move: {worst} {w:.2} %",
+                moved.len()
+            )
+        }
+    };
+    if failed > 0 {
+        let _ = write!(line, "; {failed} variants failed to rig");
+    }
+    line
 }
 
 /// The one-line verdict a bench page opens with: what is good, what is not, against which

@@ -190,3 +190,32 @@ fn line_chart_sorts_points_and_draws_every_series() {
     );
     assert_eq!(bars.matches("<rect").count(), 2);
 }
+
+#[test]
+fn eval_pages_open_with_a_verdict_naming_the_worst_joint() {
+    let (predicted, reference) = rigs();
+    let mesh = Mesh::cuboid(DVec3::new(-0.3, 0.0, -0.2), DVec3::new(0.3, 1.8, 0.2));
+    let evaluation =
+        evaluate(&predicted, &reference, Some(&mesh), &EvalOptions::default()).unwrap();
+    let verdict = eval_verdict(&evaluation);
+    // The head is 5 cm off on a 1.8 tall figure (2.8 % of height), pelvis and neck exact: the
+    // mean over the three canonical joints is 0.93 %.
+    assert!(
+        verdict.starts_with("good: mean joint error 0.93 % of height over 3 paired joints"),
+        "{verdict}"
+    );
+    assert!(verdict.contains("worst: head 2.8 %"), "{verdict}");
+    let html = html_report(
+        &ReportInput {
+            evaluation: &evaluation,
+            predicted: &predicted,
+            reference: &reference,
+            mesh: Some(&mesh),
+        },
+        &ReportOptions::default(),
+    );
+    assert!(html.contains(&format!(
+        "<p class=\"verdict\"><strong>Verdict:</strong> {}</p>",
+        escape(&verdict)
+    )));
+}

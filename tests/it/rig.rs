@@ -305,6 +305,19 @@ fn a_study_evaluates_the_rig_by_its_own_canonical_map() {
             "{key}"
         );
     }
+    // The study page opens with its verdict: the variants' moves from the base rig.
+    assert_eq!(
+        skelfit::report::study_verdict(&study),
+        "no variant was compared with the base rig"
+    );
+    let halved = tessellation_study(&mesh, "mh", None, &[0.5], &options).unwrap();
+    let verdict = skelfit::report::study_verdict(&halved);
+    assert!(
+        verdict.contains(" of 1 variants; largest move: x0.5 "),
+        "{verdict}"
+    );
+    let page = skelfit::report::study_html(&halved, "study", "", None);
+    assert!(page.contains("<p class=\"verdict\">"), "no verdict line");
 }
 
 /// Engine presets name each canonical joint by its key, also after the refinement has moved
