@@ -17,8 +17,12 @@ pub(super) struct HandSurface {
 
 /// The surface within `reach` of `wrist` on the distal side of the plane through
 /// `wrist - band * axis` normal to `axis` (the forearm's direction, unit), and the geodesic
-/// distance over its edges from the corners behind the wrist plane. Corners not connected to
-/// the wrist (another body part in reach) are left out. `None` when nothing is reached.
+/// distance over its edges from the wrist's cross-section behind the wrist plane (see
+/// `wrist_band`). A hand modelled as a
+/// separate piece of the mesh (every corner of the piece in reach and beyond the wrist plane)
+/// is measured from its own proximal cross-section instead: its corners within `band` of its
+/// nearest one along `axis`. Corners connected to neither (another body part in reach) are
+/// left out. `None` when nothing is reached.
 pub(super) fn hand_surface(
     mesh: &Mesh,
     wrist: DVec3,
@@ -44,7 +48,8 @@ pub(super) fn hand_surface(
             (l.iter().all(|&v| v != u32::MAX)).then_some(l)
         })
         .collect();
-    let distance = geodesic(&positions, &triangles, |p| (p - wrist).dot(axis) <= 0.0);
+    let source = sources(mesh, &local, &positions, wrist, axis, band);
+    let distance = geodesic(&positions, &triangles, &source);
     // Keep the reached part only.
     let mut keep = vec![u32::MAX; positions.len()];
     let mut kept_positions = Vec::new();
@@ -71,14 +76,132 @@ pub(super) fn hand_surface(
     })
 }
 
-/// Shortest distance along the triangles' edges from the corners `source` accepts (distance
+/// Which corners of the surface (`local[i]`: mesh corner `i`'s index in `positions`, or
+/// `u32::MAX` when outside) start the geodesic distance: those behind the wrist plane, and on
+/// each piece of the mesh that lies wholly in the surface without reaching behind the wrist
+/// plane, the corners within `band` of its nearest one along `axis`.
+fn sources(
+    mesh: &Mesh,
+    local: &[u32],
+    positions: &[DVec3],
+    wrist: DVec3,
+    axis: DVec3,
+    band: f64,
+) -> Vec<bool> {
+    let along = |p: DVec3| (p - wrist).dot(axis);
+    let piece = mesh_pieces(mesh.positions.len(), &mesh.triangles);
+    let mut source = wrist_band(mesh, local, positions, wrist, axis);
+    // Per piece: wholly inside, nearest corner along the axis.
+    let count = piece.iter().map(|&c| c as usize + 1).max().unwrap_or(0);
+    let mut inside = vec![true; count];
+    let mut nearest = vec![f64::INFINITY; count];
+    for (i, &c) in piece.iter().enumerate() {
+        let c = c as usize;
+        match local[i] {
+            u32::MAX => inside[c] = false,
+            l if source[l as usize] => inside[c] = false,
+            l => nearest[c] = nearest[c].min(along(positions[l as usize])),
+        }
+    }
+    for (i, &c) in piece.iter().enumerate() {
+        let c = c as usize;
+        if inside[c] && local[i] != u32::MAX {
+            let l = local[i] as usize;
+            source[l] = along(positions[l]) <= nearest[c] + band;
+        }
+    }
+    source
+}
+
+/// The corners behind the wrist plane (`local` index set, `along <= 0`) that belong to the
+/// wrist's own cross-section. That band of surface splits into pieces over the triangles wholly
+/// in it; the wrist's are the piece holding the corner nearest the wrist's axis and every piece
+/// that encircles the axis (its corners' unit directions away from the axis average to less
+/// than half a unit). A hip or thigh beside a hanging hand lies to one side of the axis.
+fn wrist_band(
+    mesh: &Mesh,
+    local: &[u32],
+    positions: &[DVec3],
+    wrist: DVec3,
+    axis: DVec3,
+) -> Vec<bool> {
+    let in_band = |l: u32| l != u32::MAX && (positions[l as usize] - wrist).dot(axis) <= 0.0;
+    let band: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .filter(|t| t.iter().all(|&v| in_band(local[v as usize])))
+        .copied()
+        .collect();
+    let piece = mesh_pieces(mesh.positions.len(), &band);
+    let radial = |p: DVec3| {
+        let d = p - wrist;
+        d - axis * d.dot(axis)
+    };
+    let count = piece.iter().map(|&c| c as usize + 1).max().unwrap_or(0);
+    let mut directions = vec![(DVec3::ZERO, 0usize); count];
+    let mut nearest: Option<(f64, u32)> = None;
+    for (i, &l) in local.iter().enumerate() {
+        if in_band(l) {
+            let r = radial(positions[l as usize]);
+            let c = &mut directions[piece[i] as usize];
+            c.0 += r.normalize_or_zero();
+            c.1 += 1;
+            if nearest.is_none_or(|(best, _)| r.length() < best) {
+                nearest = Some((r.length(), piece[i]));
+            }
+        }
+    }
+    let wrist_piece = |c: u32| {
+        let (sum, n) = directions[c as usize];
+        Some(c) == nearest.map(|n| n.1) || (n > 0 && sum.length() < 0.5 * n as f64)
+    };
+    let mut source = vec![false; positions.len()];
+    for (i, &l) in local.iter().enumerate() {
+        if in_band(l) && wrist_piece(piece[i]) {
+            source[l as usize] = true;
+        }
+    }
+    source
+}
+
+/// The piece (connected component over shared corners of `triangles`) of each of the `n`
+/// mesh corners, numbered from 0. Corners of no triangle are pieces of their own.
+fn mesh_pieces(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn find(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            let up = parent[parent[x as usize] as usize];
+            parent[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+    for t in triangles {
+        for k in 1..3 {
+            let (a, b) = (find(&mut parent, t[0]), find(&mut parent, t[k]));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    let mut number = vec![u32::MAX; n];
+    let mut next = 0;
+    (0..n as u32)
+        .map(|i| {
+            let root = find(&mut parent, i) as usize;
+            if number[root] == u32::MAX {
+                number[root] = next;
+                next += 1;
+            }
+            number[root]
+        })
+        .collect()
+}
+
+/// Shortest distance along the triangles' edges from the corners marked in `source` (distance
 /// 0); unreached corners are infinite. A Dijkstra on the surface mesh, which is not the DMS
 /// graph of `paths::Search`.
-fn geodesic(
-    positions: &[DVec3],
-    triangles: &[[u32; 3]],
-    source: impl Fn(DVec3) -> bool,
-) -> Vec<f64> {
+fn geodesic(positions: &[DVec3], triangles: &[[u32; 3]], source: &[bool]) -> Vec<f64> {
     let mut edges: Vec<(u32, u32)> = Vec::with_capacity(triangles.len() * 6);
     for t in triangles {
         for k in 0..3 {
@@ -98,11 +221,9 @@ fn geodesic(
     }
     let mut dist = vec![f64::INFINITY; positions.len()];
     let mut heap = BinaryHeap::new();
-    for (i, &p) in positions.iter().enumerate() {
-        if source(p) {
-            dist[i] = 0.0;
-            heap.push(Reverse((0u64, i as u32)));
-        }
+    for (i, _) in source.iter().enumerate().filter(|(_, &s)| s) {
+        dist[i] = 0.0;
+        heap.push(Reverse((0u64, i as u32)));
     }
     while let Some(Reverse((bits, u))) = heap.pop() {
         let d = f64::from_bits(bits);
