@@ -13,8 +13,8 @@ use crate::medial::{dms, MedialOptions, MedialSurface};
 use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
 use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
-use crate::skeleton::Canonical;
-use crate::skin::{skin_from_bones, Skin, SkinOptions};
+use crate::skeleton::{Canonical, JointId, Side};
+use crate::skin::{digit_weights, skin_from_bones, Skin, SkinOptions};
 use crate::template::{ExpectedPart, Preset, Template};
 use crate::voxel::{boundary_mesh, voxelize_figure, Solid, VoxelOptions};
 use crate::warning::Warning;
@@ -281,7 +281,15 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let before = fit.warnings.len();
     fit.name_joints(options.fit.preset, input.up)?;
     warnings.extend(fit.warnings[before..].iter().cloned().map(Warning::Fit));
-    let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
+    let mut skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
+    if options.digits.enabled {
+        // Fingers are thinner than the voxels: their weights again over the hand's surface.
+        let wrists: Vec<JointId> = Side::BOTH
+            .iter()
+            .filter_map(|&side| fit.canonical.joint_of(Canonical::Wrist(side)))
+            .collect();
+        skin.engine = digit_weights(mesh, &fit.skeleton, &wrists, &mut skin.weights);
+    }
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
     let missing = missing_parts(&template, &labelling);
