@@ -265,3 +265,85 @@ fn spread_owners(mesh: &Mesh, in_hand: &[bool], owner: &mut [usize]) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::skeleton::Joint;
+
+    /// Three touching fingers (capsules of radius 0.1, 0.2 apart along x) on a wrist at the
+    /// origin, each a chain of three joints and a tip, and every vertex weighted evenly to the
+    /// three base joints (the voxel skin's blur at its worst).
+    fn blurred_hand() -> (Mesh, Skeleton, Vec<Vec<(JointId, f64)>>, Vec<f64>) {
+        let xs = vec![-0.2, 0.0, 0.2];
+        let mut mesh = Mesh {
+            positions: Vec::new(),
+            triangles: Vec::new(),
+        };
+        for &x in &xs {
+            let c = Mesh::capsule(DVec3::new(x, 0.8, 0.0), 0.1, 0.4, 6, 16);
+            let offset = mesh.positions.len() as u32;
+            mesh.positions.extend(c.positions);
+            mesh.triangles
+                .extend(c.triangles.iter().map(|t| t.map(|v| v + offset)));
+        }
+        let mut joints = vec![
+            Joint::new("forearm", None, DVec3::new(0.0, -1.0, 0.0)),
+            Joint::new("wrist", Some(JointId(0)), DVec3::ZERO),
+        ];
+        let mut bases = Vec::new();
+        for &x in &xs {
+            let mut parent = JointId(1);
+            bases.push(JointId(joints.len()));
+            for (k, y) in [0.3, 0.6, 0.9, 1.3].into_iter().enumerate() {
+                let mut j = Joint::new(format!("f{x}_{k}"), Some(parent), DVec3::new(x, y, 0.0));
+                j.deform = k < 3;
+                joints.push(j);
+                parent = JointId(joints.len() - 1);
+            }
+        }
+        let skeleton = Skeleton { joints };
+        let weights = vec![bases.iter().map(|&b| (b, 1.0 / 3.0)).collect(); mesh.positions.len()];
+        (mesh, skeleton, weights, xs)
+    }
+
+    #[test]
+    fn each_finger_takes_its_own_bones_and_the_weights_stay_a_partition() {
+        let (mesh, skeleton, mut weights, xs) = blurred_hand();
+        let engine = digit_weights(&mesh, &skeleton, &[JointId(1)], &mut weights);
+        for (v, row) in weights.iter().enumerate() {
+            assert!(!row.is_empty(), "vertex {v} unweighted");
+            assert!(row.iter().all(|(_, w)| *w >= 0.0), "vertex {v}: {row:?}");
+            let sum: f64 = row.iter().map(|(_, w)| w).sum();
+            assert!((sum - 1.0).abs() < 1e-9, "vertex {v} sums to {sum}");
+            let e: f32 = engine.weights[v].iter().sum();
+            assert!((e - 1.0).abs() < 1e-4 && engine.weights[v].len() <= 4);
+            // The finger (capsule) this vertex lies on: its joints only (and the wrist).
+            let p = mesh.positions[v];
+            let finger = v / (mesh.positions.len() / xs.len());
+            for (j, w) in row {
+                let name = &skeleton.joint(*j).name;
+                assert!(
+                    name == "wrist" || name.starts_with(&format!("f{}_", xs[finger])),
+                    "vertex {v} at {p:?} on finger {finger} weighs {name} by {w}"
+                );
+                assert!(skeleton.joint(*j).deform, "vertex {v}: {name}");
+            }
+        }
+    }
+
+    #[test]
+    fn mid_bone_vertices_take_one_joint_and_joints_blend_two() {
+        let points = [
+            DVec3::ZERO,
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(0.0, 2.0, 0.0),
+        ];
+        let joints = [JointId(0), JointId(1), JointId(2)];
+        let mid = chain_weights(&points, &joints, DVec3::new(0.1, 1.5, 0.0));
+        assert_eq!(mid, vec![(JointId(1), 1.0)]);
+        let at_joint = chain_weights(&points, &joints, DVec3::new(0.1, 1.0, 0.0));
+        assert_eq!(at_joint.len(), 2);
+        assert!((at_joint[0].1 - 0.5).abs() < 1e-9, "{at_joint:?}");
+    }
+}

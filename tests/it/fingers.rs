@@ -158,3 +158,26 @@ fn mitten_hands_warn_that_the_fingers_are_fused() {
         "{w:?}"
     );
 }
+
+/// Hands modelled as separate mesh pieces beyond the wrist (the Quaternius cyberpunk and
+/// platformer characters) are found: no hand is reported missing (regression: `no_hand`
+/// when the surface distance started only behind the wrist plane).
+#[test]
+fn hands_that_are_separate_mesh_pieces_are_found() {
+    for name in [
+        "quaternius_cyberpunk_character",
+        "quaternius_platformer_character",
+    ] {
+        let Some(dir) = crate::common::model(&format!("humanoid/{name}")) else {
+            continue;
+        };
+        let mesh = load(&dir.join("mesh.obj")).unwrap();
+        let r = rig(&mesh, &RigOptions::default()).unwrap();
+        let w = digit_warnings(&r);
+        println!("{name}: {w:?}");
+        assert!(
+            !w.iter().any(|w| matches!(w, DigitWarning::NoHand { .. })),
+            "{name}: {w:?}"
+        );
+    }
+}
