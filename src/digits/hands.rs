@@ -86,6 +86,9 @@ fn fit_hand(
         return Some(DigitWarning::NoHand { side });
     };
     let mut branches = digit_branches(&surface, options.level_step * forearm, options.min_levels);
+    // A digit stands out longer than it is wide; a shorter branch is a bump of the palm or of
+    // another body part's surface in reach.
+    branches.retain(|b| free_length(b) >= mean_width(b));
     // Thumb first: the deepest web, at equal webs the thinner digit.
     branches.sort_by(|a, b| {
         (a.split_level, base_perimeter(a))
@@ -140,6 +143,11 @@ fn fit_hand(
 /// The contour length at a branch's web end.
 fn base_perimeter(b: &Branch) -> f64 {
     b.perimeters.last().copied().unwrap_or(0.0)
+}
+
+/// Mean diameter of a branch's contours (each contour's length over π).
+fn mean_width(b: &Branch) -> f64 {
+    b.perimeters.iter().sum::<f64>() / (b.perimeters.len().max(1) as f64 * std::f64::consts::PI)
 }
 
 /// Arc length of a branch's path.

@@ -5,13 +5,17 @@
 //! hand again on the mesh surface itself:
 //!
 //! 1. **Hand surface** (`surface.rs`): the triangles within reach of the wrist on its distal
-//!    side, and the geodesic distance over them from the wrist's cross-section.
+//!    side, and the geodesic distance over them from the wrist's cross-section (the band of
+//!    surface just behind the wrist plane that encircles the forearm's axis, not a hip beside
+//!    a hanging hand). A hand that is a separate mesh piece lying wholly beyond the wrist is
+//!    measured from its own proximal cross-section.
 //! 2. **Contour tree** (`contour.rs`): the surface sliced by that distance into level contours
 //!    a fraction of the forearm apart; contours of neighbouring levels joined through the slab
 //!    between them (a sampled Reeb graph). Where a contour splits, digits part; a digit is a
 //!    leaf branch, its path the contour centroids from the web to the tip. Branches shorter
 //!    than a few levels are noise and pruned.
-//! 3. **Digits** (`hands.rs`): the thumb parts from the palm first (the deepest web; at equal
+//! 3. **Digits** (`hands.rs`): branches shorter than their mean width are bumps, not digits;
+//!    the thumb parts from the palm first (the deepest web; at equal
 //!    depth, the thinner branch); the fingers follow in the order of their bases from the
 //!    thumb's. Five digits give `thumb_01..03` and `index_01..pinky_03` with a `_end` at each
 //!    tip; fewer give the digits found with a warning, and a mitten (no separated fingers)
