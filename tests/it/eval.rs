@@ -102,7 +102,7 @@ fn different_rigs_of_one_model_pair_by_canonical_keys() {
     bare_game.canonical.clear();
     bare_mixamo.canonical.clear();
     let again = evaluate(&bare_mixamo, &bare_game, None, &EvalOptions::default()).unwrap();
-    assert_eq!(again.joints.len(), 21);
+    assert_eq!(again.joints.len(), e.joints.len());
     for (a, b) in again.joints.iter().zip(&e.joints) {
         assert_eq!((&a.key, &a.reference_joint), (&b.key, &b.reference_joint));
         assert_eq!(a.predicted_joint, b.predicted_joint);

@@ -109,7 +109,10 @@ fn assert_weights(preset: &str, mesh: &Mesh, r: &Rig) {
 /// The canonical map points at joints of the engine skeleton named by the preset's table.
 fn assert_canonical(preset: Preset, r: &Rig) {
     let table = preset.names().unwrap();
-    assert_eq!(r.fit.canonical.len(), skelfit::eval::CANONICAL_KEYS.len());
+    assert_eq!(
+        r.fit.canonical.len(),
+        skelfit::eval::CANONICAL_KEYS.len() + DIGITS.len()
+    );
     for (key, id) in &r.fit.canonical {
         assert_eq!(
             r.fit.skeleton.joint(*id).name,
