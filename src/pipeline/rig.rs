@@ -13,6 +13,7 @@ use crate::medial::{dms, MedialOptions, MedialSurface};
 use crate::mesh::Mesh;
 use crate::paths::{path_tree, PathOptions};
 use crate::refine::{refine_fit, symmetrize, RefineError, RefineOptions};
+use crate::skeleton::canonical::CanonicalJoints;
 use crate::skeleton::{Canonical, JointId, Side};
 use crate::skin::{digit_weights, skin_from_bones, Skin, SkinOptions};
 use crate::template::{ExpectedPart, Preset, Template};
