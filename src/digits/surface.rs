@@ -15,11 +15,12 @@ pub(super) struct HandSurface {
     pub triangles: Vec<[u32; 3]>,
 }
 
-/// The surface within `reach` of `wrist` on the distal side of the plane through
-/// `wrist - band * axis` normal to `axis` (the forearm's direction, unit), and the geodesic
-/// distance over its edges from the wrist's cross-section behind the wrist plane (see
-/// `wrist_band`). A hand modelled as a
-/// separate piece of the mesh (every corner of the piece in reach and beyond the wrist plane)
+/// The surface within `reach` of `wrist` (plus the wrist's distance from the nearest corner, so
+/// that a thick low-poly arm is reached) on the distal side of the plane through
+/// `wrist - band * axis` normal to `axis` (the forearm's direction, unit), with the triangles
+/// crossing the wrist plane whole (a coarse mesh has no corner within `band`), and the
+/// geodesic distance over its edges from the wrist's cross-section behind the wrist plane (see
+/// `wrist_band`). A hand modelled as a separate piece of the mesh (every corner of the piece in reach and beyond the wrist plane)
 /// is measured from its own proximal cross-section instead: its corners within `band` of its
 /// nearest one along `axis`. Corners connected to neither (another body part in reach) are
 /// left out. `None` when nothing is reached.
@@ -33,9 +34,29 @@ pub(super) fn hand_surface(
     let n = mesh.positions.len();
     let mut local = vec![u32::MAX; n];
     let mut positions = Vec::new();
-    let inside = |p: DVec3| (p - wrist).dot(axis) > -band && p.distance(wrist) < reach;
+    let skin = mesh
+        .positions
+        .iter()
+        .map(|p| p.distance(wrist))
+        .fold(f64::INFINITY, f64::min);
+    let reach = reach + skin;
+    let along = |p: DVec3| (p - wrist).dot(axis);
+    let near = |v: u32| mesh.positions[v as usize].distance(wrist) < reach;
+    let mut take = vec![false; n];
     for (i, &p) in mesh.positions.iter().enumerate() {
-        if inside(p) {
+        take[i] = along(p) > -band && near(i as u32);
+    }
+    for t in &mesh.triangles {
+        let a = t.map(|v| along(mesh.positions[v as usize]));
+        let crosses = a.iter().any(|&x| x <= 0.0) && a.iter().any(|&x| x > 0.0);
+        if crosses && t.iter().all(|&v| near(v)) {
+            for &v in t {
+                take[v as usize] = true;
+            }
+        }
+    }
+    for (i, &p) in mesh.positions.iter().enumerate() {
+        if take[i] {
             local[i] = positions.len() as u32;
             positions.push(p);
         }
@@ -114,8 +135,8 @@ fn sources(
 }
 
 /// The corners behind the wrist plane (`local` index set, `along <= 0`) that belong to the
-/// wrist's own cross-section. That band of surface splits into pieces over the triangles wholly
-/// in it; the wrist's are the piece holding the corner nearest the wrist's axis and every piece
+/// wrist's own cross-section. That band of surface splits into pieces over the triangles
+/// touching it; the wrist's are the piece holding the corner nearest the wrist's axis and every piece
 /// that encircles the axis (its corners' unit directions away from the axis average to less
 /// than half a unit). A hip or thigh beside a hanging hand lies to one side of the axis.
 fn wrist_band(
@@ -126,10 +147,14 @@ fn wrist_band(
     axis: DVec3,
 ) -> Vec<bool> {
     let in_band = |l: u32| l != u32::MAX && (positions[l as usize] - wrist).dot(axis) <= 0.0;
+    // Joined over the triangles touching the band (a thin band holds few whole triangles).
     let band: Vec<[u32; 3]> = mesh
         .triangles
         .iter()
-        .filter(|t| t.iter().all(|&v| in_band(local[v as usize])))
+        .filter(|t| {
+            t.iter().any(|&v| in_band(local[v as usize]))
+                && t.iter().all(|&v| local[v as usize] != u32::MAX)
+        })
         .copied()
         .collect();
     let piece = mesh_pieces(mesh.positions.len(), &band);

@@ -89,7 +89,6 @@ fn posed(mesh: &Mesh, r: &Rig, angle: impl Fn(DVec3) -> f64) -> Mesh {
 /// Hands in T-pose (arms horizontal) and hanging (arms turned down by 30°) keep five digits
 /// each, thumbs first.
 #[test]
-#[ignore = "open (issue 25): T-pose passes; the hanging pose (arms 30 deg down through the skin) finds 8 digits per hand"]
 fn t_pose_and_hanging_hands_keep_five_digits() {
     let mesh = bundled();
     let r = rig(&mesh, &RigOptions::default()).unwrap();
@@ -111,7 +110,6 @@ fn t_pose_and_hanging_hands_keep_five_digits() {
 
 /// Curling every finger 90° (base joint about its x axis) stretches no hand edge past 2×.
 #[test]
-#[ignore = "open (issue 25 part 6): the geodesic skin does not separate fingers yet, worst stretch 5.2x"]
 fn curling_every_finger_90_degrees_stretches_no_edge_past_twice() {
     let mesh = bundled();
     let r = rig(&mesh, &RigOptions::default()).unwrap();
