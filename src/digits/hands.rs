@@ -4,6 +4,7 @@ use super::contour::{digit_branches, Branch};
 use super::place::{digit_frame, place_digit, DigitJoints};
 use super::surface::hand_surface;
 use super::{DigitOptions, DigitWarning};
+use crate::bones::winding;
 use crate::fit::Fit;
 use crate::mesh::Mesh;
 use crate::skeleton::canonical::{CanonicalJoints, Finger};
@@ -89,6 +90,9 @@ fn fit_hand(
     // A digit stands out longer than it is wide; a shorter branch is a bump of the palm or of
     // another body part's surface in reach.
     branches.retain(|b| free_length(b) >= mean_width(b));
+    // The contour centres of a digit lie inside the figure (a coarse or open surface can give
+    // branches whose centres do not).
+    branches.retain(|b| b.path.iter().all(|&p| winding(mesh, p) != 0));
     // Thumb first: the deepest web, at equal webs the thinner digit.
     branches.sort_by(|a, b| {
         (a.split_level, base_perimeter(a))

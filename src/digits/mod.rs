@@ -14,7 +14,8 @@
 //!    between them (a sampled Reeb graph). Where a contour splits, digits part; a digit is a
 //!    leaf branch, its path the contour centroids from the web to the tip. Branches shorter
 //!    than a few levels are noise and pruned.
-//! 3. **Digits** (`hands.rs`): branches shorter than their mean width are bumps, not digits;
+//! 3. **Digits** (`hands.rs`): branches shorter than their mean width are bumps, and branches
+//!    with a contour centre outside the figure are not digits;
 //!    the thumb parts from the palm first (the deepest web; at equal
 //!    depth, the thinner branch); the fingers follow in the order of their bases from the
 //!    thumb's. Five digits give `thumb_01..03` and `index_01..pinky_03` with a `_end` at each

@@ -123,16 +123,32 @@ fn curling_every_finger_90_degrees_stretches_no_edge_past_twice() {
     }
     let curled = deform(&mesh, skeleton, &r.skin, &pose).unwrap();
     let mut worst: f64 = 1.0;
+    let mut at = (0, 0);
     for t in &mesh.triangles {
         for k in 0..3 {
             let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
             let rest = mesh.positions[a].distance(mesh.positions[b]);
             if rest > 0.0 {
-                worst = worst.max(curled.positions[a].distance(curled.positions[b]) / rest);
+                let stretch = curled.positions[a].distance(curled.positions[b]) / rest;
+                if stretch > worst {
+                    (worst, at) = (stretch, (a, b));
+                }
             }
         }
     }
-    println!("curl: worst edge stretch {worst:.2}");
+    let names = |v: usize| -> Vec<(String, f64)> {
+        r.skin.weights[v]
+            .iter()
+            .map(|(j, w)| (skeleton.joint(*j).name.clone(), *w))
+            .collect()
+    };
+    println!(
+        "curl: worst edge stretch {worst:.2} between {:?} {:?} and {:?} {:?}",
+        mesh.positions[at.0],
+        names(at.0),
+        mesh.positions[at.1],
+        names(at.1)
+    );
     assert!(worst <= 2.0, "worst edge stretch {worst:.2}");
 }
 
