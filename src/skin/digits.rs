@@ -274,7 +274,10 @@ mod tests {
     /// Three touching fingers (capsules of radius 0.1, 0.2 apart along x) on a wrist at the
     /// origin, each a chain of three joints and a tip, and every vertex weighted evenly to the
     /// three base joints (the voxel skin's blur at its worst).
-    fn blurred_hand() -> (Mesh, Skeleton, Vec<Vec<(JointId, f64)>>, Vec<f64>) {
+    /// Per-vertex `(joint, weight)` lists.
+    type Weights = Vec<Vec<(JointId, f64)>>;
+
+    fn blurred_hand() -> (Mesh, Skeleton, Weights, Vec<f64>) {
         let xs = vec![-0.2, 0.0, 0.2];
         let mut mesh = Mesh {
             positions: Vec::new(),
