@@ -47,6 +47,7 @@
 
 pub mod anatomy;
 pub mod bones;
+pub mod digits;
 pub mod distance;
 pub mod error;
 pub mod eval;

@@ -7,6 +7,7 @@
 
 use crate::anatomy::AnatomyWarning;
 use crate::bones::BoneWarning;
+use crate::digits::DigitWarning;
 use crate::eval::EvalWarning;
 use crate::fit::{FitInputWarning, FitWarning};
 use crate::general::GeneralWarning;
@@ -68,6 +69,8 @@ pub enum Warning {
     Fit(FitWarning),
     /// The slicing refinement of humanoid joints.
     Refine(RefineWarning),
+    /// The digits of the hands ([`crate::digits::fit_hands`]).
+    Digits(DigitWarning),
     /// Skinning.
     Skin(SkinWarning),
     /// Bone meshes.
@@ -91,6 +94,7 @@ impl Warning {
             Self::FitInput(_) => "fit_input",
             Self::Fit(_) => "fit",
             Self::Refine(_) => "refine",
+            Self::Digits(_) => "digits",
             Self::Skin(_) => "skin",
             Self::Bones(_) => "bones",
             Self::Eval(_) => "eval",
@@ -110,6 +114,7 @@ impl Warning {
             Self::FitInput(_) => 6,
             Self::Fit(_) => 6,
             Self::Refine(_) => 7,
+            Self::Digits(_) => 7,
             Self::Skin(_) => 8,
             Self::Bones(_) => 9,
             Self::Eval(_) => 10,
@@ -127,6 +132,7 @@ impl Warning {
             Self::FitInput(w) => w.severity(),
             Self::Fit(w) => fit_severity(w),
             Self::Refine(w) => w.severity(),
+            Self::Digits(w) => w.severity(),
             Self::Skin(w) => skin_severity(w),
             Self::Bones(w) => w.severity(),
             Self::Eval(w) => w.severity(),
@@ -145,6 +151,7 @@ impl Warning {
             Self::FitInput(w) => w.code(),
             Self::Fit(w) => fit_code(w),
             Self::Refine(w) => refine_code(w),
+            Self::Digits(w) => w.code(),
             Self::Skin(w) => skin_code(w),
             Self::Bones(w) => w.code(),
             Self::Eval(w) => w.code(),
@@ -175,6 +182,7 @@ impl fmt::Display for Warning {
             Self::Fit(w) => w.fmt(f),
             // The refinement's sentences name joints, not the stage: say which stage it was.
             Self::Refine(w) => write!(f, "refine: {w}"),
+            Self::Digits(w) => write!(f, "digits: {w}"),
             Self::Skin(w) => w.fmt(f),
             Self::Bones(w) => w.fmt(f),
             Self::Eval(w) => w.fmt(f),
@@ -209,6 +217,7 @@ wrap!(
     FitInput(FitInputWarning),
     Fit(FitWarning),
     Refine(RefineWarning),
+    Digits(DigitWarning),
     Skin(SkinWarning),
     Bones(BoneWarning),
     Eval(EvalWarning),

@@ -90,7 +90,10 @@ fn key_region(key: &str) -> Option<Region> {
             Region::Trunk
         }
         Canonical::Neck | Canonical::Head => Region::Head,
-        Canonical::Shoulder(_) | Canonical::Elbow(_) | Canonical::Wrist(_) => Region::Fore(None),
+        Canonical::Shoulder(_)
+        | Canonical::Elbow(_)
+        | Canonical::Wrist(_)
+        | Canonical::Digit(..) => Region::Fore(None),
         Canonical::Hip(_) | Canonical::Knee(_) | Canonical::Ankle(_) | Canonical::Toe(_) => {
             Region::Hind(None)
         }

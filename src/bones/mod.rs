@@ -29,6 +29,7 @@
 mod axial;
 mod bone;
 mod collision;
+pub(crate) use collision::winding;
 mod context;
 mod error;
 mod export;

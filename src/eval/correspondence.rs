@@ -2,7 +2,7 @@
 //! derive them from engine names, and the pairing used by the metrics.
 
 use super::{EvalError, ReferenceRig};
-use crate::skeleton::canonical::{is_canonical_key, key_rank};
+use crate::skeleton::canonical::{is_canonical_key, is_digit_key, key_rank};
 use crate::skeleton::{JointId, Skeleton};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -162,15 +162,23 @@ pub enum CanonicalSource {
 }
 
 /// The canonical map of `rig`: its own when non-empty (non-canonical keys such as
-/// `root_control` dropped), else one derived by [`detect_preset`].
+/// `root_control` dropped) with the digit keys it lacks taken from [`detect_preset`] (reference
+/// files map the body, not the fingers), else one derived by [`detect_preset`].
 pub fn canonical_map(rig: &ReferenceRig) -> (BTreeMap<String, JointId>, CanonicalSource) {
-    let own: BTreeMap<String, JointId> = rig
+    let mut own: BTreeMap<String, JointId> = rig
         .canonical
         .iter()
         .filter(|(k, _)| is_canonical_key(k))
         .map(|(k, v)| (k.clone(), *v))
         .collect();
     if !own.is_empty() {
+        if !own.keys().any(|k| is_digit_key(k)) {
+            if let Some((_, map)) = detect_preset(&rig.skeleton) {
+                for (key, id) in map.into_iter().filter(|(k, _)| is_digit_key(k)) {
+                    own.entry(key).or_insert(id);
+                }
+            }
+        }
         return (own, CanonicalSource::File);
     }
     match detect_preset(&rig.skeleton) {

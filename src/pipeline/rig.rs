@@ -5,6 +5,7 @@ use crate::anatomy::{
     label_pieces, label_vertices_by_bones, label_with_overrides, FigureClass, Label, LabelOptions,
     LabelPipelineOptions, Labelling, Overrides,
 };
+use crate::digits::{fit_hands, DigitOptions};
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{fit_input, fit_with_probe, Fit, FitError, FitInput, FitInputOptions, FitOptions};
 use crate::general::{control_skeleton, GeneralOptions};
@@ -15,8 +16,9 @@ use crate::refine::{
     pull_inside, refine_fit, symmetrize, NoFullSpine, RefineError, RefineOptions, RefineWarning,
     SpineDetail,
 };
-use crate::skeleton::Canonical;
-use crate::skin::{skin_from_bones, Skin, SkinOptions};
+use crate::skeleton::canonical::CanonicalJoints;
+use crate::skeleton::{Canonical, JointId, Side};
+use crate::skin::{digit_weights, skin_from_bones, Skin, SkinOptions};
 use crate::template::{ExpectedPart, Preset, Template};
 use crate::voxel::{boundary_mesh, voxelize_figure, Solid, VoxelOptions};
 use crate::warning::Warning;
@@ -60,6 +62,8 @@ pub struct RigOptions {
     /// Slicing-based refinement of humanoid joints after the fit (seed 004; on by default,
     /// `in_rig: false` switches it off). Default: [`RefineOptions::default`].
     pub refine: RefineOptions,
+    /// The hands' digits at their own resolution, after the refinement (issue 25).
+    pub digits: DigitOptions,
     /// Regions of influence and weights (8.3).
     pub skin: SkinOptions,
     /// The general control skeleton (ch. 5) that a figure no template fits gets instead
@@ -89,6 +93,11 @@ impl RigOptions {
         check(self.fit.validate().map_err(Into::into));
         check(
             self.refine
+                .validate()
+                .map_err(|e| RefineError::InvalidOptions(e).into()),
+        );
+        check(
+            self.digits
                 .validate()
                 .map_err(|e| RefineError::InvalidOptions(e).into()),
         );
@@ -161,6 +170,7 @@ impl Default for RigOptions {
             input: FitInputOptions::default(),
             fit: FitOptions::default(),
             refine: RefineOptions::default(),
+            digits: DigitOptions::default(),
             skin: SkinOptions::default(),
             general: GeneralOptions::default(),
         }
@@ -291,10 +301,21 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         }
         lap.lap("symmetry", &mut timings);
     }
+    let hands = fit_hands(mesh, &template, &mut fit, &options.digits);
+    warnings.extend(hands.into_iter().map(Warning::Digits));
+    lap.lap("digits", &mut timings);
     let before = fit.warnings.len();
     fit.name_joints(options.fit.preset, input.up)?;
     warnings.extend(fit.warnings[before..].iter().cloned().map(Warning::Fit));
-    let skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
+    let mut skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
+    if options.digits.enabled {
+        // Fingers are thinner than the voxels: their weights again over the hand's surface.
+        let wrists: Vec<JointId> = Side::BOTH
+            .iter()
+            .filter_map(|&side| fit.canonical.joint_of(Canonical::Wrist(side)))
+            .collect();
+        skin.engine = digit_weights(mesh, &fit.skeleton, &wrists, &mut skin.weights);
+    }
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
     let missing = missing_parts(&template, &labelling);

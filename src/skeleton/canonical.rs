@@ -72,8 +72,75 @@ pub enum Tail {
     End,
 }
 
-/// A canonical anatomical key. Sided keys carry their [`Side`]; the hands (issue 25) will add
-/// digit keys as a further variant.
+/// A digit of the hand, thumb first (issue 25).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Finger {
+    /// The first digit (pollex).
+    Thumb,
+    /// The second digit.
+    Index,
+    /// The third digit.
+    Middle,
+    /// The fourth digit.
+    Ring,
+    /// The fifth digit.
+    Pinky,
+}
+
+impl Finger {
+    /// Thumb to pinky.
+    pub const ALL: [Finger; 5] = [
+        Finger::Thumb,
+        Finger::Index,
+        Finger::Middle,
+        Finger::Ring,
+        Finger::Pinky,
+    ];
+
+    /// `thumb`, `index`, `middle`, `ring`, `pinky`.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            Self::Thumb => "thumb",
+            Self::Index => "index",
+            Self::Middle => "middle",
+            Self::Ring => "ring",
+            Self::Pinky => "pinky",
+        }
+    }
+}
+
+/// The written digit keys, `[side][finger][joint]` (`thumb_01_L` .. `pinky_03_R`).
+const DIGIT_KEYS: [[[&str; 3]; 5]; 2] = [
+    [
+        ["thumb_01_L", "thumb_02_L", "thumb_03_L"],
+        ["index_01_L", "index_02_L", "index_03_L"],
+        ["middle_01_L", "middle_02_L", "middle_03_L"],
+        ["ring_01_L", "ring_02_L", "ring_03_L"],
+        ["pinky_01_L", "pinky_02_L", "pinky_03_L"],
+    ],
+    [
+        ["thumb_01_R", "thumb_02_R", "thumb_03_R"],
+        ["index_01_R", "index_02_R", "index_03_R"],
+        ["middle_01_R", "middle_02_R", "middle_03_R"],
+        ["ring_01_R", "ring_02_R", "ring_03_R"],
+        ["pinky_01_R", "pinky_02_R", "pinky_03_R"],
+    ],
+];
+
+/// The 30 digit keys in table order: left hand then right, thumb to pinky, base joint first.
+pub const DIGITS: [Canonical; 30] = {
+    let mut out = [Canonical::Pelvis; 30];
+    let mut i = 0;
+    while i < 30 {
+        let side = if i < 15 { Side::Left } else { Side::Right };
+        let finger = Finger::ALL[(i % 15) / 3];
+        out[i] = Canonical::Digit(side, finger, (i % 3) as u8 + 1);
+        i += 1;
+    }
+    out
+};
+
+/// A canonical anatomical key. Sided keys carry their [`Side`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Canonical {
     /// `pelvis`: the trunk's root.
@@ -107,6 +174,10 @@ pub enum Canonical {
     /// `C1`..`C7`, `T1`..`T12`, `L1`..`L5`, `sacrum`: the full spine (`skelfit rig --spine
     /// full`).
     Vertebra(Vertebra),
+    /// `thumb_01_L` .. `pinky_03_R`: a digit joint, numbered 1 (the base: the thumb's
+    /// carpometacarpal joint, a finger's knuckle) to 3 (the last joint). Numbers outside 1..=3
+    /// are written as 3.
+    Digit(Side, Finger, u8),
 }
 
 /// Names of the full spine's joints from the top: the joint below each vertebra (`C1` joins C1
@@ -227,18 +298,33 @@ pub const CANONICAL_KEYS: &[&str] = &TABLE_KEYS;
 /// How every tail key begins.
 pub const TAIL_PREFIX: &str = "tail_";
 
-/// Whether `key` is a canonical anatomical key ([`CANONICAL_KEYS`], `tail_*` or a
-/// [`VERTEBRA_NAMES`] entry).
+/// Whether `key` is a canonical anatomical key ([`CANONICAL_KEYS`], a digit key of
+/// [`DIGITS`], `tail_*` or a [`VERTEBRA_NAMES`] entry).
 pub fn is_canonical_key(key: &str) -> bool {
-    CANONICAL_KEYS.contains(&key) || key.starts_with(TAIL_PREFIX) || VERTEBRA_NAMES.contains(&key)
+    CANONICAL_KEYS.contains(&key)
+        || is_digit_key(key)
+        || key.starts_with(TAIL_PREFIX)
+        || VERTEBRA_NAMES.contains(&key)
 }
 
-/// Sort position of a canonical key: [`CANONICAL_KEYS`] order, then the other keys.
+/// Whether `key` is one of the 30 digit keys ([`DIGITS`]).
+pub fn is_digit_key(key: &str) -> bool {
+    DIGITS.iter().any(|d| d.as_str() == key)
+}
+
+/// Sort position of a canonical key: [`CANONICAL_KEYS`] order, then the digit keys
+/// ([`DIGITS`] order), then the other keys.
 pub fn key_rank(key: &str) -> usize {
     CANONICAL_KEYS
         .iter()
         .position(|k| *k == key)
-        .unwrap_or(CANONICAL_KEYS.len())
+        .or_else(|| {
+            DIGITS
+                .iter()
+                .position(|d| d.as_str() == key)
+                .map(|i| CANONICAL_KEYS.len() + i)
+        })
+        .unwrap_or(CANONICAL_KEYS.len() + DIGITS.len())
 }
 
 impl Canonical {
@@ -270,6 +356,18 @@ impl Canonical {
             Self::Tail(Tail::Mid) => "tail_mid",
             Self::Tail(Tail::End) => "tail_end",
             Self::Vertebra(v) => v.as_str(),
+            Self::Digit(side, finger, k) => {
+                let s = match side {
+                    Left => 0,
+                    Right => 1,
+                };
+                let j = match k {
+                    0 | 1 => 0,
+                    2 => 1,
+                    _ => 2,
+                };
+                DIGIT_KEYS[s][finger as usize][j]
+            }
         }
     }
 
@@ -283,7 +381,8 @@ impl Canonical {
             | Self::Hip(s)
             | Self::Knee(s)
             | Self::Ankle(s)
-            | Self::Toe(s) => Some(s),
+            | Self::Toe(s)
+            | Self::Digit(s, ..) => Some(s),
             _ => None,
         }
     }
@@ -307,7 +406,7 @@ impl fmt::Display for Canonical {
 
 /// A string that is not a canonical key.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("`{0}` is not a canonical key (pelvis, spine, chest, neck, head, clavicle/shoulder/elbow/wrist/hip/knee/ankle/toe with _L or _R, tail_base, tail_mid, tail_end, C1..C7, T1..T12, L1..L5, sacrum)")]
+#[error("`{0}` is not a canonical key (pelvis, spine, chest, neck, head, clavicle/shoulder/elbow/wrist/hip/knee/ankle/toe with _L or _R, tail_base, tail_mid, tail_end, thumb/index/middle/ring/pinky_01..03 with _L or _R, C1..C7, T1..T12, L1..L5, sacrum)")]
 pub struct NotCanonical(pub String);
 
 /// A map from canonical keys to joints: the maps of files and fits, keyed by the written key
@@ -336,6 +435,7 @@ impl FromStr for Canonical {
         TABLE
             .iter()
             .chain(&TAILS)
+            .chain(&DIGITS)
             .copied()
             .chain(Vertebra::ALL.map(Canonical::Vertebra))
             .find(|k| k.as_str() == s)
@@ -362,7 +462,7 @@ mod tests {
 
     #[test]
     fn every_key_round_trips_through_its_string() {
-        for key in TABLE.iter().chain(&TAILS) {
+        for key in TABLE.iter().chain(&TAILS).chain(&DIGITS) {
             assert_eq!(key.as_str().parse::<Canonical>(), Ok(*key));
             assert!(is_canonical_key(key.as_str()));
         }
@@ -387,7 +487,10 @@ mod tests {
         assert_eq!(Canonical::Pelvis.stem(), "pelvis");
         assert_eq!(Canonical::Tail(Tail::End).stem(), "tail_end");
         assert_eq!(key_rank("pelvis"), 0);
-        assert_eq!(key_rank("tail_base"), CANONICAL_KEYS.len());
+        assert_eq!(key_rank("tail_base"), CANONICAL_KEYS.len() + DIGITS.len());
+        assert_eq!(key_rank("thumb_01_L"), CANONICAL_KEYS.len());
+        assert_eq!(DIGITS[29].as_str(), "pinky_03_R");
+        assert_eq!(DIGITS[29].side(), Some(Side::Right));
     }
 
     #[test]

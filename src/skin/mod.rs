@@ -45,6 +45,7 @@ mod bind;
 pub mod check;
 pub mod compare;
 mod deform;
+mod digits;
 mod error;
 mod geodesic;
 mod given;
@@ -57,6 +58,7 @@ mod weights;
 
 pub use bind::{skin, skin_from_bones, Skin};
 pub use deform::deform;
+pub use digits::digit_weights;
 pub use error::{SkinError, SkinWarning};
 pub use given::{skin_skeleton, SkeletonSkinOptions, SkinnedSkeleton};
 pub use influence::{influence, Influence};

@@ -216,13 +216,21 @@ fn warnings_of_one_kind_are_one_line_unless_verbose() {
         "{}",
         group[0]
     );
-    for l in &outside {
-        let bone = l
-            .trim_start_matches("skelfit: warning: ")
-            .split(':')
-            .next()
-            .unwrap();
-        assert!(group[0].contains(bone), "{bone} named in {}", group[0]);
+    // Each bone named in the line, or counted in its "and N more".
+    let listed = group[0]
+        .split_once("): ")
+        .and_then(|(_, rest)| rest.split(';').next())
+        .unwrap();
+    let named: Vec<&str> = listed.split(" and ").next().unwrap().split(", ").collect();
+    let more = listed.split_once(" and ").map_or(0, |(_, m)| {
+        m.trim_end_matches(" more").parse::<usize>().unwrap()
+    });
+    assert_eq!(named.len() + more, outside.len(), "{}", group[0]);
+    for bone in &named {
+        assert!(
+            outside.iter().any(|l| l.contains(&format!(" {bone}: "))),
+            "{bone} in the group but not warned: {verbose}"
+        );
     }
     // Ranked: parts missing before degraded ones.
     let first_degraded = lines.iter().position(|l| l.contains(", degraded"));

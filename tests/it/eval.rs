@@ -88,7 +88,11 @@ fn different_rigs_of_one_model_pair_by_canonical_keys() {
     let game = load_skeleton(&dir.join("rig_game_engine.json")).unwrap();
     let mixamo = load_skeleton(&dir.join("rig_mixamo.json")).unwrap();
     let e = evaluate(&mixamo, &game, None, &EvalOptions::default()).unwrap();
-    assert_eq!(e.joints.len(), 21);
+    // 21 body joints and the 30 digit joints both rigs carry.
+    assert_eq!(
+        e.joints.len(),
+        21 + skelfit::skeleton::canonical::DIGITS.len()
+    );
     assert_eq!(e.figure.measure, FigureMeasure::Height);
     // Same body, two rigs: hips and knees agree to within a few percent of height.
     let knee = e.joints.iter().find(|j| j.key == "knee_L").unwrap();
@@ -98,7 +102,7 @@ fn different_rigs_of_one_model_pair_by_canonical_keys() {
     bare_game.canonical.clear();
     bare_mixamo.canonical.clear();
     let again = evaluate(&bare_mixamo, &bare_game, None, &EvalOptions::default()).unwrap();
-    assert_eq!(again.joints.len(), 21);
+    assert_eq!(again.joints.len(), e.joints.len());
     for (a, b) in again.joints.iter().zip(&e.joints) {
         assert_eq!((&a.key, &a.reference_joint), (&b.key, &b.reference_joint));
         assert_eq!(a.predicted_joint, b.predicted_joint);
@@ -173,7 +177,11 @@ fn bundled_data_evaluates_and_reports() {
         joint.position.z += 0.01;
     }
     let e = evaluate(&predicted, &reference, Some(&mesh), &EvalOptions::default()).unwrap();
-    assert_eq!(e.joints.len(), 21);
+    // 21 body joints and the 30 digit joints both rigs carry.
+    assert_eq!(
+        e.joints.len(),
+        21 + skelfit::skeleton::canonical::DIGITS.len()
+    );
     assert!((e.summary.max - 0.01).abs() < 1e-12 && (e.summary.median - 0.01).abs() < 1e-12);
     assert_eq!(e.figure.source, SizeSource::Mesh);
     let (min, max) = mesh.bounding_box().unwrap();

@@ -9,6 +9,7 @@
 use crate::common;
 use skelfit::mesh::{load, Mesh};
 use skelfit::pipeline::{rig, Rig, RigOptions};
+use skelfit::skeleton::canonical::DIGITS;
 use skelfit::skeleton::Skeleton;
 use skelfit::template::Preset;
 use std::collections::BTreeMap;
@@ -108,7 +109,10 @@ fn assert_weights(preset: &str, mesh: &Mesh, r: &Rig) {
 /// The canonical map points at joints of the engine skeleton named by the preset's table.
 fn assert_canonical(preset: Preset, r: &Rig) {
     let table = preset.names().unwrap();
-    assert_eq!(r.fit.canonical.len(), skelfit::eval::CANONICAL_KEYS.len());
+    assert_eq!(
+        r.fit.canonical.len(),
+        skelfit::eval::CANONICAL_KEYS.len() + DIGITS.len()
+    );
     for (key, id) in &r.fit.canonical {
         assert_eq!(
             r.fit.skeleton.joint(*id).name,
@@ -131,7 +135,8 @@ fn mixamo_preset_gives_the_mixamo_skeleton() {
         .collect();
     assert_eq!(core.len(), 25, "Mixamo's body without fingers: {core:?}");
     assert_engine_skeleton("mixamo", &r.fit.skeleton, &engine, &core);
-    assert_eq!(r.fit.skeleton.len(), core.len());
+    // The body and every finger, the four-joint digits with their end joints.
+    assert_eq!(r.fit.skeleton.len(), engine.len());
     assert_weights("mixamo", &mesh, &r);
     assert_canonical(Preset::Mixamo, &r);
     // Spine, Spine1, Spine2 rise in order between the hips and the neck.
@@ -159,7 +164,8 @@ fn makehuman_preset_gives_the_game_engine_skeleton() {
         .collect();
     assert!(core.contains(&"Root") && core.contains(&"spine_03"));
     assert_engine_skeleton("makehuman", &r.fit.skeleton, &engine, &core);
-    assert_eq!(r.fit.skeleton.len(), core.len());
+    // The body and the three joints of every digit.
+    assert_eq!(r.fit.skeleton.len(), core.len() + DIGITS.len());
     assert!(!r.fit.skeleton.joints[0].deform, "Root carries no weight");
     assert_weights("makehuman", &mesh, &r);
     assert_canonical(Preset::MakeHuman, &r);
@@ -177,8 +183,30 @@ fn sided(pairs: &[(&str, &str)], sides: [&str; 2]) -> Vec<(String, Option<String
         .collect()
 }
 
-/// UE5 Mannequin body (IK Rig's "UE5 Mannequin" template hierarchy), without fingers, twist
-/// and IK bones.
+/// `(joint, parent)` of the three joints of every digit on both sides: `name(finger, k, side)`
+/// names joint `k` (1..3) of a digit, `hand(side)` the hand.
+fn digit_chains(
+    name: impl Fn(usize, usize, usize) -> String,
+    hand: impl Fn(usize) -> String,
+) -> Vec<(String, Option<String>)> {
+    let mut h = Vec::new();
+    for side in 0..2 {
+        for finger in 0..5 {
+            for k in 1..=3 {
+                let parent = if k == 1 {
+                    hand(side)
+                } else {
+                    name(finger, k - 1, side)
+                };
+                h.push((name(finger, k, side), Some(parent)));
+            }
+        }
+    }
+    h
+}
+
+/// UE5 Mannequin body (IK Rig's "UE5 Mannequin" template hierarchy) with its fingers, without
+/// twist, metacarpal and IK bones.
 fn unreal_core() -> Hierarchy {
     let mut h: Hierarchy = [
         ("root", None),
@@ -208,10 +236,16 @@ fn unreal_core() -> Hierarchy {
         ],
         ["l", "r"],
     ));
+    let sides = ["l", "r"];
+    let fingers = ["thumb", "index", "middle", "ring", "pinky"];
+    h.extend(digit_chains(
+        |f, k, s| format!("{}_{k:02}_{}", fingers[f], sides[s]),
+        |s| format!("hand_{}", sides[s]),
+    ));
     h
 }
 
-/// Unity Humanoid body bones (HumanBodyBones) with Unity's parents, without fingers and eyes
+/// Unity Humanoid body bones (HumanBodyBones) with Unity's parents and fingers, without eyes
 /// (Jaw is allowed: skelfit places it on some heads).
 fn unity_bones() -> Hierarchy {
     let mut h: Hierarchy = [
@@ -238,6 +272,13 @@ fn unity_bones() -> Hierarchy {
             ("{}Toes", "{}Foot"),
         ],
         ["Left", "Right"],
+    ));
+    let sides = ["Left", "Right"];
+    let fingers = ["Thumb", "Index", "Middle", "Ring", "Little"];
+    let phalanges = ["Proximal", "Intermediate", "Distal"];
+    h.extend(digit_chains(
+        |f, k, s| format!("{}{}{}", sides[s], fingers[f], phalanges[k - 1]),
+        |s| format!("{}Hand", sides[s]),
     ));
     h
 }

@@ -1,0 +1,271 @@
+//! The digit stage's entry: each hand looked at again, its digits named and jointed.
+
+use super::contour::{digit_branches, Branch};
+use super::place::{digit_frame, place_digit, DigitJoints};
+use super::surface::hand_surface;
+use super::{DigitOptions, DigitWarning};
+use crate::bones::winding;
+use crate::fit::Fit;
+use crate::mesh::Mesh;
+use crate::skeleton::canonical::{CanonicalJoints, Finger};
+use crate::skeleton::{Canonical, Dof, Joint, JointId, Side, Skeleton};
+use crate::template::{LimbGroup, Template};
+use glam::DVec3;
+
+/// Replaces each hand's finger chain in `fit` by the digits its surface shows (module docs):
+/// `thumb_01_L`..`pinky_03_R` joints with their canonical keys and a `_end` joint at each tip,
+/// hung from the wrist. A mitten keeps one finger chain, moved onto the mitten (plus a thumb
+/// when it separates). Does nothing when the fit has no wrists or the template's wrist limb
+/// names no digits; `options.enabled: false` switches it off.
+///
+/// Returns a warning per hand that is not a five-digit hand. Never fails: a hand it cannot read
+/// keeps the fit's chain.
+pub fn fit_hands(
+    mesh: &Mesh,
+    template: &Template,
+    fit: &mut Fit,
+    options: &DigitOptions,
+) -> Vec<DigitWarning> {
+    let mut warnings = Vec::new();
+    let Some(group) = hand_group(template) else {
+        return warnings;
+    };
+    if !options.enabled {
+        return warnings;
+    }
+    for side in Side::BOTH {
+        let Some(wrist) = fit.canonical.joint_of(Canonical::Wrist(side)) else {
+            continue;
+        };
+        if let Some(w) = fit_hand(mesh, group, fit, wrist, side, options) {
+            warnings.push(w);
+        }
+    }
+    warnings
+}
+
+/// The template's limb group whose chain holds the wrist and names five digits.
+fn hand_group(template: &Template) -> Option<&LimbGroup> {
+    let wrist = template
+        .joints
+        .iter()
+        .find(|j| j.canonical.as_deref() == Some(Canonical::Wrist(Side::Left).stem()))?;
+    template
+        .limbs
+        .iter()
+        .find(|g| g.chain.contains(&wrist.name) && g.digits.len() >= Finger::ALL.len())
+}
+
+/// One hand; the warning when it is not a five-digit hand.
+fn fit_hand(
+    mesh: &Mesh,
+    group: &LimbGroup,
+    fit: &mut Fit,
+    wrist: JointId,
+    side: Side,
+    options: &DigitOptions,
+) -> Option<DigitWarning> {
+    let w = fit.skeleton.joint(wrist).position;
+    let elbow = fit
+        .canonical
+        .joint_of(Canonical::Elbow(side))
+        .map(|e| fit.skeleton.joint(e).position);
+    let Some((forearm, axis)) = elbow.and_then(|e| {
+        let d = w - e;
+        let len = d.length();
+        (len > 0.0).then(|| (len, d / len))
+    }) else {
+        return Some(DigitWarning::NoHand { side });
+    };
+    let Some(surface) = hand_surface(
+        mesh,
+        w,
+        axis,
+        options.reach * forearm,
+        options.wrist_band * forearm,
+    ) else {
+        return Some(DigitWarning::NoHand { side });
+    };
+    let mut branches = digit_branches(&surface, options.level_step * forearm, options.min_levels);
+    // A digit stands out longer than it is wide; a shorter branch is a bump of the palm or of
+    // another body part's surface in reach.
+    branches.retain(|b| free_length(b) >= mean_width(b));
+    // The contour centres of a digit lie inside the figure (a coarse or open surface can give
+    // branches whose centres do not).
+    branches.retain(|b| b.path.iter().all(|&p| winding(mesh, p) != 0));
+    // Thumb first: the deepest web, at equal webs the thinner digit.
+    branches.sort_by(|a, b| {
+        (a.split_level, base_perimeter(a))
+            .partial_cmp(&(b.split_level, base_perimeter(b)))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let found = branches.len();
+    if found < 2 {
+        return Some(DigitWarning::FingersFused { side, thumb: false });
+    }
+    let thumb = branches.remove(0);
+    let thumb_base = thumb.path[thumb.path.len() - 1];
+    // Six or more: the four longest fingers; then in order of their bases from the thumb's.
+    branches.sort_by(|a, b| free_length(b).total_cmp(&free_length(a)));
+    branches.truncate(Finger::ALL.len() - 1);
+    branches.sort_by(|a, b| {
+        let da = a.path[a.path.len() - 1].distance(thumb_base);
+        let db = b.path[b.path.len() - 1].distance(thumb_base);
+        da.total_cmp(&db)
+    });
+    let mut digits = vec![(
+        Some(Finger::Thumb),
+        place_digit(
+            &thumb,
+            options.free_share[0],
+            options.thumb_from_tip,
+            Some(w),
+            axis,
+        ),
+    )];
+    let mitten = found == 2;
+    for (k, b) in branches.iter().enumerate() {
+        let (finger, share) = if mitten {
+            (None, options.free_share[2])
+        } else {
+            (Some(Finger::ALL[k + 1]), options.free_share[k + 1])
+        };
+        digits.push((
+            finger,
+            place_digit(b, share, options.finger_from_tip, None, axis),
+        ));
+    }
+    let palm = palm_normal(w, &digits, axis);
+    replace_hand(fit, group, wrist, side, &digits, palm);
+    match found {
+        2 => Some(DigitWarning::FingersFused { side, thumb: true }),
+        5 => None,
+        _ => Some(DigitWarning::DigitCount { side, found }),
+    }
+}
+
+/// The contour length at a branch's web end.
+fn base_perimeter(b: &Branch) -> f64 {
+    b.perimeters.last().copied().unwrap_or(0.0)
+}
+
+/// Mean diameter of a branch's contours (each contour's length over π).
+fn mean_width(b: &Branch) -> f64 {
+    b.perimeters.iter().sum::<f64>() / (b.perimeters.len().max(1) as f64 * std::f64::consts::PI)
+}
+
+/// Arc length of a branch's path.
+fn free_length(b: &Branch) -> f64 {
+    b.path.windows(2).map(|p| p[0].distance(p[1])).sum()
+}
+
+/// The palm's normal on its inner side: normal to the hand's direction and the line across
+/// the digit bases, turned to the side the thumb's tip lies on (a relaxed thumb sits in front
+/// of the palm).
+fn palm_normal(wrist: DVec3, digits: &[(Option<Finger>, DigitJoints)], axis: DVec3) -> DVec3 {
+    let thumb = digits[0].1;
+    let fingers: Vec<&DigitJoints> = digits[1..].iter().map(|d| &d.1).collect();
+    let centre = fingers.iter().map(|d| d.joints[0]).sum::<DVec3>() / fingers.len() as f64;
+    let hand = (centre - wrist).try_normalize().unwrap_or(axis);
+    let across = match (fingers.first(), fingers.last()) {
+        (Some(a), Some(b)) if fingers.len() > 1 => b.joints[0] - a.joints[0],
+        _ => centre - thumb.joints[1],
+    };
+    let normal = hand
+        .cross(across)
+        .try_normalize()
+        .unwrap_or_else(|| hand.any_orthonormal_vector());
+    if (thumb.tip - centre).dot(normal) < 0.0 {
+        -normal
+    } else {
+        normal
+    }
+}
+
+/// Removes the wrist's descendants (the template's hand and finger chain) and hangs the
+/// digits from the wrist; canonical keys for named digits.
+fn replace_hand(
+    fit: &mut Fit,
+    group: &LimbGroup,
+    wrist: JointId,
+    side: Side,
+    digits: &[(Option<Finger>, DigitJoints)],
+    palm: DVec3,
+) {
+    remove_descendants(fit, wrist);
+    for (finger, d) in digits {
+        let stem = match finger {
+            Some(f) => group
+                .digits
+                .get(*f as usize)
+                .cloned()
+                .unwrap_or_else(|| f.as_str().to_string()),
+            None => "finger".to_string(),
+        };
+        let points = [d.joints[0], d.joints[1], d.joints[2], d.tip];
+        let mut parent = Some(wrist);
+        for (k, &p) in points.iter().enumerate() {
+            let end = k == 3;
+            let name = if end {
+                format!("{stem}_end{}", side.suffix())
+            } else {
+                format!("{stem}_{:02}{}", k + 1, side.suffix())
+            };
+            let mut joint = Joint::new(name, parent, p);
+            joint.deform = !end;
+            let to = if end {
+                p + (p - points[2])
+            } else {
+                points[k + 1]
+            };
+            let from = if end { points[2] } else { p };
+            joint.frame = digit_frame(from, to, palm);
+            joint.dofs = digit_dofs(group, *finger, k);
+            fit.skeleton.joints.push(joint);
+            let id = JointId(fit.skeleton.joints.len() - 1);
+            if let (Some(f), false) = (finger, end) {
+                fit.canonical.insert(
+                    Canonical::Digit(side, *f, k as u8 + 1).as_str().to_string(),
+                    id,
+                );
+            }
+            parent = Some(id);
+        }
+    }
+}
+
+/// The template's DOFs of a digit joint (`k`: 0 base .. 3 end).
+fn digit_dofs(group: &LimbGroup, finger: Option<Finger>, k: usize) -> Vec<Dof> {
+    match (k, finger) {
+        (3, _) => Vec::new(),
+        (0, Some(Finger::Thumb)) => group.first_digit_base_dofs.clone(),
+        (0, _) => group.digit_base_dofs.clone(),
+        _ => group.phalanx_dofs.clone(),
+    }
+}
+
+/// Drops every joint below `root`, keeping ids of the rest consistent (parents and the
+/// canonical map renumbered; keys of dropped joints removed).
+fn remove_descendants(fit: &mut Fit, root: JointId) {
+    let joints = &fit.skeleton.joints;
+    let mut dropped = vec![false; joints.len()];
+    for (i, j) in joints.iter().enumerate() {
+        // Parents come first, so a parent's mark is final.
+        dropped[i] = j.parent.is_some_and(|p| p == root || dropped[p.0]);
+    }
+    let mut new_id = vec![None; joints.len()];
+    let mut kept = Vec::new();
+    for (i, j) in joints.iter().enumerate() {
+        if !dropped[i] {
+            new_id[i] = Some(JointId(kept.len()));
+            let mut j = j.clone();
+            j.parent = j.parent.and_then(|p| new_id[p.0]);
+            kept.push(j);
+        }
+    }
+    fit.skeleton = Skeleton { joints: kept };
+    fit.canonical = std::mem::take(&mut fit.canonical)
+        .into_iter()
+        .filter_map(|(k, id)| Some((k, new_id[id.0]?)))
+        .collect();
+}

@@ -1,0 +1,74 @@
+//! Options of the digit stage.
+
+use crate::options::{Checks, OptionProblems};
+
+/// How [`fit_hands`](super::fit_hands) finds and places the digits. Lengths are fractions of the
+/// forearm (elbow to wrist), so the options do not depend on the mesh's units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DigitOptions {
+    /// Whether the rig looks at the hands again (default true).
+    pub enabled: bool,
+    /// Spacing of the contour levels, fraction of the forearm. Default 1/80 (3 mm on an adult):
+    /// a fifth of a finger's width, so the webs between fingers are seen.
+    pub level_step: f64,
+    /// How far from the wrist the hand's surface is taken, fraction of the forearm. Default
+    /// 1.2 (a hand is about 0.75 forearm long).
+    pub reach: f64,
+    /// How far behind the wrist the wrist's cross-section (the geodesic sources) reaches,
+    /// fraction of the forearm. Default 0.05.
+    pub wrist_band: f64,
+    /// Fewest contour levels a digit branch spans; shorter branches are noise. Default 3.
+    pub min_levels: usize,
+    /// Share of each digit's length (base joint to tip, thumb first) that stands free of the
+    /// palm beyond the web. Default `[0.44, 0.84, 0.82, 0.77, 0.72]`: the means over the six
+    /// MakeHuman hands of ../shared/refdata (thumb from its carpometacarpal joint).
+    pub free_share: [f64; 5],
+    /// The last two finger joints (end joint, middle joint) as fractions of the finger's length
+    /// measured from its tip. Default `[0.33, 0.62]`: distal:middle:proximal segments
+    /// 33:29:38 to the skin tip (the means over the MakeHuman reference hands; the
+    /// dissertation's 10:15:25 bone ratios stop short of the fingertip pad).
+    pub finger_from_tip: [f64; 2],
+    /// The thumb's interphalangeal and metacarpophalangeal joints as fractions of its length
+    /// from the tip. Default `[0.30, 0.67]` (MakeHuman reference hands).
+    pub thumb_from_tip: [f64; 2],
+}
+
+impl Default for DigitOptions {
+    fn default() -> Self {
+        Self {
+            enabled: true,
+            level_step: 1.0 / 80.0,
+            reach: 1.2,
+            wrist_band: 0.05,
+            min_levels: 3,
+            free_share: [0.44, 0.84, 0.82, 0.77, 0.72],
+            finger_from_tip: [0.33, 0.62],
+            thumb_from_tip: [0.30, 0.67],
+        }
+    }
+}
+
+impl DigitOptions {
+    /// Checks every field.
+    ///
+    /// # Errors
+    /// Every out-of-range field, by name.
+    pub fn validate(&self) -> Result<(), OptionProblems> {
+        let mut c = Checks::default();
+        c.range("digits.level_step", self.level_step, 1e-3, 0.2);
+        c.range("digits.reach", self.reach, 0.2, 3.0);
+        c.range("digits.wrist_band", self.wrist_band, 0.0, 0.5);
+        c.at_least("digits.min_levels", self.min_levels, 1);
+        for (k, v) in self.free_share.iter().enumerate() {
+            c.range(&format!("digits.free_share[{k}]"), *v, 0.05, 1.0);
+        }
+        for (name, pair) in [
+            ("finger_from_tip", self.finger_from_tip),
+            ("thumb_from_tip", self.thumb_from_tip),
+        ] {
+            c.range(&format!("digits.{name}[0]"), pair[0], 0.05, 0.95);
+            c.range(&format!("digits.{name}[1]"), pair[1], pair[0], 0.95);
+        }
+        c.finish()
+    }
+}

@@ -1,0 +1,71 @@
+//! Warnings of the digit stage.
+
+use crate::skeleton::Side;
+use crate::warning::Severity;
+use std::fmt;
+
+/// What the digit stage could not do as asked; the hand keeps a best effort.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DigitWarning {
+    /// The hand's surface could not be taken (no wrist or elbow, or no triangles beyond the
+    /// wrist): the template's finger chain stays.
+    NoHand {
+        /// The hand.
+        side: Side,
+    },
+    /// No fingers separate on the surface (a mitten or a fist): one mitten chain, plus a thumb
+    /// when the thumb separates.
+    FingersFused {
+        /// The hand.
+        side: Side,
+        /// Whether a thumb separated.
+        thumb: bool,
+    },
+    /// Fewer or more than five digits separate: the digits found are named thumb first, the
+    /// rest are left out.
+    DigitCount {
+        /// The hand.
+        side: Side,
+        /// Digits found.
+        found: usize,
+    },
+}
+
+impl DigitWarning {
+    /// Stable snake_case id.
+    pub fn code(&self) -> &'static str {
+        match self {
+            Self::NoHand { .. } => "no_hand",
+            Self::FingersFused { .. } => "fingers_fused",
+            Self::DigitCount { .. } => "digit_count",
+        }
+    }
+
+    /// How much it matters.
+    pub fn severity(&self) -> Severity {
+        Severity::Degraded
+    }
+}
+
+impl fmt::Display for DigitWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NoHand { side } => write!(
+                f,
+                "the {} hand's surface could not be found beyond the wrist: it keeps one finger chain",
+                side.as_str()
+            ),
+            Self::FingersFused { side, thumb } => write!(
+                f,
+                "the fingers of the {} hand are fused (a mitten or fist): one mitten chain{}",
+                side.as_str(),
+                if *thumb { " and a thumb" } else { ", no thumb separates" }
+            ),
+            Self::DigitCount { side, found } => write!(
+                f,
+                "the {} hand shows {found} separate digits, not 5: the digits found are named thumb first",
+                side.as_str()
+            ),
+        }
+    }
+}

@@ -1,0 +1,352 @@
+//! Digit weights on the hand's surface (issue 25): fingers are thinner than the body's voxels,
+//! so the voxel skin blurs neighbouring fingers into each other; here each finger's vertices
+//! take its own bones only.
+//!
+//! For each hand (a wrist joint whose children start chains of single joints, the digits):
+//!
+//! 1. **Hand vertices**: the vertices whose voxel weights lie mostly (over one half) on the
+//!    wrist and its digits, on the wrist's distal side.
+//! 2. **Owner**: each hand vertex belongs to the digit nearest over the surface (a Dijkstra
+//!    over the hand's mesh edges) from the vertices that clearly lie on one digit (their
+//!    nearest digit bone is at most half as far as any other digit's). Touching fingers are
+//!    far apart over the surface, around the web.
+//! 3. **Weights**: a vertex on its digit's bones (its nearest point on the chain wrist → base
+//!    → middle → last → tip lies past the base joint's blend zone) takes that chain's joints
+//!    only: the bone it lies along, blended linearly with the next one within as far of each
+//!    joint as the vertex is from the chain (the local finger radius, at most half a bone).
+//!    A vertex in the palm keeps its voxel weights without the other digits' joints.
+
+use super::weights::{engine_weights, EngineWeights};
+use crate::mesh::Mesh;
+use crate::skeleton::{JointId, Skeleton};
+use glam::DVec3;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// One digit: the wrist, then the chain's joints to its tip.
+struct Chain {
+    /// Joints from the wrist to the tip (`joints[0]` is the wrist).
+    joints: Vec<JointId>,
+    /// Their positions, mesh frame.
+    points: Vec<DVec3>,
+}
+
+/// Re-weights the vertices of each hand in `wrists` (module docs) and returns the engine
+/// weights of the result.
+///
+/// `weights`: per mesh vertex `(joint, weight)` lists (as [`super::Skin::weights`]), weights
+/// summing to one; they keep that, and each vertex keeps at least one weight.
+pub fn digit_weights(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    wrists: &[JointId],
+    weights: &mut [Vec<(JointId, f64)>],
+) -> EngineWeights {
+    for &wrist in wrists {
+        let chains = chains(skeleton, wrist);
+        if chains.len() >= 2 {
+            hand(mesh, skeleton, wrist, &chains, weights);
+        }
+    }
+    engine_weights(weights).0
+}
+
+/// The digit chains hanging from `wrist`: each child followed while it has one child.
+fn chains(skeleton: &Skeleton, wrist: JointId) -> Vec<Chain> {
+    skeleton
+        .children(wrist)
+        .into_iter()
+        .map(|first| {
+            let mut joints = vec![wrist, first];
+            loop {
+                let children = skeleton.children(*joints.last().unwrap());
+                match children.as_slice() {
+                    [only] => joints.push(*only),
+                    _ => break,
+                }
+            }
+            let points = joints.iter().map(|&j| skeleton.joint(j).position).collect();
+            Chain { joints, points }
+        })
+        .filter(|c| c.joints.len() >= 3)
+        .collect()
+}
+
+/// One hand's vertices re-weighted.
+fn hand(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    wrist: JointId,
+    chains: &[Chain],
+    weights: &mut [Vec<(JointId, f64)>],
+) {
+    let mut digit_of = vec![usize::MAX; skeleton.len()];
+    for (d, c) in chains.iter().enumerate() {
+        for &j in &c.joints[1..] {
+            digit_of[j.0] = d;
+        }
+    }
+    let w = skeleton.joint(wrist).position;
+    let axis = skeleton
+        .joint(wrist)
+        .parent
+        .map(|p| w - skeleton.joint(p).position)
+        .and_then(DVec3::try_normalize)
+        .unwrap_or(DVec3::ZERO);
+    let in_hand: Vec<bool> = mesh
+        .positions
+        .iter()
+        .zip(weights.iter())
+        .map(|(&p, row)| {
+            let share: f64 = row
+                .iter()
+                .filter(|(j, _)| *j == wrist || digit_of[j.0] != usize::MAX)
+                .map(|(_, x)| x)
+                .sum();
+            share > 0.5 && (p - w).dot(axis) > 0.0
+        })
+        .collect();
+    // Seeds: vertices clearly on one digit's bones (not the palm's wrist-to-base bones).
+    let mut owner = vec![usize::MAX; mesh.positions.len()];
+    for (v, &p) in mesh.positions.iter().enumerate() {
+        if !in_hand[v] {
+            continue;
+        }
+        let near: Vec<(f64, bool)> = chains
+            .iter()
+            .map(|c| {
+                let (dist, seg) = nearest_on_chain(&c.points, p);
+                (dist, seg > 0)
+            })
+            .collect();
+        let (best, &(d_best, on_digit)) = near
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0))
+            .unwrap();
+        let second = near
+            .iter()
+            .enumerate()
+            .filter(|(d, _)| *d != best)
+            .map(|(_, n)| n.0)
+            .fold(f64::INFINITY, f64::min);
+        if on_digit && 2.0 * d_best <= second {
+            owner[v] = best;
+        }
+    }
+    spread_owners(mesh, &in_hand, &mut owner);
+    for (v, &p) in mesh.positions.iter().enumerate() {
+        let d = owner[v];
+        if !in_hand[v] || d == usize::MAX {
+            continue;
+        }
+        let chain = &chains[d];
+        let chain_row = chain_weights(&chain.points, &chain.joints, p);
+        let row = &mut weights[v];
+        let past_base = chain_row.iter().any(|(j, _)| *j != wrist);
+        let kept: Vec<(JointId, f64)> = row
+            .iter()
+            .copied()
+            .filter(|(j, _)| digit_of[j.0] == usize::MAX || digit_of[j.0] == d)
+            .collect();
+        let sum: f64 = kept.iter().map(|(_, x)| x).sum();
+        *row = if past_base || sum <= 0.0 {
+            chain_row
+        } else {
+            kept.into_iter().map(|(j, x)| (j, x / sum)).collect()
+        };
+        row.sort_by_key(|(j, _)| *j);
+    }
+}
+
+/// Distance from `p` to the polyline `points`, and the index of its nearest segment.
+fn nearest_on_chain(points: &[DVec3], p: DVec3) -> (f64, usize) {
+    points
+        .windows(2)
+        .enumerate()
+        .map(|(k, s)| (closest(s[0], s[1], p).1.distance(p), k))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .unwrap_or((f64::INFINITY, 0))
+}
+
+/// The parameter in `[0, 1]` and the point of segment `a`–`b` nearest `p`.
+fn closest(a: DVec3, b: DVec3, p: DVec3) -> (f64, DVec3) {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (t, a + ab * t)
+}
+
+/// Weights of `p` over the chain's joints (module docs, step 3): segment `k` (from
+/// `points[k]`) moves with `joints[k]`; across joint `k` (k >= 1) the weight passes from
+/// segment `k - 1` to segment `k` linearly over `2 h` of arc length, `h` the distance from `p`
+/// to the chain capped at half of each neighbouring segment. The last joint (the tip) moves
+/// nothing. One or two positive weights summing to one.
+fn chain_weights(points: &[DVec3], joints: &[JointId], p: DVec3) -> Vec<(JointId, f64)> {
+    let lengths: Vec<f64> = points.windows(2).map(|s| s[0].distance(s[1])).collect();
+    let (radius, seg) = nearest_on_chain(points, p);
+    let (t, _) = closest(points[seg], points[seg + 1], p);
+    let arc: f64 = lengths[..seg].iter().sum::<f64>() + t * lengths[seg];
+    let mut at = 0.0;
+    // Share past each inner joint.
+    let mut past = Vec::with_capacity(lengths.len() - 1);
+    for k in 1..lengths.len() {
+        at += lengths[k - 1];
+        let h = radius.min(0.5 * lengths[k - 1]).min(0.5 * lengths[k]);
+        let f = if h > 0.0 {
+            ((arc - at + h) / (2.0 * h)).clamp(0.0, 1.0)
+        } else if arc >= at {
+            1.0
+        } else {
+            0.0
+        };
+        past.push(f);
+    }
+    let mut row = Vec::with_capacity(2);
+    for k in 0..lengths.len() {
+        let before = if k == 0 { 1.0 } else { past[k - 1] };
+        let after = past.get(k).copied().unwrap_or(0.0);
+        let w = before - after;
+        if w > 0.0 {
+            row.push((joints[k], w));
+        }
+    }
+    row
+}
+
+/// Gives every hand vertex without an owner the owner of the nearest owned vertex over the
+/// hand's mesh edges (a multi-source Dijkstra); vertices no owner reaches keep none.
+fn spread_owners(mesh: &Mesh, in_hand: &[bool], owner: &mut [usize]) {
+    let n = mesh.positions.len();
+    let mut edges: Vec<(u32, u32)> = Vec::new();
+    for t in &mesh.triangles {
+        if t.iter().all(|&v| in_hand[v as usize]) {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.push((a, b));
+                edges.push((b, a));
+            }
+        }
+    }
+    edges.sort_unstable();
+    edges.dedup();
+    let mut start = vec![0usize; n + 1];
+    for &(a, _) in &edges {
+        start[a as usize + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut dist = vec![f64::INFINITY; n];
+    let mut heap = BinaryHeap::new();
+    for (v, &o) in owner.iter().enumerate() {
+        if o != usize::MAX {
+            dist[v] = 0.0;
+            heap.push(Reverse((0u64, v as u32)));
+        }
+    }
+    while let Some(Reverse((bits, u))) = heap.pop() {
+        let d = f64::from_bits(bits);
+        if d > dist[u as usize] {
+            continue;
+        }
+        for &(_, v) in &edges[start[u as usize]..start[u as usize + 1]] {
+            let nd = d + mesh.positions[u as usize].distance(mesh.positions[v as usize]);
+            if nd < dist[v as usize] {
+                dist[v as usize] = nd;
+                owner[v as usize] = owner[u as usize];
+                // Non-negative f64 order as their bits.
+                heap.push(Reverse((nd.to_bits(), v)));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::skeleton::Joint;
+
+    /// Three touching fingers (capsules of radius 0.1, 0.2 apart along x) on a wrist at the
+    /// origin, each a chain of three joints and a tip, and every vertex weighted evenly to the
+    /// three base joints (the voxel skin's blur at its worst).
+    /// Per-vertex `(joint, weight)` lists.
+    type Weights = Vec<Vec<(JointId, f64)>>;
+
+    fn blurred_hand() -> (Mesh, Skeleton, Weights, Vec<f64>) {
+        let xs = vec![-0.2, 0.0, 0.2];
+        let mut mesh = Mesh {
+            positions: Vec::new(),
+            triangles: Vec::new(),
+        };
+        for &x in &xs {
+            let c = Mesh::capsule(DVec3::new(x, 0.8, 0.0), 0.1, 0.4, 6, 16);
+            let offset = mesh.positions.len() as u32;
+            mesh.positions.extend(c.positions);
+            mesh.triangles
+                .extend(c.triangles.iter().map(|t| t.map(|v| v + offset)));
+        }
+        let mut joints = vec![
+            Joint::new("forearm", None, DVec3::new(0.0, -1.0, 0.0)),
+            Joint::new("wrist", Some(JointId(0)), DVec3::ZERO),
+        ];
+        let mut bases = Vec::new();
+        for &x in &xs {
+            let mut parent = JointId(1);
+            bases.push(JointId(joints.len()));
+            for (k, y) in [0.3, 0.6, 0.9, 1.3].into_iter().enumerate() {
+                let mut j = Joint::new(format!("f{x}_{k}"), Some(parent), DVec3::new(x, y, 0.0));
+                j.deform = k < 3;
+                joints.push(j);
+                parent = JointId(joints.len() - 1);
+            }
+        }
+        let skeleton = Skeleton { joints };
+        let weights = vec![bases.iter().map(|&b| (b, 1.0 / 3.0)).collect(); mesh.positions.len()];
+        (mesh, skeleton, weights, xs)
+    }
+
+    #[test]
+    fn each_finger_takes_its_own_bones_and_the_weights_stay_a_partition() {
+        let (mesh, skeleton, mut weights, xs) = blurred_hand();
+        let engine = digit_weights(&mesh, &skeleton, &[JointId(1)], &mut weights);
+        for (v, row) in weights.iter().enumerate() {
+            assert!(!row.is_empty(), "vertex {v} unweighted");
+            assert!(row.iter().all(|(_, w)| *w >= 0.0), "vertex {v}: {row:?}");
+            let sum: f64 = row.iter().map(|(_, w)| w).sum();
+            assert!((sum - 1.0).abs() < 1e-9, "vertex {v} sums to {sum}");
+            let e: f32 = engine.weights[v].iter().sum();
+            assert!((e - 1.0).abs() < 1e-4 && engine.weights[v].len() <= 4);
+            // The finger (capsule) this vertex lies on: its joints only (and the wrist).
+            let p = mesh.positions[v];
+            let finger = v / (mesh.positions.len() / xs.len());
+            for (j, w) in row {
+                let name = &skeleton.joint(*j).name;
+                assert!(
+                    name == "wrist" || name.starts_with(&format!("f{}_", xs[finger])),
+                    "vertex {v} at {p:?} on finger {finger} weighs {name} by {w}"
+                );
+                assert!(skeleton.joint(*j).deform, "vertex {v}: {name}");
+            }
+        }
+    }
+
+    #[test]
+    fn mid_bone_vertices_take_one_joint_and_joints_blend_two() {
+        let points = [
+            DVec3::ZERO,
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(0.0, 2.0, 0.0),
+        ];
+        let joints = [JointId(0), JointId(1), JointId(2)];
+        let mid = chain_weights(&points, &joints, DVec3::new(0.1, 1.5, 0.0));
+        assert_eq!(mid, vec![(JointId(1), 1.0)]);
+        let at_joint = chain_weights(&points, &joints, DVec3::new(0.1, 1.0, 0.0));
+        assert_eq!(at_joint.len(), 2);
+        assert!((at_joint[0].1 - 0.5).abs() < 1e-9, "{at_joint:?}");
+    }
+}

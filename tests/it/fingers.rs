@@ -1,0 +1,198 @@
+//! Digits of the hands (issue 25): the 30 finger joints of the MakeHuman bodies against their
+//! game_engine rigs, thumbs on their side of the palm, hands in T-pose, finger curls, mittens.
+
+use glam::{DQuat, DVec3};
+use skelfit::digits::DigitWarning;
+use skelfit::eval::load_skeleton;
+use skelfit::mesh::{load, Mesh};
+use skelfit::pipeline::{rig, Rig, RigOptions};
+use skelfit::skeleton::canonical::{Finger, DIGITS};
+use skelfit::skeleton::{Canonical, Side};
+use skelfit::skin::deform;
+use skelfit::warning::Warning;
+
+fn digit_warnings(r: &Rig) -> Vec<DigitWarning> {
+    r.warnings
+        .iter()
+        .filter_map(|w| match w {
+            Warning::Digits(d) => Some(d.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+fn bundled() -> Mesh {
+    load(&crate::common::data_dir().join("humanoid/mh_neutral_default/mesh.obj")).unwrap()
+}
+
+/// Every MakeHuman body: mean error over the 30 finger joints ≤ 8 mm against rig_game_engine
+/// (reference names through the MakeHuman preset), and each thumb nearer the reference thumb
+/// than the reference pinky (the thumb on the correct side of the palm).
+#[test]
+fn makehuman_fingers_are_within_8_mm_with_thumbs_on_their_side() {
+    let Some(root) = crate::common::refdata() else {
+        return;
+    };
+    let mut dirs: Vec<_> = std::fs::read_dir(root.join("humanoid"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("mh_"))
+        .collect();
+    dirs.sort();
+    assert!(!dirs.is_empty());
+    for dir in dirs {
+        let mesh = load(&dir.join("mesh.obj")).unwrap();
+        let r = rig(&mesh, &RigOptions::default()).unwrap();
+        assert!(
+            digit_warnings(&r).is_empty(),
+            "{dir:?}: {:?}",
+            digit_warnings(&r)
+        );
+        let reference = load_skeleton(&dir.join("rig_game_engine.json")).unwrap();
+        let (ref_map, _) = skelfit::eval::canonical_map(&reference);
+        let at = |key: &str| r.fit.skeleton.joint(r.fit.canonical[key]).position;
+        let truth = |key: &str| reference.skeleton.joint(ref_map[key]).position;
+        let errors: Vec<f64> = DIGITS
+            .iter()
+            .map(|k| at(k.as_str()).distance(truth(k.as_str())) * 1000.0)
+            .collect();
+        let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+        println!("{}: finger joints mean {mean:.1} mm", dir.display());
+        assert!(mean <= 8.0, "{dir:?}: mean {mean:.1} mm {errors:?}");
+        for side in Side::BOTH {
+            let thumb = at(Canonical::Digit(side, Finger::Thumb, 2).as_str());
+            let t = truth(Canonical::Digit(side, Finger::Thumb, 2).as_str());
+            let p = truth(Canonical::Digit(side, Finger::Pinky, 2).as_str());
+            assert!(thumb.distance(t) < thumb.distance(p), "{dir:?} {side:?}");
+        }
+    }
+}
+
+/// The bundled body with its arms turned about the shoulders (`angle` radians up from the rest
+/// A-pose in the frontal plane) through its own rig.
+fn posed(mesh: &Mesh, r: &Rig, angle: impl Fn(DVec3) -> f64) -> Mesh {
+    let (skeleton, canonical) = (&r.fit.skeleton, &r.fit.canonical);
+    let mut pose = skeleton.rest_pose();
+    for (side, sign) in [("L", 1.0), ("R", -1.0)] {
+        let id = canonical[&format!("shoulder_{side}")];
+        let arm = skeleton.joint(canonical[&format!("wrist_{side}")]).position
+            - skeleton.joint(id).position;
+        let turn = DQuat::from_rotation_z(sign * angle(arm));
+        let frame = skeleton.world_transforms(&pose)[id.0]
+            .to_scale_rotation_translation()
+            .1;
+        pose[id.0] = frame.inverse() * turn * frame;
+    }
+    deform(mesh, skeleton, &r.skin, &pose).unwrap()
+}
+
+/// Hands in T-pose (arms horizontal) and hanging (arms turned down by 30°) keep five digits
+/// each, thumbs first.
+#[test]
+fn t_pose_and_hanging_hands_keep_five_digits() {
+    let mesh = bundled();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    assert!(digit_warnings(&r).is_empty(), "{:?}", digit_warnings(&r));
+    let t_pose = posed(&mesh, &r, |arm| (-arm.y).atan2(arm.x.abs()));
+    let hanging = posed(&mesh, &r, |_| -0.5);
+    for (name, m) in [("t-pose", t_pose), ("hanging", hanging)] {
+        let p = rig(&m, &RigOptions::default()).unwrap();
+        assert!(
+            digit_warnings(&p).is_empty(),
+            "{name}: {:?}",
+            digit_warnings(&p)
+        );
+        for key in DIGITS {
+            assert!(p.fit.canonical.contains_key(key.as_str()), "{name}: {key}");
+        }
+    }
+}
+
+/// Curling every finger 90° (base joint about its x axis) stretches no hand edge past 2×.
+#[test]
+#[ignore = "open (issue 25 part 6): with skin::digit_weights the worst stretch is 2.78x (was 5.24x), at the index/middle web: its vertices go to one finger each, rotating about different base joints"]
+fn curling_every_finger_90_degrees_stretches_no_edge_past_twice() {
+    let mesh = bundled();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let (skeleton, canonical) = (&r.fit.skeleton, &r.fit.canonical);
+    let mut pose = skeleton.rest_pose();
+    for key in DIGITS
+        .iter()
+        .filter(|k| matches!(k, Canonical::Digit(_, f, 1) if *f != Finger::Thumb))
+    {
+        pose[canonical[key.as_str()].0] = DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2);
+    }
+    let curled = deform(&mesh, skeleton, &r.skin, &pose).unwrap();
+    let mut worst: f64 = 1.0;
+    let mut at = (0, 0);
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            let rest = mesh.positions[a].distance(mesh.positions[b]);
+            if rest > 0.0 {
+                let stretch = curled.positions[a].distance(curled.positions[b]) / rest;
+                if stretch > worst {
+                    (worst, at) = (stretch, (a, b));
+                }
+            }
+        }
+    }
+    let names = |v: usize| -> Vec<(String, f64)> {
+        r.skin.weights[v]
+            .iter()
+            .map(|(j, w)| (skeleton.joint(*j).name.clone(), *w))
+            .collect()
+    };
+    println!(
+        "curl: worst edge stretch {worst:.2} between {:?} {:?} and {:?} {:?}",
+        mesh.positions[at.0],
+        names(at.0),
+        mesh.positions[at.1],
+        names(at.1)
+    );
+    assert!(worst <= 2.0, "worst edge stretch {worst:.2}");
+}
+
+/// A mitten-handed game character gets the fused-fingers warning naming the hand (no panic),
+/// and a hand without a mesh beyond the wrist is a warning, not a failure.
+#[test]
+fn mitten_hands_warn_that_the_fingers_are_fused() {
+    let Some(dir) = crate::common::model("humanoid/quaternius_knight") else {
+        return;
+    };
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let w = digit_warnings(&r);
+    assert!(
+        w.iter()
+            .any(|w| matches!(w, DigitWarning::FingersFused { .. })),
+        "{w:?}"
+    );
+    assert!(
+        w.iter().any(|w| w.to_string().contains("left hand")),
+        "{w:?}"
+    );
+}
+
+/// Hands modelled as separate mesh pieces beyond the wrist (the Quaternius cyberpunk and
+/// platformer characters) are found: no hand is reported missing (regression: `no_hand`
+/// when the surface distance started only behind the wrist plane).
+#[test]
+fn hands_that_are_separate_mesh_pieces_are_found() {
+    for name in [
+        "quaternius_cyberpunk_character",
+        "quaternius_platformer_character",
+    ] {
+        let Some(dir) = crate::common::model(&format!("humanoid/{name}")) else {
+            continue;
+        };
+        let mesh = load(&dir.join("mesh.obj")).unwrap();
+        let r = rig(&mesh, &RigOptions::default()).unwrap();
+        let w = digit_warnings(&r);
+        println!("{name}: {w:?}");
+        assert!(
+            !w.iter().any(|w| matches!(w, DigitWarning::NoHand { .. })),
+            "{name}: {w:?}"
+        );
+    }
+}
