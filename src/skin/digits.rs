@@ -150,8 +150,20 @@ fn hand(
             .filter(|(j, _)| digit_of[j.0] == usize::MAX || digit_of[j.0] == d)
             .collect();
         let sum: f64 = kept.iter().map(|(_, x)| x).sum();
+        // The share of joints outside the hand (the forearm's) stays as it was, so the digit's
+        // vertices move with their palm neighbours when the wrist turns; the hand's share goes
+        // to the chain.
+        let outside: Vec<(JointId, f64)> = row
+            .iter()
+            .copied()
+            .filter(|(j, _)| *j != wrist && digit_of[j.0] == usize::MAX)
+            .collect();
+        let hand_share = 1.0 - outside.iter().map(|(_, x)| x).sum::<f64>();
         *row = if past_base || sum <= 0.0 {
-            chain_row
+            let mut out = outside;
+            out.extend(chain_row.into_iter().map(|(j, x)| (j, x * hand_share)));
+            out.retain(|(_, x)| *x > 0.0);
+            out
         } else {
             kept.into_iter().map(|(j, x)| (j, x / sum)).collect()
         };
