@@ -28,7 +28,7 @@ pub(super) fn leg(
         frame,
         height,
         options,
-        centre,
+        ..
     } = *scene;
     let frame = &frame;
     let hip = found
@@ -46,25 +46,6 @@ pub(super) fn leg(
     let Some(profile) = trace_limb(mesh, &[hip, knee, ank], height, options) else {
         warnings.push(RefineWarning::LegNotSliced(side));
         return;
-    };
-    // The leg's own transverse section at the height of `p`: the closed loop nearest it lies
-    // wholly on this side of the body's centre (a leg apart from the other one, not a blob
-    // with the legs fused); its point at the knee depth.
-    let own_section = |p: glam::DVec3| {
-        let h = frame.h(p);
-        let origin = frame.at_height(p, h);
-        let loops = slice_plane_outer(mesh, origin, frame.up);
-        let apart = nearest_loop(&loops, origin)
-            .filter(|l| l.closed)
-            .is_some_and(|l| {
-                l.points
-                    .iter()
-                    .all(|q| (*q - centre).dot(frame.left) * side.sign() > 0.0)
-            });
-        if !apart {
-            return None;
-        }
-        transverse_point(mesh, frame, p, h, options.knee_depth.unwrap_or(0.5))
     };
     let step = 0.25 * options.limb_step * height;
     let (sk, sa) = (arc_near(&profile, knee), arc_near(&profile, ank));
@@ -94,11 +75,7 @@ pub(super) fn leg(
         // shell): the ankle stands at the ankle's height above the sole under the rough one,
         // when the leg has its own cross-section there (not on a blob with fused legs).
         None => {
-            let placed = options.ankle_height.and_then(|f| {
-                let sole = sole_under(mesh, frame, ank, SOLE_REACH * height)?;
-                let a = frame.at_height(ank, sole + f * height);
-                own_section(a).map(|_| a)
-            });
+            let placed = ankle_above_sole(scene, side, ank);
             if let Some(a) = placed {
                 found.insert(Canonical::Ankle(side), a);
             }
@@ -109,16 +86,8 @@ pub(super) fn leg(
         }
     }
     let distal = found.get(&Canonical::Ankle(side)).copied().unwrap_or(ank);
-    let by_ratio = || {
-        let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
-        let line = frame.at_height(hip.lerp(distal, options.leg_ratio), h);
-        let depth = options.knee_depth.unwrap_or(0.5);
-        let own = transverse_point(mesh, frame, frame.at_height(knee, h), h, depth)
-            .filter(|p| (*p - centre).dot(frame.left) * side.sign() > 0.0);
-        Some(own.unwrap_or(line))
-    };
     let knee = if crotch_hidden {
-        by_ratio()
+        Some(knee_by_ratio(scene, side, hip, knee, distal))
     } else {
         match bend_knee(&profile, hip, distal, step, scene) {
             Some(k) => Some(k),
@@ -126,7 +95,7 @@ pub(super) fn leg(
             // says nothing, the proportions place it, inside the leg's own section.
             None => {
                 let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
-                let k = own_section(frame.at_height(knee, h));
+                let k = own_section(scene, side, frame.at_height(knee, h));
                 warnings.push(RefineWarning::NoKnee {
                     side,
                     placed: k.is_some(),
@@ -138,6 +107,68 @@ pub(super) fn leg(
     if let Some(k) = knee {
         found.insert(Canonical::Knee(side), k);
     }
+}
+
+/// The ankle at the ankle's height above the sole under the rough ankle `ank`, when the leg has
+/// its own cross-section there: for a trace that stopped short (a gap between armour pieces, a
+/// boot that is a separate shell).
+fn ankle_above_sole(scene: &Scene, side: Side, ank: glam::DVec3) -> Option<glam::DVec3> {
+    let f = scene.options.ankle_height?;
+    let sole = sole_under(scene.mesh, &scene.frame, ank, SOLE_REACH * scene.height)?;
+    let a = scene.frame.at_height(ank, sole + f * scene.height);
+    own_section(scene, side, a).map(|_| a)
+}
+
+/// The knee at `leg_ratio` of the way from the hip's height to the ankle's (`distal`), inside
+/// the leg's slice there (near the rough `knee`) when that slice is on this side of the body,
+/// else on the straight line between hip and ankle (clothing hides the crotch).
+fn knee_by_ratio(
+    scene: &Scene,
+    side: Side,
+    hip: glam::DVec3,
+    knee: glam::DVec3,
+    distal: glam::DVec3,
+) -> glam::DVec3 {
+    let Scene {
+        mesh,
+        frame,
+        options,
+        centre,
+        ..
+    } = *scene;
+    let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+    let line = frame.at_height(hip.lerp(distal, options.leg_ratio), h);
+    let depth = options.knee_depth.unwrap_or(0.5);
+    transverse_point(mesh, &frame, frame.at_height(knee, h), h, depth)
+        .filter(|p| (*p - centre).dot(frame.left) * side.sign() > 0.0)
+        .unwrap_or(line)
+}
+
+/// The leg's own transverse section at the height of `p`, at its centroid across the body and
+/// the knee depth: `None` unless the closed loop nearest `p` lies wholly on `side` of the
+/// body's centre (a leg apart from the other one, not a blob with the legs fused).
+fn own_section(scene: &Scene, side: Side, p: glam::DVec3) -> Option<glam::DVec3> {
+    let Scene {
+        mesh,
+        frame,
+        options,
+        centre,
+        ..
+    } = *scene;
+    let h = frame.h(p);
+    let origin = frame.at_height(p, h);
+    let loops = slice_plane_outer(mesh, origin, frame.up);
+    let apart = nearest_loop(&loops, origin)
+        .filter(|l| l.closed)
+        .is_some_and(|l| {
+            l.points
+                .iter()
+                .all(|q| (*q - centre).dot(frame.left) * side.sign() > 0.0)
+        });
+    if !apart {
+        return None;
+    }
+    transverse_point(mesh, &frame, p, h, options.knee_depth.unwrap_or(0.5))
 }
 
 /// The knee on the leg's centroid curve (the bend, else `leg_ratio` of the way down).
