@@ -6,7 +6,9 @@ mod douglas_peucker;
 mod pca;
 mod smoothing;
 
-pub use douglas_peucker::{douglas_peucker, douglas_peucker_closed, point_segment_distance};
+pub use douglas_peucker::{
+    closest_on_segment, douglas_peucker, douglas_peucker_closed, point_segment_distance,
+};
 pub(crate) use pca::{
     major_axis_by_iteration, point_covariance, principal_axes, principal_axis_2d,
 };

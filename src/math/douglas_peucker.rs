@@ -5,13 +5,19 @@ use glam::DVec3;
 
 /// Distance from `p` to the segment `ab`.
 pub fn point_segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    p.distance(closest_on_segment(p, a, b).1)
+}
+
+/// The parameter in `[0, 1]` and the point of segment `ab` nearest `p` (`(0, a)` when
+/// `a == b`).
+pub fn closest_on_segment(p: DVec3, a: DVec3, b: DVec3) -> (f64, DVec3) {
     let ab = b - a;
     let len2 = ab.length_squared();
     if len2 == 0.0 {
-        return p.distance(a);
+        return (0.0, a);
     }
     let t = ((p - a).dot(ab) / len2).clamp(0.0, 1.0);
-    p.distance(a + ab * t)
+    (t, a + ab * t)
 }
 
 /// Which points of the open polyline `points` Douglas-Peucker keeps for tolerance `epsilon`

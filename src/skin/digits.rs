@@ -17,6 +17,7 @@
 //!    A vertex in the palm keeps its voxel weights without the other digits' joints.
 
 use super::weights::{engine_weights, EngineWeights};
+use crate::math::{closest_on_segment, point_segment_distance};
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
 use glam::DVec3;
@@ -176,21 +177,9 @@ fn nearest_on_chain(points: &[DVec3], p: DVec3) -> (f64, usize) {
     points
         .windows(2)
         .enumerate()
-        .map(|(k, s)| (closest(s[0], s[1], p).1.distance(p), k))
+        .map(|(k, s)| (point_segment_distance(p, s[0], s[1]), k))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .unwrap_or((f64::INFINITY, 0))
-}
-
-/// The parameter in `[0, 1]` and the point of segment `a`–`b` nearest `p`.
-fn closest(a: DVec3, b: DVec3, p: DVec3) -> (f64, DVec3) {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (t, a + ab * t)
 }
 
 /// Weights of `p` over the chain's joints (module docs, step 3): segment `k` (from
@@ -201,7 +190,7 @@ fn closest(a: DVec3, b: DVec3, p: DVec3) -> (f64, DVec3) {
 fn chain_weights(points: &[DVec3], joints: &[JointId], p: DVec3) -> Vec<(JointId, f64)> {
     let lengths: Vec<f64> = points.windows(2).map(|s| s[0].distance(s[1])).collect();
     let (radius, seg) = nearest_on_chain(points, p);
-    let (t, _) = closest(points[seg], points[seg + 1], p);
+    let (t, _) = closest_on_segment(p, points[seg], points[seg + 1]);
     let arc: f64 = lengths[..seg].iter().sum::<f64>() + t * lengths[seg];
     let mut at = 0.0;
     // Share past each inner joint.

@@ -51,14 +51,7 @@ pub(crate) fn nearest_segment(p: DVec3, lines: &[(DVec3, DVec3)]) -> Option<usiz
 
 /// Shortest distance from `p` to the line segment `a..b` (a point when `a == b`).
 pub(crate) fn segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + ab * t)).length()
+    crate::math::point_segment_distance(p, a, b)
 }
 
 /// Weights for game engines and glTF: at most [`MAX_ENGINE_INFLUENCES`] joints per vertex.
