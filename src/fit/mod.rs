@@ -44,6 +44,7 @@ pub use input_warning::FitInputWarning;
 pub use options::{BendSnap, FitOptions};
 pub use reach::ReachOptions;
 
+use crate::skeleton::canonical::{CanonicalJoints, Finger};
 use crate::skeleton::{Canonical, JointId, Skeleton};
 use crate::template::{apply_preset, Girdle, LimbKind, Preset, Template};
 use assemble::assemble;
@@ -86,18 +87,42 @@ impl Fit {
             .collect()
     }
 
+    /// Turns every frame's z onto its bone at the joints' final positions
+    /// (`frames::realign_frames`): the rig's last step before naming, after the refinement,
+    /// the symmetry and the digits have moved joints that kept the fit's frames. A wrist aims at
+    /// its middle digit's base where the digits were found.
+    pub fn realign_frames(&mut self) {
+        let wrist_middle: Vec<(JointId, JointId)> = [Side::Left, Side::Right]
+            .into_iter()
+            .filter_map(|side| {
+                let wrist = self.canonical.joint_of(Canonical::Wrist(side))?;
+                let middle = self
+                    .canonical
+                    .joint_of(Canonical::Digit(side, Finger::Middle, 1))?;
+                Some((wrist, middle))
+            })
+            .collect();
+        frames::realign_frames(&mut self.skeleton, &wrist_middle);
+    }
+
     /// Turns the skeleton into `preset`'s engine skeleton ([`apply_preset`]: the engine's
     /// joints, names and parents, its spine joints spread along the fitted spine, joints the
     /// engine lacks left out) and remaps the canonical map: the fit's last step, which the rig
     /// repeats after the refinement has moved the canonical keys of a fit made with anatomical
-    /// names. `up` is the figure's up (an engine root goes on the ground below the pelvis).
+    /// names. `up` is the figure's up (an engine root goes on the ground below the pelvis),
+    /// `forward` its facing (with `up`, the body axes of the engine's rest frames).
     /// Canonical joints the engine has no joint for are left out with a
     /// [`FitWarning::NotInPreset`] in [`Fit::warnings`].
     ///
     /// # Errors
     /// [`FitError::Preset`] when the preset file cannot be read.
-    pub fn name_joints(&mut self, preset: Preset, up: DVec3) -> Result<(), FitError> {
-        let dropped = apply_preset(&mut self.skeleton, &mut self.canonical, preset, up)
+    pub fn name_joints(
+        &mut self,
+        preset: Preset,
+        up: DVec3,
+        forward: DVec3,
+    ) -> Result<(), FitError> {
+        let dropped = apply_preset(&mut self.skeleton, &mut self.canonical, preset, up, forward)
             .map_err(|e| FitError::Preset(e.to_string()))?;
         if !dropped.is_empty() {
             self.warnings.push(FitWarning::NotInPreset {
@@ -222,7 +247,7 @@ pub fn fit_with_probe(
         warnings,
         template: template.name.clone(),
     };
-    fit.name_joints(options.preset, frame.up)?;
+    fit.name_joints(options.preset, frame.up, frame.forward)?;
     Ok(fit)
 }
 

@@ -304,8 +304,9 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let hands = fit_hands(mesh, &template, &mut fit, &options.digits);
     warnings.extend(hands.into_iter().map(Warning::Digits));
     lap.lap("digits", &mut timings);
+    fit.realign_frames();
     let before = fit.warnings.len();
-    fit.name_joints(options.fit.preset, input.up)?;
+    fit.name_joints(options.fit.preset, input.up, input.forward)?;
     warnings.extend(fit.warnings[before..].iter().cloned().map(Warning::Fit));
     let mut skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     if options.digits.enabled {

@@ -32,6 +32,7 @@ mod error;
 mod load;
 mod model;
 mod preset;
+mod rest_frames;
 
 pub use error::{TemplateError, TemplateProblem};
 pub use model::{
@@ -40,6 +41,7 @@ pub use model::{
     BUILTIN_TEMPLATES, SIDED_PLACES,
 };
 pub use preset::{apply_preset, EngineJoint, EnginePlacement, EngineSkeleton, Preset, PresetNames};
+pub use rest_frames::{apply_rest_frames, RestFrame, RestFrames};
 
 #[cfg(test)]
 mod tests;

@@ -9,6 +9,7 @@
 //! out; the skin, computed afterwards on the engine skeleton, weights their region to the
 //! engine joints around it.
 
+use super::rest_frames::{apply_rest_frames, RestFrames};
 use super::TemplateError;
 use crate::skeleton::{ball_dofs, Joint, JointId, Skeleton};
 use glam::DVec3;
@@ -101,6 +102,9 @@ impl Preset {
             }
             None => {}
         }
+        if let Some(frames) = &names.rest_frames {
+            frames.check().map_err(bad)?;
+        }
         Ok(names)
     }
 }
@@ -115,6 +119,9 @@ pub struct PresetNames {
     /// The engine's skeleton (every preset but the anatomical one).
     #[serde(default)]
     pub skeleton: Option<EngineSkeleton>,
+    /// The engine's rest frames (its bone-axis convention), where the preset ships them.
+    #[serde(default)]
+    pub rest_frames: Option<RestFrames>,
 }
 
 /// An engine's joint set and hierarchy, as far as skelfit places its joints.
@@ -201,7 +208,9 @@ impl EngineSkeleton {
 /// joint for are dropped. `canonical` is remapped: each key to the engine joint the preset's
 /// `joints` table names for it, else to the engine joint placed at the key's fitted joint;
 /// keys with neither are dropped and returned. `up` (the figure's up) sets the ground for
-/// [`EnginePlacement::GroundBelow`]. [`Preset::Anatomical`] changes nothing.
+/// [`EnginePlacement::GroundBelow`]. Where the preset ships the engine's rest frames, every
+/// joint gets the engine's bone-axis convention ([`apply_rest_frames`], with `up` and
+/// `forward`); elsewhere joints keep skelfit's frames. [`Preset::Anatomical`] changes nothing.
 ///
 /// # Errors
 /// [`TemplateError::PresetFile`] for a malformed bundled file.
@@ -210,6 +219,7 @@ pub fn apply_preset(
     canonical: &mut BTreeMap<String, JointId>,
     preset: Preset,
     up: DVec3,
+    forward: DVec3,
 ) -> Result<Vec<String>, TemplateError> {
     let table = preset.names()?;
     let Some(engine) = &table.skeleton else {
@@ -235,6 +245,9 @@ pub fn apply_preset(
         .collect();
     *skeleton = built;
     *canonical = remapped;
+    if let Some(frames) = &table.rest_frames {
+        apply_rest_frames(skeleton, frames, up, forward);
+    }
     Ok(dropped)
 }
 

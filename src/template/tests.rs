@@ -279,7 +279,7 @@ fn names_and_parents(s: &Skeleton) -> Vec<(&str, Option<&str>)> {
 #[test]
 fn mixamo_gets_its_own_spine_and_drops_joints_it_lacks() {
     let (mut s, mut c) = little();
-    let dropped = apply_preset(&mut s, &mut c, Preset::Mixamo, DVec3::Y).unwrap();
+    let dropped = apply_preset(&mut s, &mut c, Preset::Mixamo, DVec3::Y, DVec3::Z).unwrap();
     assert!(dropped.is_empty(), "{dropped:?}");
     let m = |n: &str| format!("mixamorig:{n}");
     let expected = [
@@ -324,14 +324,14 @@ fn mixamo_gets_its_own_spine_and_drops_joints_it_lacks() {
 #[test]
 fn engine_roots_stand_on_the_ground_and_missing_joints_are_bridged() {
     let (mut s, mut c) = little();
-    apply_preset(&mut s, &mut c, Preset::MakeHuman, DVec3::Y).unwrap();
+    apply_preset(&mut s, &mut c, Preset::MakeHuman, DVec3::Y, DVec3::Z).unwrap();
     assert_eq!(s.joints[0].name, "Root");
     assert_eq!(s.joints[0].position, DVec3::ZERO);
     assert!(!s.joints[0].deform);
     assert_eq!(s.joints[1].name, "pelvis");
     assert_eq!(s.joints[1].parent, Some(JointId(0)));
     let (mut s, mut c) = little();
-    apply_preset(&mut s, &mut c, Preset::Unreal, DVec3::Y).unwrap();
+    apply_preset(&mut s, &mut c, Preset::Unreal, DVec3::Y, DVec3::Z).unwrap();
     let got = names_and_parents(&s);
     for pair in [
         ("root", None),
@@ -352,7 +352,7 @@ fn engine_roots_stand_on_the_ground_and_missing_joints_are_bridged() {
     s.joints[7].name = "collar".into();
     // A canonical joint the engine has no joint for is left out and returned.
     c.insert("tail_base".into(), JointId(9));
-    let dropped = apply_preset(&mut s, &mut c, Preset::Unity, DVec3::Y).unwrap();
+    let dropped = apply_preset(&mut s, &mut c, Preset::Unity, DVec3::Y, DVec3::Z).unwrap();
     assert_eq!(dropped, ["tail_base"]);
     assert!(!c.contains_key("tail_base"));
     let got = names_and_parents(&s);
@@ -368,7 +368,7 @@ fn engine_roots_stand_on_the_ground_and_missing_joints_are_bridged() {
 fn anatomical_keeps_the_skeleton_and_preset_files_are_checked() {
     let (mut s, mut c) = little();
     let before = (s.clone(), c.clone());
-    apply_preset(&mut s, &mut c, Preset::Anatomical, DVec3::Y).unwrap();
+    apply_preset(&mut s, &mut c, Preset::Anatomical, DVec3::Y, DVec3::Z).unwrap();
     assert_eq!((s, c), before);
     assert!(matches!(
         Preset::parse("blender"),
