@@ -191,7 +191,13 @@ pub fn label_graph(
         rules.tail(&tail, &mut legs.single);
     }
     rules.head(trunk.has_junction, centre);
-    let arms = rules.arms();
+    // An animal standing on two leg pairs has no further limb pair of a vertebrate body plan:
+    // its other paired protrusions (ears, horns, antlers, a thigh's bulge) are not arms.
+    let arms = if trunk.figure == FigureClass::AnimalLike && legs.pairs.len() >= 2 {
+        Vec::new()
+    } else {
+        rules.arms()
+    };
     if human_like {
         rules.tail(&tail, &mut legs.single);
         rules.lone_arms(&arms, centre);
