@@ -6,8 +6,7 @@ mod warning;
 
 pub use rig::{
     auto_template, label_by_bones, missing_parts, more_limbs_than, no_template_fits, rig, Rig,
-    RigOptions,
-    RigWarning, TemplateChoice, GENERAL, MEDIAL_FALLBACK,
+    RigOptions, RigWarning, TemplateChoice, GENERAL, MEDIAL_FALLBACK,
 };
 
 use crate::distance::{edt, DistanceMap};

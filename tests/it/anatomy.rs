@@ -728,7 +728,11 @@ fn small_fore_legs_beside_a_long_neck_are_legs_and_the_neck_carries_the_head() {
     }
     let head = &labels.parts[one(&labels, Label::Head, None, None)];
     let tail = &labels.parts[one(&labels, Label::Tail, None, None)];
-    assert!(head.distal.z > 0.0 && tail.distal.z < 0.0, "{:?}", parts(&labels));
+    assert!(
+        head.distal.z > 0.0 && tail.distal.z < 0.0,
+        "{:?}",
+        parts(&labels)
+    );
 }
 
 /// An animal standing on two leg pairs has no arms: the rat's thigh bulges and the stag's

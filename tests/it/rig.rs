@@ -1035,8 +1035,7 @@ fn more_limbs_than_the_template_places_gets_the_general_skeleton() {
     assert!(
         r.warnings
             .iter()
-            .any(|w| w.to_string().contains("no template fits")
-                && w.to_string().contains("limbs")),
+            .any(|w| w.to_string().contains("no template fits") && w.to_string().contains("limbs")),
         "{:?}",
         r.warnings
     );
