@@ -440,6 +440,11 @@ fn bin_pieces(
 
 /// Each vertex's weight (its distal share of the `total` voxels), insignificance, major
 /// junction, direction and cross-section marks and radius (ch.7.3.2).
+///
+/// A major junction merges two regions that each hold [`LevelOptions::junction_fraction`] of
+/// the voxels, or that each reach the ground from a vertex above it (not marked down) while
+/// being significant: legs are limbs however small beside a long neck and tail (a sauropod's
+/// fore legs hold under 2 % of its voxels), while toes and hoof clefts part at the ground.
 fn mark_vertices(
     vertices: &mut [LevelVertex],
     surface: &MedialSurface,
@@ -449,19 +454,14 @@ fn mark_vertices(
     options: &LevelOptions,
 ) {
     let voxel = surface.grid.voxel_size;
+    // Whether each vertex's region (it and every vertex distal to it) reaches the ground;
+    // children come before their parents.
+    let mut grounded = vec![false; vertices.len()];
     for i in 0..vertices.len() {
         let weight = vertices[i].distal_voxels as f64 / total as f64;
-        let big = vertices[i]
-            .children
-            .iter()
-            .filter(|&&c| {
-                vertices[c].distal_voxels as f64 / total as f64 >= options.junction_fraction
-            })
-            .count();
         let v = &mut vertices[i];
         v.weight = weight;
         v.insignificant = weight < options.insignificant_fraction;
-        v.major_junction = big >= 2;
         let mut marks = Marks::default();
         let (mut nearest, mut nearest_d) = (v.voxels[0], f64::INFINITY);
         for &p in &v.voxels {
@@ -491,6 +491,17 @@ fn mark_vertices(
         let reach = a.distance(v.centroid).max(b.distance(v.centroid));
         marks.linear = reach > options.linear_ratio * v.radius.max(0.5 * voxel);
         v.marks = marks;
+        let children = &vertices[i].children;
+        grounded[i] = marks.down || children.iter().any(|&c| grounded[c]);
+        let big = children
+            .iter()
+            .filter(|&&c| {
+                let child = &vertices[c];
+                child.weight >= options.junction_fraction
+                    || (!marks.down && grounded[c] && !child.insignificant)
+            })
+            .count();
+        vertices[i].major_junction = big >= 2;
     }
 }
 

@@ -143,7 +143,8 @@ fn reaches_like_an_arm(section: &Section, frame: &Frame) -> bool {
 /// Labels the level graph (ch.7.3.3), a phase per step: the trunk and the figure class
 /// (`trunk.rs`), the sections hanging off the trunk (`sections.rs`), then legs, wings, the tail
 /// (an animal's before the head, a human-like figure's after the head and the arms), the head,
-/// arms, lone arms, unpaired legs, and the leftovers merged into the trunk.
+/// arms (none on an animal standing on two leg pairs), lone arms, unpaired legs, and the
+/// leftovers merged into the trunk.
 pub fn label_graph(
     graph: &LevelGraph,
     surface: &MedialSurface,
@@ -191,7 +192,13 @@ pub fn label_graph(
         rules.tail(&tail, &mut legs.single);
     }
     rules.head(trunk.has_junction, centre);
-    let arms = rules.arms();
+    // An animal standing on two leg pairs has no further limb pair of a vertebrate body plan:
+    // its other paired protrusions (ears, horns, antlers, a thigh's bulge) are not arms.
+    let arms = if trunk.figure == FigureClass::AnimalLike && legs.pairs.len() >= 2 {
+        Vec::new()
+    } else {
+        rules.arms()
+    };
     if human_like {
         rules.tail(&tail, &mut legs.single);
         rules.lone_arms(&arms, centre);

@@ -461,7 +461,27 @@ fn resolve_template(chosen: Option<Template>, labelling: &Labelling) -> crate::R
         return Ok(Resolved::General(reason));
     }
     let (name, note) = auto_template(labelling);
-    Ok(Resolved::Template(Box::new(Template::builtin(name)?), note))
+    let template = Template::builtin(name)?;
+    if let Some(reason) = more_limbs_than(labelling, &template) {
+        return Ok(Resolved::General(reason));
+    }
+    Ok(Resolved::Template(Box::new(template), note))
+}
+
+/// Why `template` does not fit the labelled figure because the figure has more limbs (legs,
+/// arms, wings) than the template has places for (two per limb group), or `None`: forcing it
+/// in drops the extra limbs and fits the rest where they do not belong (a wasp's six legs and
+/// wings labelled as one leg and four arms, put into a quadruped's two leg pairs).
+pub fn more_limbs_than(labelling: &Labelling, template: &Template) -> Option<String> {
+    let limbs =
+        labelling.count(Label::Leg) + labelling.count(Label::Arm) + labelling.count(Label::Wing);
+    let places = 2 * template.limbs.len();
+    (limbs > places).then(|| {
+        format!(
+            "the figure has {limbs} limbs and the {} template places {places}",
+            template.name
+        )
+    })
 }
 
 /// Validates every stage's options and resolves the chosen template (`None` for

@@ -706,3 +706,45 @@ fn bone_following_labels_of_a_sphere_are_all_trunk() {
     assert_eq!(labels.parts[0].label, Label::Trunk);
     assert_eq!(labels.parts[0].vertex_count, mesh.positions.len());
 }
+
+/// A sauropod's fore legs hold under 2 % of its medial voxels beside the long neck and tail,
+/// too few for a major junction by size alone: the trunk stopped at the hind legs and the neck
+/// with both fore legs became one "leg". Regions reaching the ground make a junction.
+#[test]
+fn small_fore_legs_beside_a_long_neck_are_legs_and_the_neck_carries_the_head() {
+    let Some(dir) = common::model("quadruped/quaternius_apatosaurus") else {
+        return;
+    };
+    let (_, labels) = labelled(&dir, &LabelOptions::default());
+    for pair in [LimbPair::Fore, LimbPair::Hind] {
+        for side in [Side::Left, Side::Right] {
+            let leg = &labels.parts[one(&labels, Label::Leg, Some(side), Some(pair))];
+            assert!(
+                leg.distal.y < 0.2 * labels_extent(&labels),
+                "{pair:?} {side:?} leg does not reach the ground: {:?}",
+                leg.distal
+            );
+        }
+    }
+    let head = &labels.parts[one(&labels, Label::Head, None, None)];
+    let tail = &labels.parts[one(&labels, Label::Tail, None, None)];
+    assert!(
+        head.distal.z > 0.0 && tail.distal.z < 0.0,
+        "{:?}",
+        parts(&labels)
+    );
+}
+
+/// An animal standing on two leg pairs has no arms: the rat's thigh bulges and the stag's
+/// antlers were paired as arms (six limbs on a four-legged body).
+#[test]
+fn a_four_legged_animal_has_no_arms() {
+    for model in ["quadruped/quaternius_rat", "quadruped/quaternius_stag"] {
+        let Some(dir) = common::model(model) else {
+            return;
+        };
+        let (_, labels) = labelled(&dir, &LabelOptions::default());
+        assert_eq!(labels.count(Label::Arm), 0, "{model}: {:?}", parts(&labels));
+        assert_eq!(labels.count(Label::Leg), 4, "{model}: {:?}", parts(&labels));
+    }
+}

@@ -1011,3 +1011,32 @@ fn y_up_figures_keep_up_at_once() {
     let choice = labels.up_found.unwrap();
     assert_eq!((choice.up, choice.confidence), (DVec3::Y, 0.0));
 }
+
+/// A figure labelled with more limbs than the template places (the wasp: one leg and four
+/// arms for a quadruped's two leg pairs) is not forced into it: the general skeleton, with
+/// the reason.
+#[test]
+fn more_limbs_than_the_template_places_gets_the_general_skeleton() {
+    let Some(dir) = common::model("other/quaternius_wasp") else {
+        return;
+    };
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let limbs = [
+        skelfit::anatomy::Label::Leg,
+        skelfit::anatomy::Label::Arm,
+        skelfit::anatomy::Label::Wing,
+    ]
+    .iter()
+    .map(|&l| r.labelling.count(l))
+    .sum::<usize>();
+    assert!(limbs > 4, "{limbs} limbs");
+    assert_eq!(r.fit.template, skelfit::pipeline::GENERAL);
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.to_string().contains("no template fits") && w.to_string().contains("limbs")),
+        "{:?}",
+        r.warnings
+    );
+}
