@@ -81,17 +81,7 @@ pub fn bone_segments(skeleton: &Skeleton) -> Vec<(DVec3, DVec3)> {
     }
 }
 
-/// Distance from `p` to the segment `a`–`b` (a point when `a == b`).
-pub fn point_segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
-}
+pub use crate::math::point_segment_distance;
 
 /// Points along each segment, at most `spacing` apart, both ends included.
 pub fn sample_segments(segments: &[(DVec3, DVec3)], spacing: f64) -> Vec<DVec3> {

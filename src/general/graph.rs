@@ -2,8 +2,8 @@
 //! (dissertation ch.5.2.5, Figure 5.8).
 
 use super::{GeneralOptions, GeneralWarning};
+use crate::math::point_segment_distance;
 use crate::paths::{Chain, PathTree};
-use glam::DVec3;
 use serde::Serialize;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -32,17 +32,6 @@ pub struct SkeletalGraph {
     /// Things worth telling the user (a segment limit below the number of chains...).
     #[serde(serialize_with = "crate::warning::serialize_records")]
     pub warnings: Vec<GeneralWarning>,
-}
-
-/// Distance from point `p` to the segment `a`-`b`.
-pub(crate) fn point_segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + t * ab)
 }
 
 /// Largest distance (voxel units) from the edge between chain vertices `a` and `b` to the
@@ -136,6 +125,7 @@ pub fn skeletal_graph(tree: &PathTree, options: &GeneralOptions) -> SkeletalGrap
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     fn chain(points: Vec<DVec3>) -> Chain {
         let mut cumulative = vec![0.0];
@@ -158,11 +148,5 @@ mod tests {
         let c = chain(points);
         assert!((section_error(&c, 0, 20, 1.0) - 50f64.sqrt()).abs() < 1e-9);
         assert_eq!(best_split(&c, 0, 20, 1.0), Some(10));
-    }
-
-    #[test]
-    fn point_segment_distance_clamps_to_the_ends() {
-        let d = point_segment_distance(DVec3::new(-3.0, 4.0, 0.0), DVec3::ZERO, DVec3::X);
-        assert_eq!(d, 5.0);
     }
 }
