@@ -40,7 +40,7 @@ mod axis;
 mod bounded_dp;
 mod error;
 mod inflate;
-mod input;
+pub(crate) mod input;
 mod options;
 mod part;
 mod resample;

@@ -403,12 +403,17 @@ fn torso(
 }
 
 /// The body frame with `up` along the rough legs' ankle→hip direction, when the legs are
-/// within 45° of `given.up`.
+/// within 45° of `given.up`. Only its part in the median plane counts (the plane of
+/// `given.up` and `given.forward`): a bilaterally symmetric figure's up lies in that plane, and
+/// rough ankles at unequal heights (one foot's labels reaching higher than the other's) had
+/// tilted a cartoon's frame 6° sideways, so that the head's slices cut one ear and missed the
+/// other.
 fn legs_frame(mesh: &Mesh, rough: &Rough, given: BodyFrame) -> Option<BodyFrame> {
-    let legs_up = Side::BOTH
+    let legs = Side::BOTH
         .iter()
         .filter_map(|&s| Some(rough.at(Canonical::Hip(s))? - rough.at(Canonical::Ankle(s))?))
-        .sum::<DVec3>()
+        .sum::<DVec3>();
+    let legs_up = (legs - given.left * legs.dot(given.left))
         .try_normalize()
         .filter(|n| n.dot(given.up) > std::f64::consts::FRAC_1_SQRT_2);
     legs_up.and_then(|n| BodyFrame::new(mesh, n, given.forward))
@@ -609,17 +614,21 @@ fn accepted(
 }
 
 /// How far a refined joint moved from its rough position, for the [`RefineOptions::max_shift`]
-/// test. The head counts only its move across the body while it stays on the axial chain
-/// between the rough neck and the top of the figure: the fit places it by template ratios along
-/// the head part, the slices at the neck's top, and a big or hatted head puts the two far apart
-/// along the same axis. Hips and pelvis likewise while they stay between the rough knees and
+/// test. The head counts only its move across the body while it stays above the rough
+/// shoulders (no head reaches below them): the fit places it by template ratios along the head
+/// part, the slices at the neck's top, and a big or hatted head puts the two far apart along
+/// the same axis (a cartoon's head sitting on its trunk ends below the rough neck). Hips and pelvis likewise while they stay between the rough knees and
 /// shoulders, and knees between the rough ankles and shoulders: the rough ones sit where the
 /// leg labels begin, which a skirt, a coat or a backpack moves up or down the trunk, and the
 /// knee follows the hip.
 fn shift(rough: &Rough, frame: &BodyFrame, key: Canonical, from: DVec3, to: DVec3) -> f64 {
     let across = |d: DVec3| (d - frame.up * d.dot(frame.up)).length();
-    match (key, rough.at(Canonical::Neck)) {
-        (Canonical::Head, Some(neck)) if (frame.h(neck)..=frame.top).contains(&frame.h(to)) => {
+    let shoulders = rough.pair_height(frame, Canonical::Shoulder);
+    match (
+        key,
+        shoulders.or_else(|| rough.at(Canonical::Neck).map(|n| frame.h(n))),
+    ) {
+        (Canonical::Head, Some(floor)) if (floor..=frame.top).contains(&frame.h(to)) => {
             across(to - from)
         }
         (Canonical::Hip(_) | Canonical::Pelvis | Canonical::Knee(_), _) => {
@@ -628,7 +637,6 @@ fn shift(rough: &Rough, frame: &BodyFrame, key: Canonical, from: DVec3, to: DVec
                 _ => Canonical::Knee,
             };
             let floor = rough.pair_height(frame, below);
-            let shoulders = rough.pair_height(frame, Canonical::Shoulder);
             match (floor, shoulders) {
                 (Some(k), Some(s)) if (k..s).contains(&frame.h(to)) => across(to - from),
                 _ => from.distance(to),

@@ -1,7 +1,7 @@
 //! Body frame and head geometry (seed 004, 3.1): the transverse normal from the legs, head
 //! slices from the top down, frontal and sagittal normals from the head's projected points.
 
-use super::geometry::{nearest_loop, pca_2d_curve, Segment2};
+use super::geometry::{enclosing_loop, pca_2d_curve, Segment2};
 use super::RefineOptions;
 use crate::mesh::{slice_plane, Mesh, SliceLoop};
 use glam::DVec3;
@@ -76,10 +76,13 @@ pub struct HeadSlices {
 
 /// Slices the head from the top of `frame` downwards (seed 004, 3.1). `near` is a point of the
 /// rough skeleton inside the head, used to pick the head's loop where a slice has several
-/// (hands raised above the head). The slices go down `head_max_depth` of the height, or to
-/// `shoulders` (the rough shoulder joints' height) when that is lower: a helmet or a
-/// cartoon's big head reaches further down than a human head, but no head reaches below the
-/// shoulders. `None` when no head-like sequence of slices is found.
+/// (hands raised above the head). The head is the figure's one median part: a slice counts only
+/// when a loop of it crosses the median plane through `near` (normal `frame.left`), so the
+/// slices begin below a pair of ears, horns or raised hands that mirror each other, and the
+/// depths are measured from the first slice that counts. The slices go down `head_max_depth`
+/// of the height, or to `shoulders` (the rough shoulder joints' height) when that is lower: a
+/// helmet or a cartoon's big head reaches further down than a human head, but no head reaches
+/// below the shoulders. `None` when no head-like sequence of slices is found.
 pub fn head_slices(
     mesh: &Mesh,
     frame: &BodyFrame,
@@ -88,25 +91,39 @@ pub fn head_slices(
     options: &RefineOptions,
 ) -> Option<HeadSlices> {
     let step = options.head_slice_step * frame.height();
-    let depth = shoulders.map_or(0.0, |s| frame.top - s);
-    let depth = depth.max(options.head_max_depth * frame.height());
-    let max_slices = (depth / step).ceil() as usize;
+    let lowest = shoulders.map_or(frame.top, |s| s.min(frame.top));
     let turn_cos = options.head_turn_degrees.to_radians().cos();
+    let median = near.dot(frame.left);
+    let crosses = |l: &SliceLoop| {
+        let (lo, hi) = l.points.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+            (lo.min(p.dot(frame.left)), hi.max(p.dot(frame.left)))
+        });
+        lo <= median && median <= hi
+    };
     let mut slices: Vec<SliceLoop> = Vec::new();
     let mut largest: Option<(usize, f64, DVec3, f64)> = None; // index, diameter, axis, elongation
     let mut previous = near;
-    for k in 1..=max_slices {
+    let mut start: Option<f64> = None; // height of the first slice that counts
+    for k in 1.. {
         let h = frame.top - step * k as f64;
-        let loops = slice_plane(mesh, frame.up * h, frame.up);
+        let depth = start.map_or(0.0, |s| s - h);
+        if h < frame.bottom || (depth > options.head_max_depth * frame.height() && h < lowest) {
+            break;
+        }
+        let loops: Vec<SliceLoop> = slice_plane(mesh, frame.up * h, frame.up)
+            .into_iter()
+            .filter(crosses)
+            .collect();
         let guess = frame.at_height(previous, h);
-        let Some(slice) = nearest_loop(&loops, guess) else {
+        let Some(slice) = enclosing_loop(&loops, frame.up, guess) else {
             continue;
         };
         let Some(axes) = slice.principal_axes() else {
             continue;
         };
+        let start = *start.get_or_insert(h);
         let elongation = axes.major_diameter / axes.minor_diameter.max(f64::MIN_POSITIVE);
-        let checked = step * k as f64 > options.head_min_depth * frame.height();
+        let checked = start - h + step > options.head_min_depth * frame.height();
         if let (true, Some((_, diameter, axis, e))) = (checked, largest) {
             if axes.major_diameter < options.head_shrink_ratio * diameter {
                 return finish(slices, largest, true);

@@ -18,6 +18,25 @@ pub fn nearest_loop(loops: &[SliceLoop], guess: DVec3) -> Option<&SliceLoop> {
     best(true).or_else(|| best(false))
 }
 
+/// The closed loop of a transverse slice (normal `up`) that encloses `guess` seen along `up`
+/// (the largest such when pieces overlap), else [`nearest_loop`]: a head or neck made of many
+/// shells (hair strands, eyes, a visor) has small loops whose centroids lie nearer the axis
+/// than the head's own outline does.
+pub fn enclosing_loop(loops: &[SliceLoop], up: DVec3, guess: DVec3) -> Option<&SliceLoop> {
+    let u = up.any_orthonormal_vector();
+    let v = up.cross(u);
+    let flat = |p: DVec3| glam::DVec2::new(p.dot(u), p.dot(v));
+    loops
+        .iter()
+        .filter(|l| l.closed)
+        .filter(|l| {
+            let polygon: Vec<glam::DVec2> = l.points.iter().map(|&p| flat(p)).collect();
+            crate::outline::input::contains(&polygon, flat(guess))
+        })
+        .max_by(|a, b| a.perimeter().total_cmp(&b.perimeter()))
+        .or_else(|| nearest_loop(loops, guess))
+}
+
 /// A 2-D segment `(start, end)`.
 pub type Segment2 = ((f64, f64), (f64, f64));
 

@@ -5,8 +5,8 @@
 //! of the head; MakeHuman's rigs).
 
 use super::frame::{BodyFrame, HeadSlices};
+use super::geometry::enclosing_loop;
 use super::geometry::fit_circle;
-use super::geometry::nearest_loop;
 use super::{HeadLevel, RefineOptions};
 use crate::mesh::{slice_plane_outer, Mesh, SliceLoop};
 use glam::DVec3;
@@ -45,9 +45,10 @@ pub fn head_joint(
 }
 
 /// Whether the head's forward-most slice is a nose: above the head's lowest slice (there it is
-/// a chin or a collar) and in the lower part of the head, at most `head_nose_max` of the
+/// a chin or a collar), in the lower part of the head, at most `head_nose_max` of the
 /// sliced length up (a nose tip is about a third of the way up from the chin; higher, the
-/// forward-most part is a visor, a hat brim or hair).
+/// forward-most part is a visor, a hat brim or hair), and narrow ([`is_narrow_tip`]: the front
+/// of a round cartoon head is the cap of a sphere, no nose).
 fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bool {
     let (Some(nose), Some(top), Some(bottom)) = (
         forward_most(frame, head),
@@ -57,11 +58,38 @@ fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bo
         return false;
     };
     let (top, bottom) = (frame.h(*top), frame.h(*bottom));
-    let Some(nose) = nose.points.first() else {
+    let Some(tip) = nose.points.first() else {
         return false;
     };
-    let t = (frame.h(*nose) - bottom) / (top - bottom).max(f64::MIN_POSITIVE);
-    t >= options.head_nose_min && t <= options.head_nose_max
+    let t = (frame.h(*tip) - bottom) / (top - bottom).max(f64::MIN_POSITIVE);
+    t >= options.head_nose_min && t <= options.head_nose_max && is_narrow_tip(frame, nose)
+}
+
+/// The front [`NOSE_DEPTH`] of a nose's slice (by depth, from its forward-most point) spans at
+/// most this fraction of the slice's width: the MakeHuman noses span 0.20-0.22 of the head's
+/// width there, the cap of a circle 0.6 (0.46 on the low-poly sphere of a cartoon's head,
+/// measured on the slice's vertices).
+const NOSE_WIDTH: f64 = 0.35;
+
+/// See [`NOSE_WIDTH`]: the band's depth as a fraction of the slice's depth.
+const NOSE_DEPTH: f64 = 0.1;
+
+/// Whether the front of `slice` is a narrow protrusion ([`NOSE_WIDTH`]).
+fn is_narrow_tip(frame: &BodyFrame, slice: &SliceLoop) -> bool {
+    let span = |points: &mut dyn Iterator<Item = f64>| {
+        points.fold((f64::MAX, f64::MIN), |(lo, hi), x| (lo.min(x), hi.max(x)))
+    };
+    let (back, front) = span(&mut slice.points.iter().map(|p| p.dot(frame.forward)));
+    let (right, left) = span(&mut slice.points.iter().map(|p| p.dot(frame.left)));
+    let limit = front - NOSE_DEPTH * (front - back);
+    let (lo, hi) = span(
+        &mut slice
+            .points
+            .iter()
+            .filter(|p| p.dot(frame.forward) >= limit)
+            .map(|p| p.dot(frame.left)),
+    );
+    hi - lo <= NOSE_WIDTH * (left - right)
 }
 
 /// The head slice reaching farthest forward.
@@ -78,12 +106,12 @@ fn forward_most<'a>(frame: &BodyFrame, head: &'a HeadSlices) -> Option<&'a Slice
 }
 
 /// The head joint at the top of the neck. Slicing down from the head's first slice for
-/// `head_max_depth + head_neck_search` of the height, the neck is the slice narrowest against
-/// the widest slice above it (the deepest valley of the diameter profile, so that the small
+/// `head_max_depth + head_neck_search` of the height, the neck is the slice below the head's
+/// widest slice that is narrowest against the widest slice above it (the deepest valley of the diameter profile, so that the small
 /// slices at the crown do not count; the search stops at the height of the rough shoulder
 /// joints, `shoulders`, below which the torso and arms are no neck); going up from it, the
 /// first slice whose diameter reaches `head_neck_widening` times the neck's is where the head
-/// begins. The joint is at that height on the neck's axis (the slice's own centroid takes in
+/// begins (the neck itself when none does). The joint is at that height on the neck's axis (the slice's own centroid takes in
 /// the jaw, in front of the spine).
 fn neck_top(
     mesh: &Mesh,
@@ -105,7 +133,7 @@ fn neck_top(
         let origin = frame.at_height(previous, h);
         h -= step;
         let loops = slice_plane_outer(mesh, origin, frame.up);
-        let Some(slice) = nearest_loop(&loops, origin).filter(|l| l.closed) else {
+        let Some(slice) = enclosing_loop(&loops, frame.up, origin).filter(|l| l.closed) else {
             continue;
         };
         let (Some(axes), Some(c)) = (slice.principal_axes(), slice.centroid()) else {
@@ -114,6 +142,13 @@ fn neck_top(
         column.push((frame.h(origin), axes.major_diameter, c));
         previous = c;
     }
+    // The neck lies below the head's widest slice: above it, a small piece at the crown (a
+    // hair strand, a visor's edge) can make a deeper valley than a thick neck does.
+    let widest = head
+        .slices
+        .get(head.largest)
+        .and_then(|s| s.points.first())
+        .map_or(f64::INFINITY, |p| frame.h(*p));
     let mut widest_above = 0.0_f64;
     let mut neck: Option<(usize, f64)> = None; // index, valley ratio
     for (i, &(h, d, _)) in column.iter().enumerate() {
@@ -121,17 +156,21 @@ fn neck_top(
             break;
         }
         let ratio = widest_above / d.max(f64::MIN_POSITIVE);
-        if neck.is_none_or(|(_, r)| ratio > r) {
+        if h < widest && neck.is_none_or(|(_, r)| ratio > r) {
             neck = Some((i, ratio));
         }
         widest_above = widest_above.max(d);
     }
     let (neck, _) = neck?;
-    let (_, narrowest, axis) = column[neck];
-    let &(h, _, _) = column[..neck]
+    let (valley, narrowest, axis) = column[neck];
+    // A head that never widens to `head_neck_widening` times its narrowest section sits on the
+    // trunk with no neck between (a cartoon's big head): the joint is at that section, where
+    // head and trunk meet.
+    let h = column[..neck]
         .iter()
         .rev()
-        .find(|&&(_, d, _)| d >= options.head_neck_widening * narrowest)?;
+        .find(|&&(_, d, _)| d >= options.head_neck_widening * narrowest)
+        .map_or(valley, |&(h, _, _)| h);
     let joint = frame.at_height(axis, h);
     Some(HeadJoint {
         joint,

@@ -94,7 +94,7 @@ pub(super) fn leg(
             // No bend on the curve (it ends above the knee's part of the leg): the surface
             // says nothing, the proportions place it, inside the leg's own section.
             None => {
-                let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+                let h = knee_height(scene, hip, distal);
                 let k = own_section(scene, side, frame.at_height(knee, h));
                 warnings.push(RefineWarning::NoKnee {
                     side,
@@ -119,6 +119,13 @@ fn ankle_above_sole(scene: &Scene, side: Side, ank: glam::DVec3) -> Option<glam:
     own_section(scene, side, a).map(|_| a)
 }
 
+/// The knee's height by the leg's proportions: `leg_ratio` of the way from the hip's height
+/// down to the ankle's (`distal`).
+fn knee_height(scene: &Scene, hip: glam::DVec3, distal: glam::DVec3) -> f64 {
+    let frame = &scene.frame;
+    frame.h(hip) + scene.options.leg_ratio * (frame.h(distal) - frame.h(hip))
+}
+
 /// The knee at `leg_ratio` of the way from the hip's height to the ankle's (`distal`), inside
 /// the leg's slice there (near the rough `knee`) when that slice is on this side of the body,
 /// else on the straight line between hip and ankle (clothing hides the crotch).
@@ -136,7 +143,7 @@ fn knee_by_ratio(
         centre,
         ..
     } = *scene;
-    let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+    let h = knee_height(scene, hip, distal);
     let line = frame.at_height(hip.lerp(distal, options.leg_ratio), h);
     let depth = options.knee_depth.unwrap_or(0.5);
     transverse_point(mesh, &frame, frame.at_height(knee, h), h, depth)
@@ -188,7 +195,7 @@ fn bend_knee(
     let frame = &frame;
     match bend(profile, hip, distal, options.leg_ratio, step, options) {
         Some((k, BendRule::Ratio)) => options.knee_depth.map_or(Some(k), |depth| {
-            let h = frame.h(hip) + options.leg_ratio * (frame.h(distal) - frame.h(hip));
+            let h = knee_height(scene, hip, distal);
             transverse_point(mesh, frame, k, h, depth).or(Some(k))
         }),
         other => other.map(|(k, _)| k),
