@@ -229,8 +229,15 @@ impl Mixer {
                 entry.1 = share;
             }
         }
-        let entries = &mut entries[..used];
-        entries.sort_unstable_by_key(|e| e.0);
+        // Joints ascending (insertion sort of at most four distinct joints).
+        for k in 1..used {
+            let mut at = k;
+            while at > 0 && entries[at - 1].0 > entries[at].0 {
+                entries.swap(at - 1, at);
+                at -= 1;
+            }
+        }
+        let entries = &entries[..used];
         let mut row = Row::EMPTY;
         for (k, &(j, w)) in entries.iter().enumerate() {
             row.joints[k] = j;
