@@ -2,7 +2,7 @@
 //! rounds of diffusion between face neighbours.
 
 use super::field::Field;
-use super::rows::{blend_few, Mixer, Row, NONE};
+use super::rows::{mix, Mixer, Row, NONE};
 use super::LABELS;
 use crate::skin::SkinOptions;
 use crate::voxel::{Connectivity, Grid};
@@ -138,9 +138,9 @@ fn links(field: &Field, grid: &Grid, voxels: &[usize], slot: &[u32]) -> Vec<[u32
 /// 1/6), so 75 rounds spread as far as 128 half steps at 0.59 times the work.
 ///
 /// Each round reads the previous round's rows and writes into a second buffer (no
-/// allocation per round); a row whose neighbours all equal it stays, and one whose
-/// neighbours have its joints or together at most four is blended without the general
-/// mix-and-prune ([`Row::blend_same_joints`], [`blend_few`]). A row is computed again only
+/// allocation per round); a row whose neighbours all equal it stays, one whose neighbours
+/// have its joints is blended without a search ([`Row::blend_same_joints`]), the others are
+/// summed on the stack and pruned ([`mix`]). A row is computed again only
 /// where it or one of its neighbours changed in the round before ([`Settled`]); the others
 /// (a limb's core on one bone, and whatever has stopped moving) keep their value, which both
 /// buffers already hold.
@@ -226,13 +226,5 @@ fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) ->
             return row;
         }
     }
-    if let Some(row) = blend_few(own, share, neighbours()) {
-        return row;
-    }
-    mixer.clear();
-    mixer.add_row(own, share);
-    for (row, share) in neighbours() {
-        mixer.add_row(row, share);
-    }
-    mixer.pruned(0.0)
+    mix(own, share, neighbours(), mixer)
 }

@@ -2,7 +2,7 @@
 //! the field did not reach, and smoothed over the mesh's edges.
 
 use super::diffusion::{Settled, VoxelWeights};
-use super::rows::{blend_few, Mixer, Row, NONE};
+use super::rows::{blend_few, mix, Mixer, Row, NONE};
 use crate::mesh::Mesh;
 use crate::voxel::Grid;
 use glam::DVec3;
@@ -390,15 +390,7 @@ fn smoothed_row(
     if let Some(row) = own.blend_same_joints(keep, neighbours()) {
         return row;
     }
-    if let Some(row) = blend_few(own, keep, neighbours()) {
-        return row;
-    }
-    mixer.clear();
-    mixer.add_row(own, keep);
-    for (row, share) in neighbours() {
-        mixer.add_row(row, share);
-    }
-    mixer.pruned(0.0)
+    mix(own, keep, neighbours(), mixer)
 }
 
 /// The rounds of [`smooth`] for `iterations` asked, from each vertex's sum over its `edges`
