@@ -96,12 +96,12 @@ fn fit_hand(
         .iter()
         .flat_map(|b| b.path.iter().copied())
         .collect();
-    let mut inside = windings(mesh, &centres).into_iter().map(|w| w != 0);
+    let inside: Vec<bool> = windings(mesh, &centres).iter().map(|&w| w != 0).collect();
+    let mut first = 0;
     branches.retain(|b| {
-        inside
-            .by_ref()
-            .take(b.path.len())
-            .fold(true, |all, i| all && i)
+        let all = inside[first..first + b.path.len()].iter().all(|&i| i);
+        first += b.path.len();
+        all
     });
     // Thumb first: the deepest web, at equal webs the thinner digit.
     branches.sort_by(|a, b| {
