@@ -9,26 +9,69 @@ use glam::DVec3;
 /// Winding number of `p` with respect to `mesh` (closed, outward parts): signed crossings of the
 /// ray from `p` towards +x, found in the (y, z) projection.
 pub(crate) fn winding(mesh: &Mesh, p: DVec3) -> i32 {
-    let mut count = 0;
-    for t in 0..mesh.triangles.len() {
-        let [a, b, c] = mesh.corners(t);
-        let cross =
-            |p: DVec3, q: DVec3, r: DVec3| (q.y - p.y) * (r.z - p.z) - (q.z - p.z) * (r.y - p.y);
-        let (w0, w1, w2) = (cross(b, c, p), cross(c, a, p), cross(a, b, p));
-        let total = w0 + w1 + w2;
-        if total == 0.0 {
-            continue;
-        }
-        let same = (w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0) || (w0 <= 0.0 && w1 <= 0.0 && w2 <= 0.0);
-        if !same {
-            continue;
-        }
-        let x = (w0 * a.x + w1 * b.x + w2 * c.x) / total;
-        if x > p.x {
-            count += if (b - a).cross(c - a).x > 0.0 { 1 } else { -1 };
-        }
+    (0..mesh.triangles.len())
+        .map(|t| {
+            let [a, b, c] = mesh.corners(t);
+            crossing(a, b, c, p)
+        })
+        .sum()
+}
+
+/// [`winding`] of each of `points`, testing only the triangles whose (y, z) bounds hold the
+/// point: a triangle whose projection does not contain a point's cannot cross its ray, so the
+/// numbers are [`winding`]'s; many points close together (a hand's digit centres) share one
+/// pass over the mesh.
+pub(crate) fn windings(mesh: &Mesh, points: &[DVec3]) -> Vec<i32> {
+    let Some((lo, hi)) = points.iter().fold(None, |b: Option<(DVec3, DVec3)>, &p| {
+        Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
+    }) else {
+        return Vec::new();
+    };
+    // The triangles whose (y, z) bounds meet the points', with those bounds.
+    let near: Vec<([DVec3; 3], DVec3, DVec3)> = (0..mesh.triangles.len())
+        .filter_map(|t| {
+            let c = mesh.corners(t);
+            let (tlo, thi) = (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
+            let meets = tlo.y <= hi.y && thi.y >= lo.y && tlo.z <= hi.z && thi.z >= lo.z;
+            meets.then_some((c, tlo, thi))
+        })
+        .collect();
+    points
+        .iter()
+        .map(|&p| {
+            near.iter()
+                .filter(|(_, lo, hi)| lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z)
+                .map(|&([a, b, c], _, _)| crossing(a, b, c, p))
+                .sum()
+        })
+        .collect()
+}
+
+/// The signed crossing (-1, 0 or 1) of the triangle `a`, `b`, `c` with the ray from `p`
+/// towards +x.
+#[inline]
+fn crossing(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> i32 {
+    let cross =
+        |p: DVec3, q: DVec3, r: DVec3| (q.y - p.y) * (r.z - p.z) - (q.z - p.z) * (r.y - p.y);
+    let (w0, w1, w2) = (cross(b, c, p), cross(c, a, p), cross(a, b, p));
+    let total = w0 + w1 + w2;
+    if total == 0.0 {
+        return 0;
     }
-    count
+    let same = (w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0) || (w0 <= 0.0 && w1 <= 0.0 && w2 <= 0.0);
+    if !same {
+        return 0;
+    }
+    let x = (w0 * a.x + w1 * b.x + w2 * c.x) / total;
+    if x > p.x {
+        if (b - a).cross(c - a).x > 0.0 {
+            1
+        } else {
+            -1
+        }
+    } else {
+        0
+    }
 }
 
 fn bounds(mesh: &Mesh) -> Option<(DVec3, DVec3)> {
@@ -76,5 +119,25 @@ mod tests {
             radius: 0.9,
         };
         assert!(!overlaps(&a, &b, &[joint]));
+    }
+
+    #[test]
+    fn windings_of_many_points_are_the_windings_of_each() {
+        let mesh = Mesh::uv_sphere(DVec3::new(0.1, 0.2, -0.1), 0.8, 9, 13);
+        let points: Vec<DVec3> = (0..400)
+            .map(|k| {
+                let k = k as f64;
+                DVec3::new(
+                    (1.3 * k).sin(),
+                    (0.7 * k + 1.0).cos(),
+                    (2.9 * k).sin() * 0.9,
+                )
+            })
+            .collect();
+        let each: Vec<i32> = points.iter().map(|&p| winding(&mesh, p)).collect();
+        assert!(each.contains(&1) && each.contains(&0));
+        assert_eq!(windings(&mesh, &points), each);
+        assert_eq!(windings(&mesh, &points[..3]), each[..3]);
+        assert!(windings(&mesh, &[]).is_empty());
     }
 }

@@ -29,7 +29,7 @@
 mod axial;
 mod bone;
 mod collision;
-pub(crate) use collision::winding;
+pub(crate) use collision::windings;
 mod context;
 mod error;
 mod export;

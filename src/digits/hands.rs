@@ -4,7 +4,7 @@ use super::contour::{digit_branches, Branch};
 use super::place::{digit_frame, place_digit, DigitJoints};
 use super::surface::hand_surface;
 use super::{DigitOptions, DigitWarning};
-use crate::bones::winding;
+use crate::bones::windings;
 use crate::fit::Fit;
 use crate::mesh::Mesh;
 use crate::skeleton::canonical::{CanonicalJoints, Finger};
@@ -92,7 +92,17 @@ fn fit_hand(
     branches.retain(|b| free_length(b) >= mean_width(b));
     // The contour centres of a digit lie inside the figure (a coarse or open surface can give
     // branches whose centres do not).
-    branches.retain(|b| b.path.iter().all(|&p| winding(mesh, p) != 0));
+    let centres: Vec<DVec3> = branches
+        .iter()
+        .flat_map(|b| b.path.iter().copied())
+        .collect();
+    let inside: Vec<bool> = windings(mesh, &centres).iter().map(|&w| w != 0).collect();
+    let mut first = 0;
+    branches.retain(|b| {
+        let all = inside[first..first + b.path.len()].iter().all(|&i| i);
+        first += b.path.len();
+        all
+    });
     // Thumb first: the deepest web, at equal webs the thinner digit.
     branches.sort_by(|a, b| {
         (a.split_level, base_perimeter(a))

@@ -5,7 +5,6 @@
 use crate::math::principal_axes;
 use glam::DVec3;
 use nalgebra::Matrix3;
-use std::collections::HashMap;
 
 /// One connected piece of a mesh/surface intersection.
 ///
@@ -135,11 +134,10 @@ pub(crate) fn cut_and_link(
 ) -> Vec<SliceLoop> {
     let above = |v: u32| side[v as usize] >= 0.0;
     let mut cuts = Vec::new();
-    let mut points: HashMap<(u32, u32), DVec3> = HashMap::new();
-    let mut point = |a: u32, b: u32| {
+    // The two triangles of an edge get the same point: `crossing` of the same ordered pair.
+    let point = |a: u32, b: u32| {
         let (lo, hi) = if above(a) { (b, a) } else { (a, b) };
-        let key = (a.min(b), a.max(b));
-        *points.entry(key).or_insert_with(|| crossing(lo, hi))
+        crossing(lo, hi)
     };
     for &[a, b, c] in triangles {
         let (sa, sb, sc) = (above(a), above(b), above(c));
@@ -167,25 +165,28 @@ pub(crate) fn cut_and_link(
 /// Chains cuts that share an edge into curves. Each edge normally joins two cuts; boundary
 /// edges end open curves; a non-manifold edge joins the first two cuts found on it.
 fn link(cuts: &[Cut]) -> Vec<SliceLoop> {
-    let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    for (i, cut) in cuts.iter().enumerate() {
-        for e in cut.edges {
-            by_edge.entry(e).or_default().push(i);
-        }
-    }
+    // Every (edge, cut) pair sorted: the cuts on an edge are a run, in cut order.
+    let mut by_edge: Vec<((u32, u32), usize)> = cuts
+        .iter()
+        .enumerate()
+        .flat_map(|(i, cut)| cut.edges.map(|e| (e, i)))
+        .collect();
+    by_edge.sort_unstable();
+    let on_edge = |edge: (u32, u32)| {
+        let from = by_edge.partition_point(|&(e, _)| e < edge);
+        let to = from + by_edge[from..].partition_point(|&(e, _)| e == edge);
+        by_edge[from..to].iter().map(|&(_, i)| i)
+    };
     let mut used = vec![false; cuts.len()];
     let other = |edge: (u32, u32), from: usize, used: &[bool]| {
-        by_edge[&edge]
-            .iter()
-            .copied()
-            .find(|&j| j != from && !used[j])
+        on_edge(edge).find(|&j| j != from && !used[j])
     };
     let mut loops = Vec::new();
     // Open chains first: start at cuts with an unshared edge, so they come out whole.
     let mut starts: Vec<(usize, usize)> = Vec::new();
     for (i, cut) in cuts.iter().enumerate() {
         for (k, e) in cut.edges.iter().enumerate() {
-            if by_edge[e].len() == 1 {
+            if on_edge(*e).len() == 1 {
                 starts.push((i, k));
             }
         }

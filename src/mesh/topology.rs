@@ -91,6 +91,25 @@ impl Mesh {
         (components, count as usize)
     }
 
+    /// Whether the mesh is one closed shell: triangles, every edge shared by exactly two of
+    /// them, all joined across edges ([`Mesh::stats`]' `closed` with one manifold component),
+    /// from one pass over the edges.
+    pub fn is_one_closed_shell(&self) -> bool {
+        if self.triangles.is_empty() {
+            return false;
+        }
+        let mut sets = DisjointSets::new(self.triangles.len());
+        let edges = self.half_edges();
+        for group in Mesh::edge_groups(&edges) {
+            let [a, b] = group else {
+                return false;
+            };
+            sets.union(a.triangle, b.triangle);
+        }
+        let root = sets.find(0);
+        (1..self.triangles.len() as u32).all(|t| sets.find(t) == root)
+    }
+
     /// Like [`Mesh::triangle_components`], but triangles are connected only across manifold
     /// edges (edges used by exactly two triangles), so pieces that merely touch at a vertex or
     /// meet at a non-manifold edge count separately. This is trimesh's notion of a body
@@ -164,6 +183,35 @@ mod tests {
         for g in groups {
             assert_eq!(g.len(), 2);
             assert_ne!(g[0].forward, g[1].forward);
+        }
+    }
+
+    #[test]
+    fn one_closed_shell_is_what_the_stats_say() {
+        let cube = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+        let mut b = Mesh::cuboid(DVec3::splat(2.0), DVec3::splat(3.0));
+        b.triangles.iter_mut().flatten().for_each(|i| *i += 8);
+        let two = Mesh {
+            positions: [cube.positions.clone(), b.positions].concat(),
+            triangles: [cube.triangles.clone(), b.triangles].concat(),
+        };
+        let mut open = cube.clone();
+        open.triangles.pop();
+        let empty = Mesh {
+            positions: Vec::new(),
+            triangles: Vec::new(),
+        };
+        let sphere = Mesh::uv_sphere(DVec3::ZERO, 1.0, 6, 8);
+        for (mesh, one) in [
+            (&cube, true),
+            (&two, false),
+            (&open, false),
+            (&empty, false),
+            (&sphere, true),
+        ] {
+            let stats = mesh.stats();
+            assert_eq!(mesh.is_one_closed_shell(), one);
+            assert_eq!(one, stats.closed && stats.manifold_components == 1);
         }
     }
 

@@ -391,9 +391,7 @@ fn refine_stage(
 /// refinement's loop for a body part would be one piece of clothing; the joined solid has one
 /// loop per part.
 fn refine_surface(mesh: &Mesh, solid: &Solid, options: &RefineOptions) -> Option<Mesh> {
-    let stats = mesh.stats();
-    let one_shell = stats.closed && stats.manifold_components == 1;
-    (!one_shell).then(|| boundary_mesh(solid, options.joined_smoothing))
+    (!mesh.is_one_closed_shell()).then(|| boundary_mesh(solid, options.joined_smoothing))
 }
 
 /// The body parts `template` expects ([`Template::expects`], the `expects` list of its

@@ -2,7 +2,7 @@
 //! rounds of diffusion between face neighbours.
 
 use super::field::Field;
-use super::rows::{blend_few, Mixer, Row, NONE};
+use super::rows::{mix, Mixer, Row, NONE};
 use super::LABELS;
 use crate::skin::SkinOptions;
 use crate::voxel::{Connectivity, Grid};
@@ -138,20 +138,62 @@ fn links(field: &Field, grid: &Grid, voxels: &[usize], slot: &[u32]) -> Vec<[u32
 /// 1/6), so 75 rounds spread as far as 128 half steps at 0.59 times the work.
 ///
 /// Each round reads the previous round's rows and writes into a second buffer (no
-/// allocation per round); a row whose neighbours all equal it stays, and one whose
-/// neighbours have its joints or together at most four is blended without the general
-/// mix-and-prune ([`Row::blend_same_joints`], [`blend_few`]).
+/// allocation per round); a row whose neighbours all equal it stays, one whose neighbours
+/// have its joints is blended without a search ([`Row::blend_same_joints`]), the others are
+/// summed on the stack and pruned ([`mix`]). A row is computed again only
+/// where it or one of its neighbours changed in the round before ([`Settled`]); the others
+/// (a limb's core on one bone, and whatever has stopped moving) keep their value, which both
+/// buffers already hold.
 fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], iterations: usize) {
-    let mut next = vec![Row::EMPTY; rows.len()];
+    let mut next = rows.clone();
+    let mut settled = Settled::new(rows.len());
     for _ in 0..iterations {
         let current: &[Row] = rows;
+        let moved = &settled.moved;
         next.par_iter_mut()
+            .zip(settled.next.par_iter_mut())
             .enumerate()
             .with_min_len(256)
-            .for_each_init(Mixer::default, |mixer, (v, out)| {
-                *out = diffused_row(current, &linked[v], v, mixer);
+            .for_each_init(Mixer::default, |mixer, (v, (out, moves))| {
+                let link = &linked[v];
+                if !moved[v] && link.iter().all(|&u| u == NONE || !moved[u as usize]) {
+                    *moves = false;
+                    return;
+                }
+                let row = diffused_row(current, link, v, mixer);
+                *moves = row != current[v];
+                *out = row;
             });
         std::mem::swap(rows, &mut next);
+        if !settled.advance() {
+            break;
+        }
+    }
+}
+
+/// Which rows changed in the last round of an iteration (every row before the first), and
+/// the flags being written in the current one. A row is a function of its own and its
+/// neighbours' rows of the round before, so where none of them changed it is the same as
+/// before: the same value to the bit, without computing it.
+pub(super) struct Settled {
+    pub moved: Vec<bool>,
+    pub next: Vec<bool>,
+}
+
+impl Settled {
+    /// `n` rows, all to be computed in the first round.
+    pub fn new(n: usize) -> Self {
+        Self {
+            moved: vec![true; n],
+            next: vec![false; n],
+        }
+    }
+
+    /// Makes the flags written this round the ones read in the next; whether any row moved
+    /// (if none did, no later round changes anything).
+    pub fn advance(&mut self) -> bool {
+        std::mem::swap(&mut self.moved, &mut self.next);
+        self.moved.contains(&true)
     }
 }
 
@@ -184,13 +226,5 @@ fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) ->
             return row;
         }
     }
-    if let Some(row) = blend_few(own, share, neighbours()) {
-        return row;
-    }
-    mixer.clear();
-    mixer.add_row(own, share);
-    for (row, share) in neighbours() {
-        mixer.add_row(row, share);
-    }
-    mixer.pruned(0.0)
+    mix(own, share, neighbours(), mixer)
 }

@@ -41,8 +41,11 @@ pub(super) fn field(
 ) -> Field {
     let grid = solid.grid;
     let (compact, interior) = interior_index(solid);
-    let labelled = nearest_joints(&grid, &compact, &interior, distance, segments, options);
-    let nearest = nearest_interior(&grid, &compact, &interior, needed);
+    // Independent searches: the labelled Dijkstra (the long one) beside the breadth-first one.
+    let (labelled, nearest) = rayon::join(
+        || nearest_joints(&grid, &compact, &interior, distance, segments, options),
+        || nearest_interior(&grid, &compact, &interior, needed),
+    );
     Field {
         compact,
         interior,
@@ -101,7 +104,8 @@ fn nearest_joints(
     let mut distances = vec![f32::INFINITY; n * LABELS];
     let mut lengths = vec![f32::INFINITY; n * LABELS];
     let mut count = vec![0u8; n];
-    let mut queued = vec![(NONE, usize::MAX); n * TENTATIVE];
+    // (joint, bucket); buckets past `u32::MAX` are kept as `u32::MAX` (queued again).
+    let mut queued = vec![(NONE, u32::MAX); n * TENTATIVE];
     // A bucket queue (Dial's algorithm) over distances rounded down to `BUCKET`: entries
     // leave in distance order up to one bucket's width, each in O(1); within a bucket, in
     // the order pushed, so the result does not depend on timing or threads.
@@ -138,7 +142,7 @@ fn nearest_joints(
                 return;
             }
             let d = d + step.distance * step_cost[m];
-            let bucket = queue.bucket(d);
+            let bucket = u32::try_from(queue.bucket(d)).unwrap_or(u32::MAX);
             let tentative = &mut queued[m * TENTATIVE..(m + 1) * TENTATIVE];
             match tentative.iter_mut().find(|e| e.0 == joint || e.0 == NONE) {
                 // Leaves in an earlier bucket: this entry would only be turned away.
@@ -191,6 +195,9 @@ const BUCKET: f64 = 1.0 / 32.0;
 struct BucketQueue {
     buckets: Vec<Vec<(f64, f64, u32, u32)>>,
     current: usize,
+    /// Emptied buckets' storage, handed to buckets filled later (the queue holds a few
+    /// buckets' entries at a time instead of every entry ever pushed).
+    spare: Vec<Vec<(f64, f64, u32, u32)>>,
 }
 
 impl BucketQueue {
@@ -205,13 +212,23 @@ impl BucketQueue {
         if b >= self.buckets.len() {
             self.buckets.resize_with(b + 1, Vec::new);
         }
-        self.buckets[b].push((d, length, voxel, joint));
+        let bucket = &mut self.buckets[b];
+        if bucket.capacity() == 0 {
+            if let Some(spare) = self.spare.pop() {
+                *bucket = spare;
+            }
+        }
+        bucket.push((d, length, voxel, joint));
     }
 
     fn pop(&mut self) -> Option<(f64, f64, u32, u32)> {
         while self.current < self.buckets.len() {
             if let Some(entry) = self.buckets[self.current].pop() {
                 return Some(entry);
+            }
+            let emptied = std::mem::take(&mut self.buckets[self.current]);
+            if emptied.capacity() > 0 {
+                self.spare.push(emptied);
             }
             self.current += 1;
         }

@@ -121,6 +121,70 @@ pub(super) fn blend_few<'a>(
     Some(row)
 }
 
+/// Distinct joints [`mix`] sums on the stack before it hands the sum to a [`Mixer`].
+const STACK: usize = 16;
+
+/// `keep` times `own` plus each of `others` (row, factor), pruned to four joints: what
+/// [`blend_few`] gives where it has an answer, else what [`Mixer::pruned`] (cut 0) gives of
+/// the same sum, to the bit (each joint's sum is taken in the same order), in one pass over
+/// the rows without the mixer's table.
+#[inline]
+pub(super) fn mix<'a>(
+    own: &Row,
+    keep: f64,
+    others: impl Iterator<Item = (&'a Row, f64)> + Clone,
+    mixer: &mut Mixer,
+) -> Row {
+    let mut joints = [NONE; STACK];
+    let mut weights = [0.0f64; STACK];
+    let mut used = 0;
+    for (j, w) in own.entries() {
+        joints[used] = j;
+        weights[used] = keep * w;
+        used += 1;
+    }
+    for (other, factor) in others.clone() {
+        for (j, w) in other.entries() {
+            match joints[..used].iter().position(|&k| k == j) {
+                Some(k) => weights[k] += factor * w,
+                None if used < STACK => {
+                    joints[used] = j;
+                    weights[used] = factor * w;
+                    used += 1;
+                }
+                None => {
+                    mixer.clear();
+                    mixer.add_row(own, keep);
+                    for (row, factor) in others {
+                        mixer.add_row(row, factor);
+                    }
+                    return mixer.pruned(0.0);
+                }
+            }
+        }
+    }
+    let (joints, weights) = (&joints[..used], &weights[..used]);
+    if used <= KEPT {
+        let sum: f64 = weights.iter().sum();
+        if used > 0 && sum.is_finite() && weights.iter().all(|&w| w > 0.0) {
+            let mut row = Row::EMPTY;
+            for k in 0..used {
+                // Joints ascending (insertion of at most four).
+                let mut at = k;
+                while at > 0 && row.joints[at - 1] > joints[k] {
+                    row.joints[at] = row.joints[at - 1];
+                    row.weights[at] = row.weights[at - 1];
+                    at -= 1;
+                }
+                row.joints[at] = joints[k];
+                row.weights[at] = weights[k] / sum;
+            }
+            return row;
+        }
+    }
+    prune(joints, weights, 0.0)
+}
+
 /// A weighted sum of rows (any number of joints), pruned back to a [`Row`] by
 /// [`Mixer::pruned`]. Reused across voxels and vertices so that mixing allocates nothing.
 #[derive(Debug, Default)]
@@ -169,75 +233,87 @@ impl Mixer {
         }
     }
 
-    /// The sum pruned to four joints: keeps the [`LABELS`] largest (ties: lower joint id),
-    /// subtracts the smallest of them (or `cut`, whichever is larger, but never more than the
-    /// largest) from the others, so that a joint whose rank crosses the cut enters or leaves
-    /// with weight zero, drops what is left at zero and normalises. When every kept weight
-    /// ties with the cut, the kept joints share equally.
+    /// The sum pruned to four joints ([`prune`]).
     pub fn pruned(&self, cut: f64) -> Row {
-        // The LABELS largest, largest first: insertion into a short sorted list.
-        let mut top = [usize::MAX; LABELS];
-        let mut count = 0;
-        let before = |a: usize, b: usize| {
-            self.weights[a]
-                .total_cmp(&self.weights[b])
-                .reverse()
-                .then(self.joints[a].cmp(&self.joints[b]))
-                .is_lt()
-        };
-        for k in 0..self.joints.len() {
-            let mut at = count;
-            while at > 0 && before(k, top[at - 1]) {
-                at -= 1;
-            }
-            if at < LABELS {
-                let end = count.min(LABELS - 1);
-                top.copy_within(at..end, at + 1);
-                top[at] = k;
-                count = (count + 1).min(LABELS);
-            }
-        }
-        if count == 0 {
-            return Row::EMPTY;
-        }
-        let floor = if count == LABELS {
-            self.weights[top[LABELS - 1]]
-        } else {
-            0.0
-        }
-        .max(cut.min(self.weights[top[0]]));
-        let kept = count.min(KEPT);
-        let mut entries = [(NONE, 0.0f64); KEPT];
-        let mut sum = 0.0;
-        for (slot, &k) in entries.iter_mut().zip(&top[..kept]) {
-            let w = (self.weights[k] - floor).max(0.0);
-            *slot = (self.joints[k], w);
-            sum += w;
-        }
-        let mut used = kept;
-        if sum > 0.0 && sum.is_finite() {
-            used = 0;
-            for k in 0..kept {
-                if entries[k].1 > 0.0 {
-                    entries[used] = (entries[k].0, entries[k].1 / sum);
-                    used += 1;
-                }
-            }
-        } else {
-            let share = 1.0 / kept as f64;
-            for entry in &mut entries[..kept] {
-                entry.1 = share;
-            }
-        }
-        let entries = &mut entries[..used];
-        entries.sort_unstable_by_key(|e| e.0);
-        let mut row = Row::EMPTY;
-        for (k, &(j, w)) in entries.iter().enumerate() {
-            row.joints[k] = j;
-            row.weights[k] = w;
-        }
-        row
+        prune(&self.joints, &self.weights, cut)
     }
+}
+
+/// The sum `weights` of `joints` (distinct) pruned to four joints: keeps the [`LABELS`] largest (ties: lower joint id),
+/// subtracts the smallest of them (or `cut`, whichever is larger, but never more than the
+/// largest) from the others, so that a joint whose rank crosses the cut enters or leaves
+/// with weight zero, drops what is left at zero and normalises. When every kept weight
+/// ties with the cut, the kept joints share equally.
+pub(super) fn prune(joints: &[u32], weights: &[f64], cut: f64) -> Row {
+    // The LABELS largest, largest first: insertion into a short sorted list.
+    let mut top = [usize::MAX; LABELS];
+    let mut count = 0;
+    let before = |a: usize, b: usize| {
+        weights[a]
+            .total_cmp(&weights[b])
+            .reverse()
+            .then(joints[a].cmp(&joints[b]))
+            .is_lt()
+    };
+    for k in 0..joints.len() {
+        let mut at = count;
+        while at > 0 && before(k, top[at - 1]) {
+            at -= 1;
+        }
+        if at < LABELS {
+            let end = count.min(LABELS - 1);
+            top.copy_within(at..end, at + 1);
+            top[at] = k;
+            count = (count + 1).min(LABELS);
+        }
+    }
+    if count == 0 {
+        return Row::EMPTY;
+    }
+    let floor = if count == LABELS {
+        weights[top[LABELS - 1]]
+    } else {
+        0.0
+    }
+    .max(cut.min(weights[top[0]]));
+    let kept = count.min(KEPT);
+    let mut entries = [(NONE, 0.0f64); KEPT];
+    let mut sum = 0.0;
+    for (slot, &k) in entries.iter_mut().zip(&top[..kept]) {
+        let w = (weights[k] - floor).max(0.0);
+        *slot = (joints[k], w);
+        sum += w;
+    }
+    let mut used = kept;
+    if sum > 0.0 && sum.is_finite() {
+        used = 0;
+        for k in 0..kept {
+            if entries[k].1 > 0.0 {
+                entries[used] = (entries[k].0, entries[k].1 / sum);
+                used += 1;
+            }
+        }
+    } else {
+        let share = 1.0 / kept as f64;
+        for entry in &mut entries[..kept] {
+            entry.1 = share;
+        }
+    }
+    // Joints ascending (insertion sort of at most four distinct joints).
+    for k in 1..used {
+        let mut at = k;
+        while at > 0 && entries[at - 1].0 > entries[at].0 {
+            entries.swap(at - 1, at);
+            at -= 1;
+        }
+    }
+    let entries = &entries[..used];
+    let mut row = Row::EMPTY;
+    for (k, &(j, w)) in entries.iter().enumerate() {
+        row.joints[k] = j;
+        row.weights[k] = w;
+    }
+    row
 }
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! The weights of the mesh's vertices: sampled from the voxel weights, spread to the vertices
 //! the field did not reach, and smoothed over the mesh's edges.
 
-use super::diffusion::VoxelWeights;
-use super::rows::{blend_few, Mixer, Row, NONE};
+use super::diffusion::{Settled, VoxelWeights};
+use super::rows::{blend_few, mix, Mixer, Row, NONE};
 use crate::mesh::Mesh;
 use crate::voxel::Grid;
 use glam::DVec3;
@@ -329,7 +329,8 @@ impl<'a> Graph<'a> {
     }
 }
 
-/// `iterations` rounds of [`smooth`] over `graph`.
+/// `iterations` rounds of [`smooth`] over `graph`; a vertex is computed again only where it or
+/// one of its neighbours changed in the round before ([`Settled`]).
 fn smoothing_rounds(rows: &mut Vec<Row>, graph: &Graph, iterations: usize) {
     let Graph {
         start,
@@ -338,44 +339,58 @@ fn smoothing_rounds(rows: &mut Vec<Row>, graph: &Graph, iterations: usize) {
         ref keep,
         ..
     } = *graph;
-    let mut next = vec![Row::EMPTY; rows.len()];
+    let mut next = rows.clone();
+    let mut settled = Settled::new(rows.len());
     for _ in 0..iterations {
         let current: &[Row] = rows;
+        let moved = &settled.moved;
         next.par_iter_mut()
+            .zip(settled.next.par_iter_mut())
             .enumerate()
             .with_min_len(1024)
-            .for_each_init(Mixer::default, |mixer, (v, out)| {
+            .for_each_init(Mixer::default, |mixer, (v, (out, moves))| {
                 let range = start[v]..start[v + 1];
-                let own = &current[v];
                 let around = &adjacent[range.clone()];
-                // Where every neighbour has the same weights the mean is the row.
-                if around.iter().all(|&u| current[u as usize] == *own) {
-                    *out = *own;
+                if !moved[v] && around.iter().all(|&u| !moved[u as usize]) {
+                    *moves = false;
                     return;
                 }
-                let neighbours = || {
-                    around
-                        .iter()
-                        .zip(&shares[range.clone()])
-                        .map(|(&u, &share)| (&current[u as usize], share))
-                };
-                if let Some(row) = own.blend_same_joints(keep[v], neighbours()) {
-                    *out = row;
-                    return;
-                }
-                if let Some(row) = blend_few(own, keep[v], neighbours()) {
-                    *out = row;
-                    return;
-                }
-                mixer.clear();
-                mixer.add_row(own, keep[v]);
-                for (row, share) in neighbours() {
-                    mixer.add_row(row, share);
-                }
-                *out = mixer.pruned(0.0);
+                let row = smoothed_row(current, around, &shares[range], keep[v], v, mixer);
+                *moves = row != current[v];
+                *out = row;
             });
         std::mem::swap(rows, &mut next);
+        if !settled.advance() {
+            break;
+        }
     }
+}
+
+/// One round of [`smoothing_rounds`] at vertex `v` with neighbours `around`.
+#[inline]
+fn smoothed_row(
+    current: &[Row],
+    around: &[u32],
+    shares: &[f64],
+    keep: f64,
+    v: usize,
+    mixer: &mut Mixer,
+) -> Row {
+    let own = &current[v];
+    // Where every neighbour has the same weights the mean is the row.
+    if around.iter().all(|&u| current[u as usize] == *own) {
+        return *own;
+    }
+    let neighbours = || {
+        around
+            .iter()
+            .zip(shares)
+            .map(|(&u, &share)| (&current[u as usize], share))
+    };
+    if let Some(row) = own.blend_same_joints(keep, neighbours()) {
+        return row;
+    }
+    mix(own, keep, neighbours(), mixer)
 }
 
 /// The rounds of [`smooth`] for `iterations` asked, from each vertex's sum over its `edges`
