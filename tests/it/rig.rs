@@ -1040,3 +1040,39 @@ fn more_limbs_than_the_template_places_gets_the_general_skeleton() {
         r.warnings
     );
 }
+
+/// A tail a few voxels across has no medial voxels over its last stretch, so its medial path
+/// stopped far short of the tip (a rat's tail: half its length). The fit follows the tail's
+/// interior voxels on to the tip, and the tail's last joint reaches it.
+#[test]
+fn a_thin_tail_is_followed_past_its_medial_surface_to_its_tip() {
+    let tip = DVec3::new(0.0, 0.95, -2.2);
+    let radius = 0.04;
+    let mut parts = vec![toy_quadruped(false)];
+    parts.push(capsule_between(DVec3::new(0.0, 1.0, -0.7), tip, radius));
+    let mesh = merged(&parts);
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    assert_eq!(r.fit.template, "quadruped", "{:?}", r.warnings);
+    let grid = r.labelling.grid;
+    let medial_end = r
+        .labelling
+        .dms_voxels
+        .iter()
+        .map(|&i| grid.centre(grid.coords(i)).z)
+        .fold(f64::INFINITY, f64::min);
+    let tail_end = r.fit.skeleton.joint(r.fit.canonical["tail_end"]).position;
+    // The medial surface stops well short of the tip: the case this is about.
+    assert!(
+        medial_end > tip.z + 0.3,
+        "medial end {medial_end}, voxel {}",
+        grid.voxel_size
+    );
+    // The tail's last joint reaches the tip (within a few voxels) and stays on the tail.
+    let reach = tail_end.z - (tip.z - radius);
+    assert!(
+        reach.abs() < 3.0 * grid.voxel_size,
+        "tail end {tail_end:?}, medial end {medial_end}, voxel {}",
+        grid.voxel_size
+    );
+    assert!(tail_end.x.abs() < 2.0 * grid.voxel_size, "{tail_end:?}");
+}
