@@ -82,7 +82,7 @@ pub(super) fn thin_end(labelling: &Labelling, part: usize, end: usize) -> Option
                 .total_cmp(&from_base.cost[b])
                 .then(b.cmp(&a))
         })?;
-    if !(from_base.cost[tip] > from_base.cost[end]) {
+    if from_base.cost[tip] <= from_base.cost[end] {
         return None;
     }
     let from_end = voxels.search([end]);
