@@ -984,7 +984,15 @@ fn z_up_copies_rig_without_orientation_flags_like_the_y_up_files() {
                 .unwrap_or_else(|| panic!("{dir}: {key}"));
             let p = reference.fit.skeleton.joints[id.0].position;
             let q = turn.inverse() * found.fit.skeleton.joints[other.0].position;
-            worst = worst.max(p.distance(q) / size);
+            let off = if key == "tail_mid" {
+                // The tail's vertebra count rounds its length over a vertebra's: one more
+                // vertebra in one voxelisation moves the middle joint along the same tail by
+                // half a vertebra. It must lie on the other tail.
+                distance_to_tail(&reference.fit, q)
+            } else {
+                p.distance(q)
+            };
+            worst = worst.max(off / size);
         }
         assert!(
             worst < 0.03,
@@ -992,6 +1000,26 @@ fn z_up_copies_rig_without_orientation_flags_like_the_y_up_files() {
             100.0 * worst
         );
     }
+}
+
+/// Distance from `q` to the tail chain of `fit` (its `tail*` joints in order, segments between
+/// them).
+fn distance_to_tail(fit: &skelfit::fit::Fit, q: DVec3) -> f64 {
+    let tail: Vec<DVec3> = fit
+        .skeleton
+        .joints
+        .iter()
+        .filter(|j| j.name.starts_with("tail"))
+        .map(|j| j.position)
+        .collect();
+    tail.windows(2)
+        .map(|w| {
+            let d = w[1] - w[0];
+            let t = ((q - w[0]).dot(d) / d.length_squared().max(1e-300)).clamp(0.0, 1.0);
+            q.distance(w[0] + d * t)
+        })
+        .chain(tail.iter().map(|t| t.distance(q)))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Y-up files keep +Y at once (one labelling of the level graph), and a figure standing either
