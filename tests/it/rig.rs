@@ -984,10 +984,10 @@ fn z_up_copies_rig_without_orientation_flags_like_the_y_up_files() {
                 .unwrap_or_else(|| panic!("{dir}: {key}"));
             let p = reference.fit.skeleton.joints[id.0].position;
             let q = turn.inverse() * found.fit.skeleton.joints[other.0].position;
-            let off = if key == "tail_mid" {
-                // The tail's vertebra count rounds its length over a vertebra's: one more
-                // vertebra in one voxelisation moves the middle joint along the same tail by
-                // half a vertebra. It must lie on the other tail.
+            let off = if key.starts_with("tail_") && key != "tail_end" {
+                // The tail's joints are equally spaced vertebrae behind the root whose count
+                // rounds (the root itself moves with the hind pair by a voxel or two): the
+                // tail base may move along the spine. It must lie on the other axial chain.
                 distance_to_tail(&reference.fit, q)
             } else {
                 p.distance(q)
@@ -1002,14 +1002,14 @@ fn z_up_copies_rig_without_orientation_flags_like_the_y_up_files() {
     }
 }
 
-/// Distance from `q` to the tail chain of `fit` (its `tail*` joints in order, segments between
-/// them).
+/// Distance from `q` to the root-to-tail chain of `fit` (its root joint, then its `tail*`
+/// joints in order; segments between them).
 fn distance_to_tail(fit: &skelfit::fit::Fit, q: DVec3) -> f64 {
     let tail: Vec<DVec3> = fit
         .skeleton
         .joints
         .iter()
-        .filter(|j| j.name.starts_with("tail"))
+        .filter(|j| j.parent.is_none() || j.name.starts_with("tail"))
         .map(|j| j.position)
         .collect();
     tail.windows(2)
