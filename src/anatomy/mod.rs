@@ -354,6 +354,7 @@ fn label_in_frame(
         dms_voxels: surface.voxels.clone(),
         voxel_parts,
         mesh_parts,
+        interior_parts: interior,
         warnings,
     })
 }

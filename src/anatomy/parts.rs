@@ -217,6 +217,12 @@ pub struct Labelling {
     pub voxel_parts: Vec<u32>,
     /// Part of each mesh vertex, in mesh order.
     pub mesh_parts: Vec<u32>,
+    /// Part of each grid voxel (linear index) inside the figure, `u32::MAX` outside: the
+    /// interior labels the mesh-vertex labels are taken from (neck in the head, pectoral limb
+    /// roots in the trunk). The fit follows a thin part (a tail a few voxels across) past where
+    /// its medial surface stops through them. Empty when not computed.
+    #[serde(skip)]
+    pub interior_parts: Vec<u32>,
     /// What could not be identified, and what earlier stages (voxelization, the medial
     /// surface) warned about, in stage order.
     pub warnings: Vec<Warning>,

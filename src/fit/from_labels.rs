@@ -112,7 +112,7 @@ pub fn fit_input(
     options: &FitInputOptions,
 ) -> Result<(FitInput, Vec<FitInputWarning>), FitError> {
     options.validate()?;
-    let (mut input, warnings) = centralised_paths(labelling, surface, options);
+    let (mut input, warnings) = centralised_paths(labelling, surface, distance, options);
     reach_the_skin(&mut input, options, skin, distance);
     if template.is_some_and(|t| t.placed("ear").is_some()) {
         input.ears = ears(labelling, distance, &input.axial, &options.ears);
@@ -126,12 +126,14 @@ pub fn fit_input(
 fn centralised_paths(
     labelling: &Labelling,
     surface: &MedialSurface,
+    distance: &DistanceMap,
     options: &FitInputOptions,
 ) -> (FitInput, Vec<FitInputWarning>) {
     let graph = DmsGraph::new(surface);
     let paths = Paths {
         graph: &graph,
         surface,
+        distance,
         labelling,
         options,
     };
@@ -254,7 +256,8 @@ fn head_to_tail(
         paths.extreme(&parts[0], dir)
     });
     let from_head = paths.search(start);
-    let tail = labelling.part(Label::Tail, None).map(|p| paths.distal(p));
+    let tail_part = labelling.find(Label::Tail).first().copied();
+    let tail = tail_part.map(|p| paths.distal(&parts[p]));
     let end = tail
         .filter(|&t| from_head.cost[t].is_finite())
         .or_else(|| {
@@ -284,7 +287,8 @@ fn head_to_tail(
     if head.is_some() {
         paths.extend_start(&mut points, &mut radii);
     }
-    if tail.is_some_and(|t| t == end) {
+    if let Some(part) = tail_part.filter(|_| tail == Some(end)) {
+        paths.thin_end(part, end, &mut points, &mut radii);
         paths.extend_end(&mut points, &mut radii);
     }
     if points.len() == 1 {
@@ -404,6 +408,7 @@ fn limb_pairs(labelling: &Labelling) -> Vec<PairParts> {
 struct Paths<'a> {
     graph: &'a DmsGraph,
     surface: &'a MedialSurface,
+    distance: &'a DistanceMap,
     labelling: &'a Labelling,
     options: &'a FitInputOptions,
 }
@@ -512,6 +517,22 @@ impl Paths<'_> {
         path.iter()
             .map(|&p| (self.surface.centre(p), self.surface.distance(p) * h))
             .unzip()
+    }
+
+    /// Carries a path ending at DMS position `end` of part `part` on through the part's
+    /// interior voxels to its tip when its medial surface stops short of it
+    /// ([`thin_end`](super::thin_end::thin_end)): a thin tail.
+    fn thin_end(&self, part: usize, end: usize, points: &mut Vec<DVec3>, radii: &mut Vec<f64>) {
+        let grid = self.surface.grid;
+        let Some(beyond) =
+            super::thin_end::thin_end(self.labelling, part, self.surface.voxels[end])
+        else {
+            return;
+        };
+        for index in beyond {
+            points.push(grid.centre(grid.coords(index)));
+            radii.push(self.distance.distance(index) * grid.voxel_size);
+        }
     }
 
     /// Prepends a point beyond `points[0]`, continuing the path's start direction by

@@ -32,6 +32,7 @@ mod options;
 mod polyline;
 mod probe;
 mod reach;
+mod thin_end;
 
 pub use ears::{ears, EarOptions};
 pub use error::{FitError, FitWarning};
