@@ -1013,11 +1013,7 @@ fn distance_to_tail(fit: &skelfit::fit::Fit, q: DVec3) -> f64 {
         .map(|j| j.position)
         .collect();
     tail.windows(2)
-        .map(|w| {
-            let d = w[1] - w[0];
-            let t = ((q - w[0]).dot(d) / d.length_squared().max(1e-300)).clamp(0.0, 1.0);
-            q.distance(w[0] + d * t)
-        })
+        .map(|w| skelfit::eval::point_segment_distance(q, w[0], w[1]))
         .chain(tail.iter().map(|t| t.distance(q)))
         .fold(f64::INFINITY, f64::min)
 }
