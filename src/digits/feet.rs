@@ -90,7 +90,13 @@ fn foot_chain(skeleton: &Skeleton, ankle: JointId, toe: JointId) -> Option<(Vec<
 fn place_foot(skeleton: &mut Skeleton, chain: &(Vec<JointId>, usize), foot: FootJoints) {
     let (joints, at) = (&chain.0, chain.1);
     let old: Vec<DVec3> = joints.iter().map(|&j| skeleton.joint(j).position).collect();
-    let mut targets = BTreeMap::new();
+    // Every other joint stays (`carry` would move the ones above a moved joint with it).
+    let mut targets: BTreeMap<JointId, DVec3> = skeleton
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(i, j)| (JointId(i), j.position))
+        .collect();
     let ankle = old[0];
     let mut spread = |range: std::ops::RangeInclusive<usize>, from: DVec3, to: DVec3| {
         let (s, e) = (*range.start(), *range.end());

@@ -47,4 +47,5 @@ mod warning;
 pub use feet::fit_feet;
 pub use hands::fit_hands;
 pub use options::DigitOptions;
+pub(crate) use surface::edge_geodesic;
 pub use warning::DigitWarning;

@@ -20,9 +20,8 @@ use super::weights::{engine_weights, EngineWeights};
 use crate::math::{closest_on_segment, point_segment_distance};
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
+use crate::digits::edge_geodesic;
 use glam::DVec3;
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// One digit: the wrist, then the chain's joints to its tip.
 struct Chain {
@@ -222,49 +221,16 @@ fn chain_weights(points: &[DVec3], joints: &[JointId], p: DVec3) -> Vec<(JointId
 /// Gives every hand vertex without an owner the owner of the nearest owned vertex over the
 /// hand's mesh edges (a multi-source Dijkstra); vertices no owner reaches keep none.
 fn spread_owners(mesh: &Mesh, in_hand: &[bool], owner: &mut [usize]) {
-    let n = mesh.positions.len();
-    let mut edges: Vec<(u32, u32)> = Vec::new();
-    for t in &mesh.triangles {
-        if t.iter().all(|&v| in_hand[v as usize]) {
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                edges.push((a, b));
-                edges.push((b, a));
-            }
-        }
-    }
-    edges.sort_unstable();
-    edges.dedup();
-    let mut start = vec![0usize; n + 1];
-    for &(a, _) in &edges {
-        start[a as usize + 1] += 1;
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
-    let mut dist = vec![f64::INFINITY; n];
-    let mut heap = BinaryHeap::new();
-    for (v, &o) in owner.iter().enumerate() {
-        if o != usize::MAX {
-            dist[v] = 0.0;
-            heap.push(Reverse((0u64, v as u32)));
-        }
-    }
-    while let Some(Reverse((bits, u))) = heap.pop() {
-        let d = f64::from_bits(bits);
-        if d > dist[u as usize] {
-            continue;
-        }
-        for &(_, v) in &edges[start[u as usize]..start[u as usize + 1]] {
-            let nd = d + mesh.positions[u as usize].distance(mesh.positions[v as usize]);
-            if nd < dist[v as usize] {
-                dist[v as usize] = nd;
-                owner[v as usize] = owner[u as usize];
-                // Non-negative f64 order as their bits.
-                heap.push(Reverse((nd.to_bits(), v)));
-            }
-        }
-    }
+    let triangles: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .filter(|t| t.iter().all(|&v| in_hand[v as usize]))
+        .copied()
+        .collect();
+    let sources: Vec<usize> = (0..owner.len())
+        .filter(|&v| owner[v] != usize::MAX)
+        .collect();
+    edge_geodesic(&mesh.positions, &triangles, sources, |u, v| owner[v] = owner[u]);
 }
 
 #[cfg(test)]
