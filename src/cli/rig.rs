@@ -245,7 +245,7 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     let skeleton = frame.frame.skeleton(&rigged.fit.skeleton);
     let mut bone_warnings = Vec::new();
     let glb = if args.bones {
-        let mut made = super::bones::rig_bones(&rigged)?;
+        let mut made = super::bones::rig_bones(&rigged, &mesh)?;
         for bone in &mut made.bones {
             bone.mesh = frame.frame.mesh(&bone.mesh);
         }

@@ -4,12 +4,12 @@
 use super::surface::{hand_surface, HandSurface};
 use super::{DigitOptions, DigitWarning};
 use crate::fit::Fit;
+use crate::math::principal_axes;
 use crate::mesh::{slice_plane, Mesh};
 use crate::refine::carry;
 use crate::skeleton::canonical::CanonicalJoints;
 use crate::skeleton::{Canonical, JointId, Side, Skeleton};
 use crate::template::{Posture, Template};
-use crate::math::principal_axes;
 use glam::DVec3;
 use nalgebra::{Matrix3, Vector3};
 use std::collections::BTreeMap;
@@ -48,15 +48,20 @@ pub fn fit_feet(
     };
     for side in Side::BOTH {
         let key = |k: fn(Side) -> Canonical| fit.canonical.joint_of(k(side));
-        let (Some(knee), Some(ankle), Some(toe)) =
-            (key(Canonical::Knee), key(Canonical::Ankle), key(Canonical::Toe))
-        else {
+        let (Some(knee), Some(ankle), Some(toe)) = (
+            key(Canonical::Knee),
+            key(Canonical::Ankle),
+            key(Canonical::Toe),
+        ) else {
             continue;
         };
         let Some(chain) = foot_chain(&fit.skeleton, ankle, toe) else {
             continue;
         };
-        let (k, a) = (fit.skeleton.joint(knee).position, fit.skeleton.joint(ankle).position);
+        let (k, a) = (
+            fit.skeleton.joint(knee).position,
+            fit.skeleton.joint(ankle).position,
+        );
         match find_foot(mesh, k, a, up, options) {
             Some(foot) => place_foot(&mut fit.skeleton, &chain, foot),
             None => warnings.push(DigitWarning::NoFoot { side }),
@@ -140,8 +145,16 @@ pub(super) fn find_foot(
     )?;
     let forward = foot_direction(&surface, ankle, up)?;
     let along = |p: DVec3| (p - ankle).dot(forward);
-    let front = surface.positions.iter().map(|&p| along(p)).fold(f64::MIN, f64::max);
-    let back = surface.positions.iter().map(|&p| along(p)).fold(f64::MAX, f64::min);
+    let front = surface
+        .positions
+        .iter()
+        .map(|&p| along(p))
+        .fold(f64::MIN, f64::max);
+    let back = surface
+        .positions
+        .iter()
+        .map(|&p| along(p))
+        .fold(f64::MAX, f64::min);
     let length = front - back;
     if front < MIN_FOOT_REACH * shank || length <= 0.0 {
         return None;

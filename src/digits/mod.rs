@@ -48,4 +48,22 @@ pub use feet::fit_feet;
 pub use hands::fit_hands;
 pub use options::DigitOptions;
 pub(crate) use surface::edge_geodesic;
+
+use crate::fit::Fit;
+use crate::mesh::Mesh;
+use crate::template::Template;
+use glam::DVec3;
+
+/// The digit stage: [`fit_hands`], then [`fit_feet`] (`up`: the figure's up); their warnings.
+pub fn fit_digits(
+    mesh: &Mesh,
+    template: &Template,
+    fit: &mut Fit,
+    up: DVec3,
+    options: &DigitOptions,
+) -> Vec<DigitWarning> {
+    let mut warnings = fit_hands(mesh, template, fit, options);
+    warnings.extend(fit_feet(mesh, template, fit, up, options));
+    warnings
+}
 pub use warning::DigitWarning;

@@ -69,7 +69,11 @@ pub(super) fn hand_surface(
         })
         .collect();
     let source = sources(mesh, &local, &positions, wrist, axis, band);
-    let sources = source.iter().enumerate().filter(|(_, &s)| s).map(|(i, _)| i);
+    let sources = source
+        .iter()
+        .enumerate()
+        .filter(|(_, &s)| s)
+        .map(|(i, _)| i);
     let distance = edge_geodesic(&positions, &triangles, sources, |_, _| {});
     // Keep the reached part only.
     let mut keep = vec![u32::MAX; positions.len()];

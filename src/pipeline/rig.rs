@@ -5,7 +5,7 @@ use crate::anatomy::{
     label_pieces, label_vertices_by_bones, label_with_overrides, FigureClass, Label, LabelOptions,
     LabelPipelineOptions, Labelling, Overrides,
 };
-use crate::digits::{fit_feet, fit_hands, DigitOptions};
+use crate::digits::{fit_digits, DigitOptions};
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{fit_input, fit_with_probe, Fit, FitError, FitInput, FitInputOptions, FitOptions};
 use crate::general::{control_skeleton, GeneralOptions};
@@ -302,10 +302,8 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         }
         lap.lap("symmetry", &mut timings);
     }
-    let hands = fit_hands(mesh, &template, &mut fit, &options.digits);
-    warnings.extend(hands.into_iter().map(Warning::Digits));
-    let feet = fit_feet(mesh, &template, &mut fit, input.up, &options.digits);
-    warnings.extend(feet.into_iter().map(Warning::Digits));
+    let digits = fit_digits(mesh, &template, &mut fit, input.up, &options.digits);
+    warnings.extend(digits.into_iter().map(Warning::Digits));
     lap.lap("digits", &mut timings);
     let before = fit.warnings.len();
     fit.name_joints(options.fit.preset, input.up)?;

@@ -22,10 +22,10 @@
 //!    no longer tears the web between them.
 
 use super::weights::{engine_weights, EngineWeights};
+use crate::digits::edge_geodesic;
 use crate::math::{closest_on_segment, point_segment_distance};
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
-use crate::digits::edge_geodesic;
 use glam::DVec3;
 
 /// One digit: the wrist, then the chain's joints to its tip.

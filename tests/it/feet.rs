@@ -39,7 +39,9 @@ fn height(mesh: &Mesh) -> f64 {
     let (lo, hi) = mesh
         .positions
         .iter()
-        .fold((f64::MAX, f64::MIN), |(lo, hi), p| (lo.min(p.y), hi.max(p.y)));
+        .fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
     hi - lo
 }
 
@@ -72,7 +74,11 @@ fn makehuman_toes_sit_at_the_ball_and_the_tip_of_the_foot() {
         let mesh = load(&dir.join("mesh.obj")).unwrap();
         let h = height(&mesh);
         let r = rig(&mesh, &RigOptions::default()).unwrap();
-        assert!(foot_warnings(&r).is_empty(), "{dir:?}: {:?}", foot_warnings(&r));
+        assert!(
+            foot_warnings(&r).is_empty(),
+            "{dir:?}: {:?}",
+            foot_warnings(&r)
+        );
         let game = load_skeleton(&dir.join("rig_game_engine.json")).unwrap();
         let mixamo = load_skeleton(&dir.join("rig_mixamo.json")).unwrap();
         let (game_map, _) = skelfit::eval::canonical_map(&game);
@@ -83,7 +89,10 @@ fn makehuman_toes_sit_at_the_ball_and_the_tip_of_the_foot() {
             let at = r.fit.skeleton.joint(toe).position;
             let end = r.fit.skeleton.joint(chain_end(&r, toe)).position;
             let ball = game.skeleton.joint(game_map[key]).position;
-            let tip = tail(&dir.join("rig_game_engine.json"), &game.skeleton.joint(game_map[key]).name);
+            let tip = tail(
+                &dir.join("rig_game_engine.json"),
+                &game.skeleton.joint(game_map[key]).name,
+            );
             let base = mixamo.skeleton.joint(mixamo_map[key]).position;
             let (e_ball, e_tip) = (at.distance(ball), end.distance(tip));
             println!(
@@ -95,8 +104,14 @@ fn makehuman_toes_sit_at_the_ball_and_the_tip_of_the_foot() {
                 100.0 * e_tip / h,
                 at.distance(base) * 1000.0
             );
-            assert!(e_ball <= 0.012 * h, "{dir:?} {side:?}: toe at {at} vs {ball}");
-            assert!(e_tip <= 0.012 * h, "{dir:?} {side:?}: end at {end} vs {tip}");
+            assert!(
+                e_ball <= 0.012 * h,
+                "{dir:?} {side:?}: toe at {at} vs {ball}"
+            );
+            assert!(
+                e_tip <= 0.012 * h,
+                "{dir:?} {side:?}: end at {end} vs {tip}"
+            );
         }
     }
 }
@@ -113,14 +128,21 @@ fn real_humanoid_toes_lie_in_the_forefoot() {
         let mesh = load(&dir.join("mesh.obj")).unwrap();
         let h = height(&mesh);
         let r = rig(&mesh, &RigOptions::default()).unwrap();
-        assert!(foot_warnings(&r).is_empty(), "{name}: {:?}", foot_warnings(&r));
+        assert!(
+            foot_warnings(&r).is_empty(),
+            "{name}: {:?}",
+            foot_warnings(&r)
+        );
         let reference = load_skeleton(&dir.join("rig_gltf.json")).unwrap();
         let (map, _) = skelfit::eval::canonical_map(&reference);
         for side in Side::BOTH {
             let key = Canonical::Toe(side).as_str();
             let toe = r.fit.canonical[key];
             let at = r.fit.skeleton.joint(toe).position;
-            let ankle = r.fit.skeleton.joint(r.fit.canonical[Canonical::Ankle(side).as_str()]);
+            let ankle = r
+                .fit
+                .skeleton
+                .joint(r.fit.canonical[Canonical::Ankle(side).as_str()]);
             let end = r.fit.skeleton.joint(chain_end(&r, toe)).position;
             let e = at.distance(reference.skeleton.joint(map[key]).position);
             println!(
@@ -140,8 +162,8 @@ fn real_humanoid_toes_lie_in_the_forefoot() {
 /// stretches no edge of the bundled body past 2×.
 #[test]
 fn bending_the_toes_stretches_no_edge_past_twice() {
-    let mesh = load(&crate::common::data_dir().join("humanoid/mh_neutral_default/mesh.obj"))
-        .unwrap();
+    let mesh =
+        load(&crate::common::data_dir().join("humanoid/mh_neutral_default/mesh.obj")).unwrap();
     let r = rig(&mesh, &RigOptions::default()).unwrap();
     let (skeleton, canonical) = (&r.fit.skeleton, &r.fit.canonical);
     for angle in [40f64, -40.0] {
@@ -162,9 +184,16 @@ fn bending_the_toes_stretches_no_edge_past_twice() {
             }
         }
         println!("toes bent {angle}°: worst edge stretch {worst:.2}");
-        assert!(worst <= 2.0, "toes bent {angle}°: worst edge stretch {worst:.2}");
+        assert!(
+            worst <= 2.0,
+            "toes bent {angle}°: worst edge stretch {worst:.2}"
+        );
         // The toe tips moved: the bend reaches the toes.
-        let tip = r.fit.skeleton.joint(chain_end(&r, canonical["toe_L"])).position;
+        let tip = r
+            .fit
+            .skeleton
+            .joint(chain_end(&r, canonical["toe_L"]))
+            .position;
         let near = (0..mesh.positions.len())
             .min_by(|&a, &b| {
                 mesh.positions[a]

@@ -196,3 +196,33 @@ fn hands_that_are_separate_mesh_pieces_are_found() {
         );
     }
 }
+
+/// `skelfit bones` keeps the digits' bones: sized on the surface (fingers are thinner than the
+/// voxels), every finger of the bundled body gets its three bones, each inside the figure,
+/// where the voxel figure alone left them out.
+#[test]
+fn finger_bones_are_sized_on_the_surface() {
+    use skelfit::bones::{bones, bones_with_surface, BoneOptions};
+    let mesh = bundled();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let digit_joints: Vec<_> = DIGITS.iter().map(|k| r.fit.canonical[k.as_str()]).collect();
+    let voxel = bones(&r.fit, &r.distance, &BoneOptions::default()).unwrap();
+    let fine = bones_with_surface(&r.fit, &r.distance, &mesh, &BoneOptions::default()).unwrap();
+    let on_digit = |b: &&skelfit::bones::Bone| digit_joints.contains(&b.joint);
+    let before = voxel.bones.iter().filter(on_digit).count();
+    let after: Vec<&skelfit::bones::Bone> = fine.bones.iter().filter(on_digit).collect();
+    println!(
+        "digit bones: {before} on the voxels, {} on the surface",
+        after.len()
+    );
+    assert_eq!(after.len(), DIGITS.len(), "{:?}", fine.warnings);
+    for b in after {
+        let n = b.mesh.positions.len() as f64;
+        let centre = b.mesh.positions.iter().sum::<DVec3>() / n;
+        assert!(
+            skelfit::mesh::winding_number(&mesh, centre) > 0.5,
+            "{} at {centre}",
+            b.name
+        );
+    }
+}
