@@ -96,22 +96,31 @@ fn push_long(
     from: DVec3,
     z: DVec3,
     local: Mesh,
-    on_surface: bool,
 ) {
-    let axes = ctx.limb_axes(z, limb.side);
-    ctx.keep_sized(
-        Draft {
-            kind,
-            name: name(ctx, kind, joint),
-            joint,
-            local,
-            origin: from,
-            axes,
-            shrink: Shrink::CrossSection,
-            slide: None,
-        },
-        on_surface,
-    );
+    let draft = long_draft(ctx, limb, kind, joint, from, z, local);
+    ctx.keep(draft);
+}
+
+/// The draft of a long bone of `limb` from `from` along `z`.
+fn long_draft(
+    ctx: &Context,
+    limb: &Limb,
+    kind: BoneKind,
+    joint: JointId,
+    from: DVec3,
+    z: DVec3,
+    local: Mesh,
+) -> Draft {
+    Draft {
+        kind,
+        name: name(ctx, kind, joint),
+        joint,
+        local,
+        origin: from,
+        axes: ctx.limb_axes(z, limb.side),
+        shrink: Shrink::CrossSection,
+        slide: None,
+    }
 }
 
 fn limb_bones(ctx: &mut Context, limb: &Limb) {
@@ -139,18 +148,9 @@ fn limb_bones(ctx: &mut Context, limb: &Limb) {
             continue;
         };
         match (i, pelvic) {
-            (0, false) => push_long(ctx, limb, BoneKind::Humerus, j, a, z, humerus(&bone), false),
-            (0, true) => push_long(ctx, limb, BoneKind::Femur, j, a, z, femur(&bone), false),
-            (1, false) => push_long(
-                ctx,
-                limb,
-                BoneKind::RadiusUlna,
-                j,
-                a,
-                z,
-                radius_ulna(&bone),
-                false,
-            ),
+            (0, false) => push_long(ctx, limb, BoneKind::Humerus, j, a, z, humerus(&bone)),
+            (0, true) => push_long(ctx, limb, BoneKind::Femur, j, a, z, femur(&bone)),
+            (1, false) => push_long(ctx, limb, BoneKind::RadiusUlna, j, a, z, radius_ulna(&bone)),
             (1, true) => {
                 push_long(
                     ctx,
@@ -160,7 +160,6 @@ fn limb_bones(ctx: &mut Context, limb: &Limb) {
                     a,
                     z,
                     tibia_fibula(&bone),
-                    false,
                 );
                 knee_cap(ctx, limb, j, a, z, &bone);
             }
@@ -172,14 +171,16 @@ fn limb_bones(ctx: &mut Context, limb: &Limb) {
                     BoneKind::Metacarpal
                 };
                 if let Some((bone, z, fine)) = digit_long(ctx, a, b, i + 1 == segments) {
-                    push_long(ctx, limb, kind, j, a, z, metapodial(&bone), fine);
+                    let draft = long_draft(ctx, limb, kind, j, a, z, metapodial(&bone));
+                    ctx.keep_sized(draft, fine);
                 }
             }
             _ => {
                 let last = i + 1 == segments;
                 if let Some((bone, z, fine)) = digit_long(ctx, a, b, last) {
                     let local = phalanx(&bone, last);
-                    push_long(ctx, limb, BoneKind::Phalanx, j, a, z, local, fine);
+                    let draft = long_draft(ctx, limb, BoneKind::Phalanx, j, a, z, local);
+                    ctx.keep_sized(draft, fine);
                 }
             }
         }
@@ -239,7 +240,8 @@ fn digit_bones(ctx: &mut Context, limb: &Limb, pelvic: bool) {
                 0 => (BoneKind::Metacarpal, metapodial(&bone)),
                 _ => (BoneKind::Phalanx, phalanx(&bone, k + 1 == n)),
             };
-            push_long(ctx, limb, kind, j, a, z, local, fine);
+            let draft = long_draft(ctx, limb, kind, j, a, z, local);
+            ctx.keep_sized(draft, fine);
         }
     }
 }
