@@ -80,11 +80,8 @@ fn foot_chain(skeleton: &Skeleton, ankle: JointId, toe: JointId) -> Option<(Vec<
     }
     up.reverse();
     let at = up.len() - 1;
-    loop {
-        match skeleton.children(*up.last()?).as_slice() {
-            [only] => up.push(*only),
-            _ => break,
-        }
+    while let [only] = skeleton.children(*up.last()?).as_slice() {
+        up.push(*only);
     }
     Some((up, at))
 }
