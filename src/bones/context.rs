@@ -6,12 +6,15 @@ use super::structure::{perpendicular, Body};
 use super::{Articulation, Bone, BoneOptions, BoneWarning};
 use crate::distance::DistanceMap;
 use crate::fit::Side;
+use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
 use glam::{DMat3, DVec3};
 
 pub(crate) struct Context<'a> {
     pub skeleton: &'a Skeleton,
     pub map: &'a DistanceMap,
+    /// The figure's surface, when given: digits thinner than the voxels are sized on it.
+    pub surface: Option<&'a Mesh>,
     pub options: &'a BoneOptions,
     pub body: Body,
     /// The body's dorsal direction (the root frame's y).
@@ -28,6 +31,7 @@ impl<'a> Context<'a> {
     pub fn new(
         skeleton: &'a Skeleton,
         map: &'a DistanceMap,
+        surface: Option<&'a Mesh>,
         options: &'a BoneOptions,
         body: Body,
         warnings: Vec<BoneWarning>,
@@ -49,6 +53,7 @@ impl<'a> Context<'a> {
             articulations,
             skeleton,
             map,
+            surface,
             options,
             vertebra_width: options.vertebra_width * 2.0 * largest,
             body,
@@ -66,8 +71,16 @@ impl<'a> Context<'a> {
     /// Fits the draft inside the figure and keeps it; returns its index in `bones`, `None`
     /// when it could not be fitted (a warning says why).
     pub fn keep(&mut self, draft: Draft) -> Option<usize> {
+        self.keep_sized(draft, false)
+    }
+
+    /// [`Context::keep`] for a draft already sized inside the figure's surface
+    /// (`on_surface`: a digit bone thinner than the voxels, whose inside the distance map
+    /// cannot tell); it is still kept clear of the other bones.
+    pub fn keep_sized(&mut self, draft: Draft, on_surface: bool) -> Option<usize> {
         let bone = settle(
             &draft,
+            on_surface,
             self.map,
             self.options,
             &self.bones,

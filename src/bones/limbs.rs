@@ -11,7 +11,7 @@ use super::shapes::{
 };
 use super::structure::{GirdleKind, Limb};
 use super::{BoneKind, BoneWarning};
-use crate::mesh::Mesh;
+use crate::mesh::{winding_number, Mesh};
 use crate::skeleton::JointId;
 use glam::DVec3;
 
@@ -44,6 +44,50 @@ fn long(ctx: &Context, from: DVec3, to: DVec3, fraction: f64) -> Option<(LongBon
     ))
 }
 
+/// A metacarpal, metatarsal or phalanx on segment `from → to` (`last`: the digit's last
+/// bone). With the figure's surface given and the segment's middle inside it, sized on the
+/// surface (digits are thinner than the voxels): the shaft `shaft_fraction` of the smallest
+/// distance from the segment's middle (20 % to 80 %) to a surface vertex, the last bone ending
+/// that far short of the tip (which lies on the skin). Else [`long`] on the distance map.
+/// Returns the bone, its direction and whether it was sized on the surface.
+fn digit_long(
+    ctx: &Context,
+    from: DVec3,
+    to: DVec3,
+    last: bool,
+) -> Option<(LongBone, DVec3, bool)> {
+    let inside = |s: &&Mesh| winding_number(s, from.lerp(to, 0.5)) > 0.5;
+    let Some(surface) = ctx.surface.filter(inside) else {
+        let (bone, z) = long(ctx, from, to, 1.0)?;
+        return Some((bone, z, false));
+    };
+    let z = (to - from).try_normalize()?;
+    let depth = (0..5)
+        .map(|k| {
+            let p = from.lerp(to, 0.2 + 0.15 * k as f64);
+            surface
+                .positions
+                .iter()
+                .map(|q| q.distance_squared(p))
+                .fold(f64::INFINITY, f64::min)
+                .sqrt()
+        })
+        .fold(f64::INFINITY, f64::min);
+    let length = from.distance(to) - if last { depth } else { 0.0 };
+    if length <= 0.0 || !depth.is_finite() {
+        return None;
+    }
+    let o = ctx.options;
+    let bone = LongBone {
+        length,
+        radius: (o.shaft_fraction * depth).min(o.max_shaft_ratio * length),
+        epiphysis: o.epiphysis_scale,
+        rings: o.rings,
+        segments: o.segments,
+    };
+    Some((bone, z, true))
+}
+
 fn push_long(
     ctx: &mut Context,
     limb: &Limb,
@@ -53,17 +97,30 @@ fn push_long(
     z: DVec3,
     local: Mesh,
 ) {
-    let axes = ctx.limb_axes(z, limb.side);
-    ctx.keep(Draft {
+    let draft = long_draft(ctx, limb, kind, joint, from, z, local);
+    ctx.keep(draft);
+}
+
+/// The draft of a long bone of `limb` from `from` along `z`.
+fn long_draft(
+    ctx: &Context,
+    limb: &Limb,
+    kind: BoneKind,
+    joint: JointId,
+    from: DVec3,
+    z: DVec3,
+    local: Mesh,
+) -> Draft {
+    Draft {
         kind,
         name: name(ctx, kind, joint),
         joint,
         local,
         origin: from,
-        axes,
+        axes: ctx.limb_axes(z, limb.side),
         shrink: Shrink::CrossSection,
         slide: None,
-    });
+    }
 }
 
 fn limb_bones(ctx: &mut Context, limb: &Limb) {
@@ -113,11 +170,18 @@ fn limb_bones(ctx: &mut Context, limb: &Limb) {
                 } else {
                     BoneKind::Metacarpal
                 };
-                push_long(ctx, limb, kind, j, a, z, metapodial(&bone));
+                if let Some((bone, z, fine)) = digit_long(ctx, a, b, i + 1 == segments) {
+                    let draft = long_draft(ctx, limb, kind, j, a, z, metapodial(&bone));
+                    ctx.keep_sized(draft, fine);
+                }
             }
             _ => {
                 let last = i + 1 == segments;
-                push_long(ctx, limb, BoneKind::Phalanx, j, a, z, phalanx(&bone, last));
+                if let Some((bone, z, fine)) = digit_long(ctx, a, b, last) {
+                    let local = phalanx(&bone, last);
+                    let draft = long_draft(ctx, limb, BoneKind::Phalanx, j, a, z, local);
+                    ctx.keep_sized(draft, fine);
+                }
             }
         }
     }
@@ -168,7 +232,7 @@ fn digit_bones(ctx: &mut Context, limb: &Limb, pelvic: bool) {
                     a += z * block_length.min(0.5 * a.distance(b));
                 }
             }
-            let Some((bone, z)) = long(ctx, a, b, 1.0) else {
+            let Some((bone, z, fine)) = digit_long(ctx, a, b, k + 1 == n) else {
                 continue;
             };
             let (kind, local) = match k {
@@ -176,7 +240,8 @@ fn digit_bones(ctx: &mut Context, limb: &Limb, pelvic: bool) {
                 0 => (BoneKind::Metacarpal, metapodial(&bone)),
                 _ => (BoneKind::Phalanx, phalanx(&bone, k + 1 == n)),
             };
-            push_long(ctx, limb, kind, j, a, z, local);
+            let draft = long_draft(ctx, limb, kind, j, a, z, local);
+            ctx.keep_sized(draft, fine);
         }
     }
 }

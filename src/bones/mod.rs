@@ -54,6 +54,7 @@ pub use warning::BoneWarning;
 
 use crate::distance::DistanceMap;
 use crate::fit::Fit;
+use crate::mesh::Mesh;
 use context::Context;
 
 /// Bones for the fitted skeleton `fit` of the figure whose distance map is `distance`
@@ -65,6 +66,31 @@ use context::Context;
 /// [`BoneError::InvalidSkeleton`], [`BoneError::EmptyDistanceMap`]. Missing body parts are
 /// warnings in [`Bones::warnings`].
 pub fn bones(fit: &Fit, distance: &DistanceMap, options: &BoneOptions) -> Result<Bones, BoneError> {
+    build(fit, distance, None, options)
+}
+
+/// [`bones`] with the figure's surface `mesh` (the mesh the rig was fitted to): metacarpals,
+/// metatarsals and phalanges thinner than the voxels are sized on the surface (their shaft a
+/// share of the distance to the nearest surface vertex, the last phalanx ending that far
+/// short of the tip) instead of being left out as outside the voxel figure.
+///
+/// # Errors
+/// As [`bones`].
+pub fn bones_with_surface(
+    fit: &Fit,
+    distance: &DistanceMap,
+    mesh: &Mesh,
+    options: &BoneOptions,
+) -> Result<Bones, BoneError> {
+    build(fit, distance, Some(mesh), options)
+}
+
+fn build(
+    fit: &Fit,
+    distance: &DistanceMap,
+    surface: Option<&Mesh>,
+    options: &BoneOptions,
+) -> Result<Bones, BoneError> {
     options.validate()?;
     let skeleton = &fit.skeleton;
     if skeleton.is_empty() {
@@ -84,7 +110,7 @@ pub fn bones(fit: &Fit, distance: &DistanceMap, options: &BoneOptions) -> Result
     }
     let mut warnings = Vec::new();
     let body = structure::body(fit, &mut warnings);
-    let mut ctx = Context::new(skeleton, distance, options, body, warnings);
+    let mut ctx = Context::new(skeleton, distance, surface, options, body, warnings);
     // Bones sized by their segments first; girdle bones then fit round them.
     axial::skull(&mut ctx);
     axial::column(&mut ctx);

@@ -66,9 +66,11 @@ impl Draft {
 /// interior voxels without overlapping a `kept` bone outside the articulations. After
 /// [`BoneOptions::max_shrink_steps`] the best placement is kept with a warning, or left out
 /// (`None`, with a warning) below [`BoneOptions::min_inside_fraction`] or when every placement
-/// inside enough overlaps a kept bone.
+/// inside enough overlaps a kept bone. A draft sized `on_surface` (inside the figure's
+/// surface by construction, thinner than the voxels) counts as wholly inside.
 pub(crate) fn settle(
     draft: &Draft,
+    on_surface: bool,
     map: &DistanceMap,
     options: &BoneOptions,
     kept: &[Bone],
@@ -86,7 +88,11 @@ pub(crate) fn settle(
     'search: for _ in 0..=options.max_shrink_steps {
         for &offset in &offsets {
             let mesh = draft.scaled(scale, offset);
-            let fraction = inside_fraction(map, &mesh.positions, options.clearance);
+            let fraction = if on_surface {
+                1.0
+            } else {
+                inside_fraction(map, &mesh.positions, options.clearance)
+            };
             if fraction >= options.inside_fraction {
                 let touches = kept.iter().any(|b| overlaps(&mesh, &b.mesh, articulations));
                 if !touches {

@@ -7,8 +7,9 @@ use super::rig::RigArgs;
 use super::skeleton::with_spinner;
 use anyhow::Context;
 use clap::Args;
-use skelfit::bones::{bones, bones_glb_bytes, bones_svg, BoneOptions, Bones};
+use skelfit::bones::{bones_glb_bytes, bones_svg, bones_with_surface, BoneOptions, Bones};
 use skelfit::export::{obj_text, GltfOptions};
+use skelfit::mesh::Mesh;
 use skelfit::pipeline::{rig, Rig};
 use skelfit::warning::Warning;
 use std::collections::BTreeMap;
@@ -32,9 +33,10 @@ pub struct BonesArgs {
     pub with_skin: bool,
 }
 
-/// Bones of a rig with the default options.
-pub fn rig_bones(rigged: &Rig) -> anyhow::Result<Bones> {
-    bones(&rigged.fit, &rigged.distance, &BoneOptions::default()).context("generating bone meshes")
+/// Bones of a rig of `mesh` with the default options (digits sized on the mesh's surface).
+pub fn rig_bones(rigged: &Rig, mesh: &Mesh) -> anyhow::Result<Bones> {
+    bones_with_surface(&rigged.fit, &rigged.distance, mesh, &BoneOptions::default())
+        .context("generating bone meshes")
 }
 
 /// Runs the command.
@@ -51,7 +53,7 @@ pub fn run(args: &BonesArgs) -> anyhow::Result<()> {
     })
     .context("fitting the anatomical control skeleton")?;
     let clock = Instant::now();
-    let made = rig_bones(&rigged)?;
+    let made = rig_bones(&rigged, &mesh)?;
     let bones_ms = millis(clock);
     let skinned = args.with_skin.then_some((&mesh, &rigged.skin));
     outputs.add_mesh(

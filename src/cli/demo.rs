@@ -266,7 +266,7 @@ fn rig_anatomical(mesh_path: &Path, out: &Path) -> anyhow::Result<(AnatomicalRow
         &rigged.fit.skeleton,
         &BvhOptions::default(),
     )?;
-    let made = super::bones::rig_bones(&rigged)?;
+    let made = super::bones::rig_bones(&rigged, &mesh)?;
     skelfit::bones::write_bones_glb(
         &out.join("bones.glb"),
         &rigged.fit.skeleton,

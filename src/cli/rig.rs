@@ -116,6 +116,17 @@ pub struct RigArgs {
     /// or whose spine the refinement does not find, keeps the coarse spine with a warning.
     #[arg(long, value_name = "coarse|full", default_value = "coarse", value_parser = ["coarse", "full"])]
     pub spine: String,
+    /// Fingers of a humanoid's hands: `auto`, the digits found on each hand's surface beyond
+    /// the wrist (thumb..pinky, three joints and a tip each; a mitten hand gets one chain and a
+    /// thumb, with a warning), skinned finger by finger; `off`, the template's single finger
+    /// chain per hand.
+    #[arg(long, value_name = "auto|off", default_value = "auto", value_parser = ["auto", "off"])]
+    pub fingers: String,
+    /// Toes of an upright figure's feet: `auto`, the toe joint at the ball of the foot (its
+    /// widest cross-section) and the toe end at the foot's tip, read from the foot's surface;
+    /// `off`, where the template's leg ratios put them.
+    #[arg(long, value_name = "auto|off", default_value = "auto", value_parser = ["auto", "off"])]
+    pub toes: String,
     /// Fail (exit code 1, nothing written) when the rig lacks a body part the template expects
     /// (a head, an arm, a leg, a wing), or when no template fits the figure (`--template auto`
     /// then fits the general control skeleton), instead of writing it with a warning.
@@ -139,6 +150,8 @@ impl RigArgs {
         options.fit.preset = self.preset.into();
         options.refine.in_rig = self.refine == "on";
         options.refine.symmetry = self.symmetry == "on";
+        options.digits.enabled = self.fingers == "auto";
+        options.digits.feet = self.toes == "auto";
         if self.spine == "full" {
             options.refine.spine = SpineDetail::Full;
             // Conflicts (an engine preset, the refinement off) are usage errors.
@@ -232,7 +245,7 @@ pub fn run(args: &RigArgs) -> anyhow::Result<()> {
     let skeleton = frame.frame.skeleton(&rigged.fit.skeleton);
     let mut bone_warnings = Vec::new();
     let glb = if args.bones {
-        let mut made = super::bones::rig_bones(&rigged)?;
+        let mut made = super::bones::rig_bones(&rigged, &mesh)?;
         for bone in &mut made.bones {
             bone.mesh = frame.frame.mesh(&bone.mesh);
         }

@@ -27,14 +27,43 @@
 //!    fractions are options), the base extrapolated along the digit's axis behind the web.
 //!    Frames: z along the digit, x the curl axis, so that a positive rotation about x bends the
 //!    digit towards the palm.
+//!
+//! [`fit_feet`] does the same for an upright figure's feet (`feet.rs`): the foot's surface
+//! below the ankle (as the hand's, measured from the shank's cross-section), its direction
+//! horizontally towards the point farthest over the surface (the longest toe), the toe end at
+//! the foot's front tip and the toe joint at the ball of the foot, the centre of the widest
+//! cross-section between ankle and tip (the forefoot is widest across the metatarsal heads).
+//! Toes are not separated: every human foot keeps one toe chain. A horizontal figure's paws
+//! and hooves keep the fit's single digit chain per foot.
 
 mod contour;
+mod feet;
 mod hands;
 mod options;
 mod place;
 mod surface;
 mod warning;
 
+pub use feet::fit_feet;
 pub use hands::fit_hands;
 pub use options::DigitOptions;
+pub(crate) use surface::edge_geodesic;
+
+use crate::fit::Fit;
+use crate::mesh::Mesh;
+use crate::template::Template;
+use glam::DVec3;
+
+/// The digit stage: [`fit_hands`], then [`fit_feet`] (`up`: the figure's up); their warnings.
+pub fn fit_digits(
+    mesh: &Mesh,
+    template: &Template,
+    fit: &mut Fit,
+    up: DVec3,
+    options: &DigitOptions,
+) -> Vec<DigitWarning> {
+    let mut warnings = fit_hands(mesh, template, fit, options);
+    warnings.extend(fit_feet(mesh, template, fit, up, options));
+    warnings
+}
 pub use warning::DigitWarning;

@@ -8,6 +8,9 @@ use crate::options::{Checks, OptionProblems};
 pub struct DigitOptions {
     /// Whether the rig looks at the hands again (default true).
     pub enabled: bool,
+    /// Whether the rig places the toe joints of an upright figure's feet from their surface
+    /// (default true): the toe at the ball of the foot, the toe end at its tip.
+    pub feet: bool,
     /// Spacing of the contour levels, fraction of the forearm. Default 1/80 (3 mm on an adult):
     /// a fifth of a finger's width, so the webs between fingers are seen.
     pub level_step: f64,
@@ -31,6 +34,16 @@ pub struct DigitOptions {
     /// The thumb's interphalangeal and metacarpophalangeal joints as fractions of its length
     /// from the tip. Default `[0.30, 0.67]` (MakeHuman reference hands).
     pub thumb_from_tip: [f64; 2],
+    /// How far from the ankle the foot's surface is taken, fraction of the shank (knee to
+    /// ankle). Default 1.0 (a human foot is about 0.6 shank long).
+    pub foot_reach: f64,
+    /// Depth of the cap at the front of the foot whose mean places the toe end across and
+    /// up, fraction of the foot's length. Default 0.03.
+    pub toe_cap: f64,
+    /// The ball of the foot is the middle of the stretch of cross-sections at least this
+    /// share of the widest one wide. Default 0.95: the forefoot is about as wide across all
+    /// five metatarsal heads.
+    pub ball_plateau: f64,
 }
 
 impl Default for DigitOptions {
@@ -44,6 +57,10 @@ impl Default for DigitOptions {
             free_share: [0.44, 0.84, 0.82, 0.77, 0.72],
             finger_from_tip: [0.33, 0.62],
             thumb_from_tip: [0.30, 0.67],
+            feet: true,
+            foot_reach: 1.0,
+            toe_cap: 0.03,
+            ball_plateau: 0.95,
         }
     }
 }
@@ -59,6 +76,9 @@ impl DigitOptions {
         c.range("digits.reach", self.reach, 0.2, 3.0);
         c.range("digits.wrist_band", self.wrist_band, 0.0, 0.5);
         c.at_least("digits.min_levels", self.min_levels, 1);
+        c.range("digits.foot_reach", self.foot_reach, 0.2, 3.0);
+        c.range("digits.toe_cap", self.toe_cap, 0.0, 0.5);
+        c.range("digits.ball_plateau", self.ball_plateau, 0.5, 1.0);
         for (k, v) in self.free_share.iter().enumerate() {
             c.range(&format!("digits.free_share[{k}]"), *v, 0.05, 1.0);
         }

@@ -1,9 +1,8 @@
 //! The hand's surface beyond the wrist and the geodesic distance over it.
 
 use crate::mesh::Mesh;
+use crate::paths::Search;
 use glam::DVec3;
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// The triangles of one hand with the geodesic distance of their corners from the wrist.
 pub(super) struct HandSurface {
@@ -70,7 +69,12 @@ pub(super) fn hand_surface(
         })
         .collect();
     let source = sources(mesh, &local, &positions, wrist, axis, band);
-    let distance = geodesic(&positions, &triangles, &source);
+    let sources = source
+        .iter()
+        .enumerate()
+        .filter(|(_, &s)| s)
+        .map(|(i, _)| i);
+    let distance = edge_geodesic(&positions, &triangles, sources, |_, _| {});
     // Keep the reached part only.
     let mut keep = vec![u32::MAX; positions.len()];
     let mut kept_positions = Vec::new();
@@ -223,10 +227,16 @@ fn mesh_pieces(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
         .collect()
 }
 
-/// Shortest distance along the triangles' edges from the corners marked in `source` (distance
-/// 0); unreached corners are infinite. A Dijkstra on the surface mesh, which is not the DMS
-/// graph of `paths::Search`.
-fn geodesic(positions: &[DVec3], triangles: &[[u32; 3]], source: &[bool]) -> Vec<f64> {
+/// Shortest distance along the triangles' edges from the `sources` (distance 0) over the
+/// corners `positions` (a multi-source [`Search`] over the mesh's edges, which are not the DMS
+/// graph); unreached corners are infinite. `lowered(u, v)` is called each time `v`'s distance
+/// is lowered through its neighbour `u` (the last call names its predecessor).
+pub(crate) fn edge_geodesic(
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+    sources: impl IntoIterator<Item = usize>,
+    lowered: impl FnMut(usize, usize),
+) -> Vec<f64> {
     let mut edges: Vec<(u32, u32)> = Vec::with_capacity(triangles.len() * 6);
     for t in triangles {
         for k in 0..3 {
@@ -244,25 +254,17 @@ fn geodesic(positions: &[DVec3], triangles: &[[u32; 3]], source: &[bool]) -> Vec
     for i in 0..positions.len() {
         start[i + 1] += start[i];
     }
-    let mut dist = vec![f64::INFINITY; positions.len()];
-    let mut heap = BinaryHeap::new();
-    for (i, _) in source.iter().enumerate().filter(|(_, &s)| s) {
-        dist[i] = 0.0;
-        heap.push(Reverse((0u64, i as u32)));
+    let mut search = Search::costs_only(positions.len());
+    for s in sources {
+        search.seed(s, 0.0);
     }
-    while let Some(Reverse((bits, u))) = heap.pop() {
-        let d = f64::from_bits(bits);
-        if d > dist[u as usize] {
-            continue;
-        }
-        for &(_, v) in &edges[start[u as usize]..start[u as usize + 1]] {
-            let nd = d + positions[u as usize].distance(positions[v as usize]);
-            if nd < dist[v as usize] {
-                dist[v as usize] = nd;
-                // Non-negative f64 order as their bits.
-                heap.push(Reverse((nd.to_bits(), v)));
-            }
-        }
-    }
-    dist
+    search.relax(
+        |u| {
+            edges[start[u]..start[u + 1]]
+                .iter()
+                .map(move |&(_, v)| (v as usize, positions[u].distance(positions[v as usize])))
+        },
+        lowered,
+    );
+    search.cost
 }

@@ -13,6 +13,12 @@ pub enum DigitWarning {
         /// The hand.
         side: Side,
     },
+    /// The foot's surface could not be read below the ankle (no knee, no surface, or none
+    /// reaching ahead of the ankle): the fit's toe chain stays.
+    NoFoot {
+        /// The foot.
+        side: Side,
+    },
     /// No fingers separate on the surface (a mitten or a fist): one mitten chain, plus a thumb
     /// when the thumb separates.
     FingersFused {
@@ -36,6 +42,7 @@ impl DigitWarning {
     pub fn code(&self) -> &'static str {
         match self {
             Self::NoHand { .. } => "no_hand",
+            Self::NoFoot { .. } => "no_foot",
             Self::FingersFused { .. } => "fingers_fused",
             Self::DigitCount { .. } => "digit_count",
         }
@@ -53,6 +60,11 @@ impl fmt::Display for DigitWarning {
             Self::NoHand { side } => write!(
                 f,
                 "the {} hand's surface could not be found beyond the wrist: it keeps one finger chain",
+                side.as_str()
+            ),
+            Self::NoFoot { side } => write!(
+                f,
+                "the {} foot's surface could not be read below the ankle: its toe joints stay where the fit put them",
                 side.as_str()
             ),
             Self::FingersFused { side, thumb } => write!(

@@ -5,7 +5,7 @@ use crate::anatomy::{
     label_pieces, label_vertices_by_bones, label_with_overrides, FigureClass, Label, LabelOptions,
     LabelPipelineOptions, Labelling, Overrides,
 };
-use crate::digits::{fit_hands, DigitOptions};
+use crate::digits::{fit_digits, DigitOptions};
 use crate::distance::{edt, DistanceMap};
 use crate::fit::{fit_input, fit_with_probe, Fit, FitError, FitInput, FitInputOptions, FitOptions};
 use crate::general::{control_skeleton, GeneralOptions};
@@ -62,7 +62,8 @@ pub struct RigOptions {
     /// Slicing-based refinement of humanoid joints after the fit (seed 004; on by default,
     /// `in_rig: false` switches it off). Default: [`RefineOptions::default`].
     pub refine: RefineOptions,
-    /// The hands' digits at their own resolution, after the refinement (issue 25).
+    /// The hands' digits and the feet's toes at their own resolution, after the refinement
+    /// (issue 25).
     pub digits: DigitOptions,
     /// Regions of influence and weights (8.3).
     pub skin: SkinOptions,
@@ -301,8 +302,8 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         }
         lap.lap("symmetry", &mut timings);
     }
-    let hands = fit_hands(mesh, &template, &mut fit, &options.digits);
-    warnings.extend(hands.into_iter().map(Warning::Digits));
+    let digits = fit_digits(mesh, &template, &mut fit, input.up, &options.digits);
+    warnings.extend(digits.into_iter().map(Warning::Digits));
     lap.lap("digits", &mut timings);
     fit.realign_frames();
     let before = fit.warnings.len();

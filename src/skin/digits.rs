@@ -7,22 +7,26 @@
 //! 1. **Hand vertices**: the vertices whose voxel weights lie mostly (over one half) on the
 //!    wrist and its digits, on the wrist's distal side.
 //! 2. **Owner**: each hand vertex belongs to the digit nearest over the surface (a Dijkstra
-//!    over the hand's mesh edges) from the vertices that clearly lie on one digit (their
-//!    nearest digit bone is at most half as far as any other digit's). Touching fingers are
-//!    far apart over the surface, around the web.
+//!    over the hand's mesh edges per digit) from the vertices that clearly lie on one digit
+//!    (their nearest digit bone is at most half as far as any other digit's). Touching fingers
+//!    are far apart over the surface, around the web.
 //! 3. **Weights**: a vertex on its digit's bones (its nearest point on the chain wrist → base
 //!    → middle → last → tip lies past the base joint's blend zone) takes that chain's joints
 //!    only: the bone it lies along, blended linearly with the next one within as far of each
 //!    joint as the vertex is from the chain (the local finger radius, at most half a bone).
 //!    A vertex in the palm keeps its voxel weights without the other digits' joints.
+//! 4. **Web**: across the web between two digits the vertex blends its own digit's weights
+//!    with the next nearest digit's, whose share rises linearly from nothing to one half where
+//!    both are equally far over the surface, over a finger's radius (the vertex's distance from
+//!    its chain) on either side: curling two neighbouring fingers about their own base joints
+//!    no longer tears the web between them.
 
 use super::weights::{engine_weights, EngineWeights};
+use crate::digits::edge_geodesic;
 use crate::math::{closest_on_segment, point_segment_distance};
 use crate::mesh::Mesh;
 use crate::skeleton::{JointId, Skeleton};
 use glam::DVec3;
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// One digit: the wrist, then the chain's joints to its tip.
 struct Chain {
@@ -87,6 +91,51 @@ fn hand(
             digit_of[j.0] = d;
         }
     }
+    let in_hand = hand_vertices(mesh, skeleton, wrist, &digit_of, weights);
+    let distance = digit_distances(mesh, chains, &in_hand);
+    for (v, &p) in mesh.positions.iter().enumerate() {
+        if !in_hand[v] {
+            continue;
+        }
+        // The nearest digit over the surface and the next nearest.
+        let mut order: Vec<usize> = (0..chains.len())
+            .filter(|&d| distance[d][v].is_finite())
+            .collect();
+        order.sort_by(|&a, &b| distance[a][v].total_cmp(&distance[b][v]));
+        let Some(&d) = order.first() else {
+            continue;
+        };
+        let own = digit_row(&chains[d], d, wrist, &digit_of, &weights[v], p);
+        // Across the web the neighbouring digit's share rises smoothly to one half where both
+        // are equally far over the surface, over a finger's radius on either side.
+        let radius = nearest_on_chain(&chains[d].points, p).0;
+        let share = order.get(1).map_or(0.0, |&e| {
+            let gap = distance[e][v] - distance[d][v];
+            if radius > 0.0 {
+                0.5 * (1.0 - gap / (2.0 * radius)).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        });
+        let mut row = own;
+        if share > 0.0 {
+            let e = order[1];
+            let other = digit_row(&chains[e], e, wrist, &digit_of, &weights[v], p);
+            row = blend(&row, &other, share);
+        }
+        row.sort_by_key(|(j, _)| *j);
+        weights[v] = row;
+    }
+}
+
+/// The hand's vertices (module docs, step 1).
+fn hand_vertices(
+    mesh: &Mesh,
+    skeleton: &Skeleton,
+    wrist: JointId,
+    digit_of: &[usize],
+    weights: &[Vec<(JointId, f64)>],
+) -> Vec<bool> {
     let w = skeleton.joint(wrist).position;
     let axis = skeleton
         .joint(wrist)
@@ -94,8 +143,7 @@ fn hand(
         .map(|p| w - skeleton.joint(p).position)
         .and_then(DVec3::try_normalize)
         .unwrap_or(DVec3::ZERO);
-    let in_hand: Vec<bool> = mesh
-        .positions
+    mesh.positions
         .iter()
         .zip(weights.iter())
         .map(|(&p, row)| {
@@ -106,9 +154,13 @@ fn hand(
                 .sum();
             share > 0.5 && (p - w).dot(axis) > 0.0
         })
-        .collect();
-    // Seeds: vertices clearly on one digit's bones (not the palm's wrist-to-base bones).
-    let mut owner = vec![usize::MAX; mesh.positions.len()];
+        .collect()
+}
+
+/// Per digit, the distance over the hand's mesh edges of every vertex from the vertices that
+/// clearly lie on that digit's bones (module docs, step 2); infinite where not reached.
+fn digit_distances(mesh: &Mesh, chains: &[Chain], in_hand: &[bool]) -> Vec<Vec<f64>> {
+    let mut seeds: Vec<Vec<usize>> = vec![Vec::new(); chains.len()];
     for (v, &p) in mesh.positions.iter().enumerate() {
         if !in_hand[v] {
             continue;
@@ -120,11 +172,13 @@ fn hand(
                 (dist, seg > 0)
             })
             .collect();
-        let (best, &(d_best, on_digit)) = near
+        let Some((best, &(d_best, on_digit))) = near
             .iter()
             .enumerate()
             .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0))
-            .unwrap();
+        else {
+            continue;
+        };
         let second = near
             .iter()
             .enumerate()
@@ -132,44 +186,67 @@ fn hand(
             .map(|(_, n)| n.0)
             .fold(f64::INFINITY, f64::min);
         if on_digit && 2.0 * d_best <= second {
-            owner[v] = best;
+            seeds[best].push(v);
         }
     }
-    spread_owners(mesh, &in_hand, &mut owner);
-    for (v, &p) in mesh.positions.iter().enumerate() {
-        let d = owner[v];
-        if !in_hand[v] || d == usize::MAX {
-            continue;
-        }
-        let chain = &chains[d];
-        let chain_row = chain_weights(&chain.points, &chain.joints, p);
-        let row = &mut weights[v];
-        let past_base = chain_row.iter().any(|(j, _)| *j != wrist);
-        let kept: Vec<(JointId, f64)> = row
-            .iter()
-            .copied()
-            .filter(|(j, _)| digit_of[j.0] == usize::MAX || digit_of[j.0] == d)
-            .collect();
-        let sum: f64 = kept.iter().map(|(_, x)| x).sum();
-        // The share of joints outside the hand (the forearm's) stays as it was, so the digit's
-        // vertices move with their palm neighbours when the wrist turns; the hand's share goes
-        // to the chain.
-        let outside: Vec<(JointId, f64)> = row
-            .iter()
-            .copied()
-            .filter(|(j, _)| *j != wrist && digit_of[j.0] == usize::MAX)
-            .collect();
-        let hand_share = 1.0 - outside.iter().map(|(_, x)| x).sum::<f64>();
-        *row = if past_base || sum <= 0.0 {
-            let mut out = outside;
-            out.extend(chain_row.into_iter().map(|(j, x)| (j, x * hand_share)));
-            out.retain(|(_, x)| *x > 0.0);
-            out
-        } else {
-            kept.into_iter().map(|(j, x)| (j, x / sum)).collect()
-        };
-        row.sort_by_key(|(j, _)| *j);
+    let triangles: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .filter(|t| t.iter().all(|&v| in_hand[v as usize]))
+        .copied()
+        .collect();
+    seeds
+        .into_iter()
+        .map(|s| edge_geodesic(&mesh.positions, &triangles, s, |_, _| {}))
+        .collect()
+}
+
+/// The weights of a vertex at `p` (voxel weights `row`) as a vertex of digit `d` (module docs,
+/// step 3).
+fn digit_row(
+    chain: &Chain,
+    d: usize,
+    wrist: JointId,
+    digit_of: &[usize],
+    row: &[(JointId, f64)],
+    p: DVec3,
+) -> Vec<(JointId, f64)> {
+    let chain_row = chain_weights(&chain.points, &chain.joints, p);
+    let past_base = chain_row.iter().any(|(j, _)| *j != wrist);
+    let kept: Vec<(JointId, f64)> = row
+        .iter()
+        .copied()
+        .filter(|(j, _)| digit_of[j.0] == usize::MAX || digit_of[j.0] == d)
+        .collect();
+    let sum: f64 = kept.iter().map(|(_, x)| x).sum();
+    if !past_base && sum > 0.0 {
+        return kept.into_iter().map(|(j, x)| (j, x / sum)).collect();
     }
+    // The share of joints outside the hand (the forearm's) stays as it was, so the digit's
+    // vertices move with their palm neighbours when the wrist turns; the hand's share goes to
+    // the chain.
+    let mut out: Vec<(JointId, f64)> = row
+        .iter()
+        .copied()
+        .filter(|(j, _)| *j != wrist && digit_of[j.0] == usize::MAX)
+        .collect();
+    let hand_share = 1.0 - out.iter().map(|(_, x)| x).sum::<f64>();
+    out.extend(chain_row.into_iter().map(|(j, x)| (j, x * hand_share)));
+    out.retain(|(_, x)| *x > 0.0);
+    out
+}
+
+/// `(1 - share) a + share b`, joints merged.
+fn blend(a: &[(JointId, f64)], b: &[(JointId, f64)], share: f64) -> Vec<(JointId, f64)> {
+    let mut out: Vec<(JointId, f64)> = a.iter().map(|&(j, x)| (j, x * (1.0 - share))).collect();
+    for &(j, x) in b {
+        match out.iter_mut().find(|(k, _)| *k == j) {
+            Some(e) => e.1 += x * share,
+            None => out.push((j, x * share)),
+        }
+    }
+    out.retain(|(_, x)| *x > 0.0);
+    out
 }
 
 /// Distance from `p` to the polyline `points`, and the index of its nearest segment.
@@ -217,54 +294,6 @@ fn chain_weights(points: &[DVec3], joints: &[JointId], p: DVec3) -> Vec<(JointId
         }
     }
     row
-}
-
-/// Gives every hand vertex without an owner the owner of the nearest owned vertex over the
-/// hand's mesh edges (a multi-source Dijkstra); vertices no owner reaches keep none.
-fn spread_owners(mesh: &Mesh, in_hand: &[bool], owner: &mut [usize]) {
-    let n = mesh.positions.len();
-    let mut edges: Vec<(u32, u32)> = Vec::new();
-    for t in &mesh.triangles {
-        if t.iter().all(|&v| in_hand[v as usize]) {
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                edges.push((a, b));
-                edges.push((b, a));
-            }
-        }
-    }
-    edges.sort_unstable();
-    edges.dedup();
-    let mut start = vec![0usize; n + 1];
-    for &(a, _) in &edges {
-        start[a as usize + 1] += 1;
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
-    let mut dist = vec![f64::INFINITY; n];
-    let mut heap = BinaryHeap::new();
-    for (v, &o) in owner.iter().enumerate() {
-        if o != usize::MAX {
-            dist[v] = 0.0;
-            heap.push(Reverse((0u64, v as u32)));
-        }
-    }
-    while let Some(Reverse((bits, u))) = heap.pop() {
-        let d = f64::from_bits(bits);
-        if d > dist[u as usize] {
-            continue;
-        }
-        for &(_, v) in &edges[start[u as usize]..start[u as usize + 1]] {
-            let nd = d + mesh.positions[u as usize].distance(mesh.positions[v as usize]);
-            if nd < dist[v as usize] {
-                dist[v as usize] = nd;
-                owner[v as usize] = owner[u as usize];
-                // Non-negative f64 order as their bits.
-                heap.push(Reverse((nd.to_bits(), v)));
-            }
-        }
-    }
 }
 
 #[cfg(test)]

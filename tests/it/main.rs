@@ -11,6 +11,7 @@ mod common;
 mod distance;
 mod eval;
 mod export;
+mod feet;
 mod fingers;
 mod fit;
 mod frames;

@@ -1,0 +1,224 @@
+//! Feet (issue 25): the toe joint at the ball of the foot and the toe end at its tip on the
+//! MakeHuman bodies against their reference rigs, the real humanoids' toes, toe bends, and the
+//! single digit chain of an animal's feet.
+
+use glam::{DQuat, DVec3};
+use skelfit::digits::DigitWarning;
+use skelfit::eval::load_skeleton;
+use skelfit::mesh::{load, winding_number, Mesh};
+use skelfit::pipeline::{rig, Rig, RigOptions};
+use skelfit::skeleton::{Canonical, Side};
+use skelfit::skin::deform;
+use skelfit::warning::Warning;
+
+fn foot_warnings(r: &Rig) -> Vec<DigitWarning> {
+    r.warnings
+        .iter()
+        .filter_map(|w| match w {
+            Warning::Digits(d @ DigitWarning::NoFoot { .. }) => Some(d.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The `tail` of joint `name` in a refdata rig file (MakeHuman bones have tails).
+fn tail(path: &std::path::Path, name: &str) -> DVec3 {
+    let rig: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let joint = rig["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|j| j["name"] == name)
+        .unwrap();
+    let t: Vec<f64> = serde_json::from_value(joint["tail"].clone()).unwrap();
+    DVec3::new(t[0], t[1], t[2])
+}
+
+fn height(mesh: &Mesh) -> f64 {
+    let (lo, hi) = mesh
+        .positions
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
+    hi - lo
+}
+
+/// The joint at the end of the chain below `id` (each joint's only child, to the leaf).
+fn chain_end(r: &Rig, id: skelfit::skeleton::JointId) -> skelfit::skeleton::JointId {
+    let mut at = id;
+    while let [only] = r.fit.skeleton.children(at).as_slice() {
+        at = *only;
+    }
+    at
+}
+
+/// Every MakeHuman body: the toe joint within 1.2 % of the height of the reference's ball of
+/// the foot (`ball_l`, rig_game_engine) and the toe end within 1.2 % of the reference's toe
+/// tip (the tail of `ball_l`); the Mixamo rig's `ToeBase` (1.7 cm further forward and up) is
+/// printed beside it.
+#[test]
+fn makehuman_toes_sit_at_the_ball_and_the_tip_of_the_foot() {
+    let Some(root) = crate::common::refdata() else {
+        return;
+    };
+    let mut dirs: Vec<_> = std::fs::read_dir(root.join("humanoid"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("mh_"))
+        .collect();
+    dirs.sort();
+    assert!(!dirs.is_empty());
+    for dir in dirs {
+        let mesh = load(&dir.join("mesh.obj")).unwrap();
+        let h = height(&mesh);
+        let r = rig(&mesh, &RigOptions::default()).unwrap();
+        assert!(
+            foot_warnings(&r).is_empty(),
+            "{dir:?}: {:?}",
+            foot_warnings(&r)
+        );
+        let game = load_skeleton(&dir.join("rig_game_engine.json")).unwrap();
+        let mixamo = load_skeleton(&dir.join("rig_mixamo.json")).unwrap();
+        let (game_map, _) = skelfit::eval::canonical_map(&game);
+        let (mixamo_map, _) = skelfit::eval::canonical_map(&mixamo);
+        for side in Side::BOTH {
+            let key = Canonical::Toe(side).as_str();
+            let toe = r.fit.canonical[key];
+            let at = r.fit.skeleton.joint(toe).position;
+            let end = r.fit.skeleton.joint(chain_end(&r, toe)).position;
+            let ball = game.skeleton.joint(game_map[key]).position;
+            let tip = tail(
+                &dir.join("rig_game_engine.json"),
+                &game.skeleton.joint(game_map[key]).name,
+            );
+            let base = mixamo.skeleton.joint(mixamo_map[key]).position;
+            let (e_ball, e_tip) = (at.distance(ball), end.distance(tip));
+            println!(
+                "{} {side:?}: toe {:.1} mm ({:.2} %), toe end {:.1} mm ({:.2} %); Mixamo ToeBase {:.1} mm",
+                dir.file_name().unwrap().to_string_lossy(),
+                e_ball * 1000.0,
+                100.0 * e_ball / h,
+                e_tip * 1000.0,
+                100.0 * e_tip / h,
+                at.distance(base) * 1000.0
+            );
+            assert!(
+                e_ball <= 0.012 * h,
+                "{dir:?} {side:?}: toe at {at} vs {ball}"
+            );
+            assert!(
+                e_tip <= 0.012 * h,
+                "{dir:?} {side:?}: end at {end} vs {tip}"
+            );
+        }
+    }
+}
+
+/// The real humanoids whose reference maps a toe: the toe joint lies inside the foot, ahead of
+/// the ankle and behind the toe end, and its error is printed (artists put the ball anywhere
+/// from the middle of a shoe to the toes).
+#[test]
+fn real_humanoid_toes_lie_in_the_forefoot() {
+    for name in ["gdquest_mannequiny", "gltf_cesium_man"] {
+        let Some(dir) = crate::common::model(&format!("humanoid/{name}")) else {
+            continue;
+        };
+        let mesh = load(&dir.join("mesh.obj")).unwrap();
+        let h = height(&mesh);
+        let r = rig(&mesh, &RigOptions::default()).unwrap();
+        assert!(
+            foot_warnings(&r).is_empty(),
+            "{name}: {:?}",
+            foot_warnings(&r)
+        );
+        let reference = load_skeleton(&dir.join("rig_gltf.json")).unwrap();
+        let (map, _) = skelfit::eval::canonical_map(&reference);
+        for side in Side::BOTH {
+            let key = Canonical::Toe(side).as_str();
+            let toe = r.fit.canonical[key];
+            let at = r.fit.skeleton.joint(toe).position;
+            let ankle = r
+                .fit
+                .skeleton
+                .joint(r.fit.canonical[Canonical::Ankle(side).as_str()]);
+            let end = r.fit.skeleton.joint(chain_end(&r, toe)).position;
+            let e = at.distance(reference.skeleton.joint(map[key]).position);
+            println!(
+                "{name} {side:?}: toe {:.1} mm ({:.2} % of height)",
+                e * 1000.0,
+                100.0 * e / h
+            );
+            assert!(winding_number(&mesh, at) > 0.5, "{name} {side:?}: {at}");
+            let forward = (end - ankle.position) * DVec3::new(1.0, 0.0, 1.0);
+            assert!((at - ankle.position).dot(forward) > 0.0, "{name} {side:?}");
+            assert!((end - at).dot(forward) > 0.0, "{name} {side:?}");
+        }
+    }
+}
+
+/// Bending the toes 40° up and 40° down at the ball of the foot (about the toe joint's x axis)
+/// stretches no edge of the bundled body past 2×.
+#[test]
+fn bending_the_toes_stretches_no_edge_past_twice() {
+    let mesh =
+        load(&crate::common::data_dir().join("humanoid/mh_neutral_default/mesh.obj")).unwrap();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let (skeleton, canonical) = (&r.fit.skeleton, &r.fit.canonical);
+    for angle in [40f64, -40.0] {
+        let mut pose = skeleton.rest_pose();
+        for side in Side::BOTH {
+            let toe = canonical[Canonical::Toe(side).as_str()];
+            pose[toe.0] = DQuat::from_rotation_x(angle.to_radians());
+        }
+        let bent = deform(&mesh, skeleton, &r.skin, &pose).unwrap();
+        let mut worst: f64 = 1.0;
+        for t in &mesh.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+                let rest = mesh.positions[a].distance(mesh.positions[b]);
+                if rest > 0.0 {
+                    worst = worst.max(bent.positions[a].distance(bent.positions[b]) / rest);
+                }
+            }
+        }
+        println!("toes bent {angle}°: worst edge stretch {worst:.2}");
+        assert!(
+            worst <= 2.0,
+            "toes bent {angle}°: worst edge stretch {worst:.2}"
+        );
+        // The toe tips moved: the bend reaches the toes.
+        let tip = r
+            .fit
+            .skeleton
+            .joint(chain_end(&r, canonical["toe_L"]))
+            .position;
+        let near = (0..mesh.positions.len())
+            .min_by(|&a, &b| {
+                mesh.positions[a]
+                    .distance(tip)
+                    .total_cmp(&mesh.positions[b].distance(tip))
+            })
+            .unwrap();
+        assert!(bent.positions[near].distance(mesh.positions[near]) > 0.01);
+    }
+}
+
+/// A four-legged animal's paws (the Khronos fox) keep one digit chain per foot: the toe key
+/// mapped, a chain of single joints below it to its end, no foot warning.
+#[test]
+fn animal_paws_keep_a_single_digit_chain() {
+    let Some(dir) = crate::common::model("quadruped/khronos_fox") else {
+        return;
+    };
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    assert!(foot_warnings(&r).is_empty(), "{:?}", foot_warnings(&r));
+    for side in Side::BOTH {
+        let toe = r.fit.canonical[Canonical::Toe(side).as_str()];
+        let end = chain_end(&r, toe);
+        assert_ne!(end, toe, "{side:?}: no digit below the toe");
+        assert!(r.fit.skeleton.children(end).is_empty());
+    }
+}
