@@ -16,18 +16,18 @@
 //! Run: `cargo run --release --example deformation [-- REFDATA_DIR [OUT_DIR]]`
 //! (defaults `../shared/refdata`, `reports/deformation`).
 
-use skelfit::eval::load_skeleton;
-use skelfit::mesh::{load, load_gltf_scene, Mesh};
+#[path = "common/refdata.rs"]
+mod refdata;
+
+use refdata::{
+    artist_rig, blender_file, blender_weights, check, distance_with_unweighted, exported, models,
+    ArtistRig,
+};
+use skelfit::mesh::load;
 use skelfit::pipeline::{rig, RigOptions};
-use skelfit::skeleton::{JointId, Skeleton};
-use skelfit::skin::check::{
-    blend, check_deformation, sweep, DeformationCheck, PoseStretch, SweepKind,
-};
-use skelfit::skin::compare::{
-    pose_distance, random_pose, PoseDistance, RandomPoseOptions, SplitMix64,
-};
-use skelfit::skin::{skin_skeleton, EngineWeights, SkeletonSkinOptions, SkinMethod};
-use std::collections::BTreeMap;
+use skelfit::skin::check::{DeformationCheck, PoseStretch, SweepKind};
+use skelfit::skin::compare::{pose_distance, PoseDistance, RandomPoseOptions};
+use skelfit::skin::{skin_skeleton, SkeletonSkinOptions, SkinMethod};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -70,45 +70,6 @@ struct OnArtist {
     warnings: usize,
 }
 
-/// The artist's rig from `source.glb`: mesh, skeleton, weights and the canonical map of the
-/// model's `rig_*.json` (names looked up in the skin).
-struct ArtistRig {
-    mesh: Mesh,
-    skeleton: Skeleton,
-    weights: Vec<Vec<(JointId, f64)>>,
-    canonical: BTreeMap<String, JointId>,
-}
-
-/// Per-vertex `(joint, weight)` lists.
-type Weights = Vec<Vec<(JointId, f64)>>;
-
-/// Engine weights (at most four per vertex, as exported) as `(joint, weight)` lists.
-fn exported(engine: &EngineWeights) -> Vec<Vec<(JointId, f64)>> {
-    engine
-        .joints
-        .iter()
-        .zip(&engine.weights)
-        .map(|(j, w)| {
-            j.iter()
-                .zip(w)
-                .filter(|(_, &w)| w > 0.0)
-                .map(|(&j, &w)| (JointId(usize::from(j)), f64::from(w)))
-                .collect()
-        })
-        .collect()
-}
-
-fn check(
-    mesh: &Mesh,
-    skeleton: &Skeleton,
-    canonical: &BTreeMap<String, JointId>,
-    weights: &[Vec<(JointId, f64)>],
-    kind: SweepKind,
-) -> Result<DeformationCheck, String> {
-    let (poses, missing) = sweep(skeleton, canonical, kind, glam::DVec3::Y, glam::DVec3::Z);
-    check_deformation(mesh, skeleton, weights, kind, &poses, missing).map_err(|e| e.to_string())
-}
-
 fn ours(dir: &Path, kind: SweepKind, method: SkinMethod) -> Result<DeformationCheck, String> {
     let mesh = load(&dir.join("mesh.obj")).map_err(|e| e.to_string())?;
     let mut options = RigOptions::default();
@@ -116,43 +77,6 @@ fn ours(dir: &Path, kind: SweepKind, method: SkinMethod) -> Result<DeformationCh
     let rig = rig(&mesh, &options).map_err(|e| e.to_string())?;
     let weights = exported(&rig.skin.engine);
     check(&mesh, &rig.fit.skeleton, &rig.fit.canonical, &weights, kind)
-}
-
-fn artist_rig(dir: &Path) -> Option<Result<ArtistRig, String>> {
-    let source = dir.join("source.glb");
-    if !source.is_file() {
-        return None;
-    }
-    Some((|| {
-        let scene = load_gltf_scene(&source).map_err(|e| e.to_string())?;
-        let skeleton = scene.skeleton.ok_or("no skin")?;
-        let weights = scene.weights.ok_or("no weights")?;
-        let reference = std::fs::read_dir(dir)
-            .map_err(|e| e.to_string())?
-            .filter_map(Result::ok)
-            .map(|e| e.path())
-            .find(|p| {
-                p.file_name()
-                    .and_then(|n| n.to_str())
-                    .is_some_and(|n| n.starts_with("rig_") && n.ends_with(".json"))
-            })
-            .ok_or("no rig_*.json")?;
-        let reference = load_skeleton(&reference).map_err(|e| e.to_string())?;
-        let canonical: BTreeMap<String, JointId> = reference
-            .canonical
-            .iter()
-            .filter_map(|(key, &id)| {
-                let name = &reference.skeleton.joint(id).name;
-                Some((key.clone(), skeleton.find(name)?))
-            })
-            .collect();
-        Ok(ArtistRig {
-            mesh: scene.mesh,
-            skeleton,
-            weights,
-            canonical,
-        })
-    })())
 }
 
 fn artist(rig: &ArtistRig, kind: SweepKind) -> Result<DeformationCheck, String> {
@@ -186,140 +110,18 @@ fn on_artist(rig: &ArtistRig, kind: SweepKind) -> Result<OnArtist, String> {
         &RandomPoseOptions::default(),
     )
     .map_err(|e| e.to_string())?;
-    let (low, high) = rig.mesh.bounding_box().ok_or("empty mesh")?;
+    let size = rig.size();
+    if size <= 0.0 {
+        return Err("empty mesh".into());
+    }
     Ok(OnArtist {
         check,
         distance,
         anchor,
-        size: (high - low).max_element(),
+        size,
         check_vertices: rig.mesh.positions.len(),
         warnings: skinned.warnings.len(),
     })
-}
-
-/// Blender's bone heat weights for `rig` from `file` (written by
-/// `tools/blender_autoweights.py`): each vertex of the artist's mesh takes the weights of the
-/// vertex of Blender's export at the same rest position (within about 1e-4 of the figure's
-/// size, after mapping Blender's bone heads onto the joints),
-/// bone names looked up in the artist's skeleton.
-fn blender_weights(file: &Path, rig: &ArtistRig) -> Result<(Weights, usize), String> {
-    let text = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
-    let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
-    let bones: Vec<Option<JointId>> = json["bones"]
-        .as_array()
-        .ok_or("no bones")?
-        .iter()
-        .map(|b| b.as_str().and_then(|name| rig.skeleton.find(name)))
-        .collect();
-    // Blender's rest frame → the frame of the mesh skelfit loads: the affine map that takes
-    // the bones' rest heads onto the joints (least squares).
-    let point = |v: &serde_json::Value| -> Option<glam::DVec3> {
-        let c = v.as_array()?;
-        Some(glam::DVec3::new(
-            c.first()?.as_f64()?,
-            c.get(1)?.as_f64()?,
-            c.get(2)?.as_f64()?,
-        ))
-    };
-    let (mut ata, mut atb) = (glam::DMat4::ZERO, [glam::DVec4::ZERO; 3]);
-    for (name, head) in json["heads"].as_object().ok_or("no heads")? {
-        let (Some(joint), Some(h)) = (rig.skeleton.find(name), point(head)) else {
-            continue;
-        };
-        let a = h.extend(1.0);
-        let target = rig.skeleton.joint(joint).position;
-        for r in 0..4 {
-            *ata.col_mut(r) += a * a[r];
-        }
-        for (c, t) in atb.iter_mut().zip(target.to_array()) {
-            *c += a * t;
-        }
-    }
-    let inverse = ata.inverse();
-    if !inverse.is_finite() {
-        return Err("too few bones to match Blender's frame".into());
-    }
-    let rows = atb.map(|b| inverse * b);
-    let to_mesh = |p: glam::DVec3| {
-        let a = p.extend(1.0);
-        glam::DVec3::new(rows[0].dot(a), rows[1].dot(a), rows[2].dot(a))
-    };
-    let positions = json["positions"].as_array().ok_or("no positions")?;
-    let weights = json["weights"].as_array().ok_or("no weights")?;
-    let (low, high) = rig.mesh.bounding_box().ok_or("empty mesh")?;
-    let quantum = 1e-4 * (high - low).max_element();
-    let key = |p: glam::DVec3| (p / quantum).round().as_i64vec3();
-    let mut at: std::collections::HashMap<glam::I64Vec3, usize> = Default::default();
-    for (k, p) in positions.iter().enumerate() {
-        let c: Vec<f64> = p
-            .as_array()
-            .ok_or("bad position")?
-            .iter()
-            .filter_map(serde_json::Value::as_f64)
-            .collect();
-        if c.len() == 3 {
-            at.entry(key(to_mesh(glam::DVec3::new(c[0], c[1], c[2]))))
-                .or_insert(k);
-        }
-    }
-    let mut out = Vec::with_capacity(rig.mesh.positions.len());
-    let mut unweighted = 0;
-    for &p in &rig.mesh.positions {
-        let base = key(p);
-        let found = (-1..=1)
-            .flat_map(|x| {
-                (-1..=1).flat_map(move |y| (-1..=1).map(move |z| glam::I64Vec3::new(x, y, z)))
-            })
-            .find_map(|d| at.get(&(base + d)).copied());
-        let mut w: Vec<(JointId, f64)> = found
-            .and_then(|k| weights[k].as_array())
-            .map(|list| {
-                list.iter()
-                    .filter_map(|e| {
-                        let joint = bones.get(e[0].as_u64()? as usize).copied().flatten()?;
-                        let x = e[1].as_f64()?;
-                        (x > 0.0).then_some((joint, x))
-                    })
-                    .collect()
-            })
-            .unwrap_or_default();
-        let sum: f64 = w.iter().map(|e| e.1).sum();
-        if sum > 0.0 {
-            w.iter_mut().for_each(|e| e.1 /= sum);
-        } else {
-            unweighted += 1;
-        }
-        out.push(w);
-    }
-    Ok((out, unweighted))
-}
-
-/// [`pose_distance`] over every vertex the artist skinned, a vertex without weights in
-/// `weights` staying at rest (as under Blender's armature modifier) instead of being left out.
-fn distance_with_unweighted(rig: &ArtistRig, weights: &[Vec<(JointId, f64)>]) -> PoseDistance {
-    let options = RandomPoseOptions::default();
-    let mut random = SplitMix64(options.seed);
-    let (mut sum, mut max, mut count) = (0.0, 0.0f64, 0usize);
-    for _ in 0..options.poses {
-        let pose = random_pose(&rig.skeleton, options.max_degrees, &mut random);
-        let matrices = rig.skeleton.skinning_matrices(&pose);
-        let posed = blend(&rig.mesh.positions, weights, &matrices);
-        let artist = blend(&rig.mesh.positions, &rig.weights, &matrices);
-        for ((p, q), w) in posed.iter().zip(&artist).zip(&rig.weights) {
-            if !w.is_empty() {
-                let d = p.distance(*q);
-                sum += d;
-                max = max.max(d);
-                count += 1;
-            }
-        }
-    }
-    PoseDistance {
-        mean: if count > 0 { sum / count as f64 } else { 0.0 },
-        max,
-        poses: options.poses,
-        vertices: rig.weights.iter().filter(|w| !w.is_empty()).count(),
-    }
 }
 
 /// Blender's bone heat weights on the artist's skeleton through the sweep and against the
@@ -489,46 +291,29 @@ fn run() -> Result<(), String> {
         ));
     }
     let mut rows = Vec::new();
-    for (folder, kind) in [
-        ("humanoid", SweepKind::Humanoid),
-        ("quadruped", SweepKind::Animal),
-    ] {
-        let Ok(entries) = std::fs::read_dir(root.join(folder)) else {
-            continue;
-        };
-        let mut dirs: Vec<PathBuf> = entries.filter_map(Result::ok).map(|e| e.path()).collect();
-        dirs.sort();
-        for dir in dirs {
-            let name = dir.file_name().unwrap_or_default().to_string_lossy();
-            let model = format!("{folder}/{name}");
-            eprintln!("deformation: {model}");
-            let rig = artist_rig(&dir);
-            rows.push(Row {
-                model,
-                ours: ours(&dir, kind, SkinMethod::Geodesic),
-                anchor: ours(&dir, kind, SkinMethod::Anchor),
-                artist: rig.as_ref().map(|r| {
-                    r.as_ref()
-                        .map_err(Clone::clone)
-                        .and_then(|r| artist(r, kind))
-                }),
-                on_artist: rig.as_ref().map(|r| {
-                    r.as_ref()
-                        .map_err(Clone::clone)
-                        .and_then(|r| on_artist(r, kind))
-                }),
-                blender: rig.as_ref().and_then(|r| {
-                    let file = out
-                        .join("blender")
-                        .join(folder)
-                        .join(format!("{name}.json"));
-                    match r {
-                        Ok(r) => blender(&file, r, kind),
-                        Err(e) => Some(Err(e.clone())),
-                    }
-                }),
-            });
-        }
+    for model in models(&root) {
+        let (dir, kind) = (&model.dir, model.kind);
+        eprintln!("deformation: {}", model.id());
+        let rig = artist_rig(dir);
+        rows.push(Row {
+            model: model.id(),
+            ours: ours(dir, kind, SkinMethod::Geodesic),
+            anchor: ours(dir, kind, SkinMethod::Anchor),
+            artist: rig.as_ref().map(|r| {
+                r.as_ref()
+                    .map_err(Clone::clone)
+                    .and_then(|r| artist(r, kind))
+            }),
+            on_artist: rig.as_ref().map(|r| {
+                r.as_ref()
+                    .map_err(Clone::clone)
+                    .and_then(|r| on_artist(r, kind))
+            }),
+            blender: rig.as_ref().and_then(|r| match r {
+                Ok(r) => blender(&blender_file(&out, &model), r, kind),
+                Err(e) => Some(Err(e.clone())),
+            }),
+        });
     }
     std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
     let mut md = String::new();

@@ -1,53 +1,43 @@
 //! A quick probe of the skin options against the reference data, for choosing the method:
 //! per model the sweep's edges past 2x (skelfit's rig; skelfit's weights on the artist's
-//! skeleton; the artist's) and the random-pose distance to the artist's weights, plus how
-//! sharp each weighting is: the share of vertices with one dominant joint (≥ 0.95) and the
-//! width of the blend across each joint relative to the local limb radius.
+//! skeleton; the artist's) and the random-pose distance to the artist's weights (skelfit's and
+//! Blender's bone heat, measured as `examples/deformation.rs` does), plus how sharp each
+//! weighting is: the share of vertices with one dominant joint (≥ 0.95) and the width of the
+//! blend across each joint relative to the local limb radius. With `PROBE_DIAG=1`, where
+//! skelfit's weights differ from the artist's on each model (`diag`).
 //!
 //! Run: `cargo run --release --example deformation_probe -- [key=value ...]` with keys
-//! `falloff`, `blend_ratio`, `depth_exponent`, `voxel_smoothing`, `smoothing`, `rig=0` (skip
-//! skelfit's own rigs), `only=SUBSTRING`.
+//! `falloff`, `blend_ratio`, `depth_exponent`, `voxel_smoothing`, `smoothing`, `leaf`, `rig=0`
+//! (skip skelfit's own rigs), `only=SUBSTRING`.
 
-use skelfit::mesh::{load, load_gltf_scene, Mesh};
+#[path = "common/refdata.rs"]
+mod refdata;
+
+use refdata::{
+    artist_rig, blender_file, blender_weights, check, distance_with_unweighted, exported, models,
+    ArtistRig, Model, Weights,
+};
+use skelfit::mesh::{load, Mesh};
 use skelfit::pipeline::{rig, RigOptions};
 use skelfit::skeleton::{JointId, Skeleton};
-use skelfit::skin::check::{check_deformation, sweep, SweepKind};
+use skelfit::skin::check::SweepKind;
 use skelfit::skin::compare::{pose_distance, RandomPoseOptions};
-use skelfit::skin::{skin_skeleton, EngineWeights, SkeletonSkinOptions, SkinOptions};
+use skelfit::skin::{skin_skeleton, SkeletonSkinOptions, SkinOptions};
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-type Weights = Vec<Vec<(JointId, f64)>>;
-
-fn exported(engine: &EngineWeights) -> Weights {
-    engine
-        .joints
-        .iter()
-        .zip(&engine.weights)
-        .map(|(j, w)| {
-            j.iter()
-                .zip(w)
-                .filter(|(_, &w)| w > 0.0)
-                .map(|(&j, &w)| (JointId(usize::from(j)), f64::from(w)))
-                .collect()
-        })
-        .collect()
-}
-
+/// Edges past 2x over the sweep, `None` where the canonical map names no joint to pose.
 fn over2(
     mesh: &Mesh,
     skeleton: &Skeleton,
     canonical: &BTreeMap<String, JointId>,
     weights: &[Vec<(JointId, f64)>],
     kind: SweepKind,
-) -> usize {
-    let (poses, missing) = sweep(skeleton, canonical, kind, glam::DVec3::Y, glam::DVec3::Z);
-    if poses.is_empty() {
-        return usize::MAX;
-    }
-    check_deformation(mesh, skeleton, weights, kind, &poses, missing)
+) -> Option<usize> {
+    check(mesh, skeleton, canonical, weights, kind)
+        .ok()
+        .filter(|c| !c.poses.is_empty())
         .map(|c| c.total_over_2())
-        .unwrap_or(usize::MAX)
 }
 
 /// Share of vertices whose largest weight is at least 0.95.
@@ -135,141 +125,102 @@ fn main() {
             _ => panic!("unknown key {k}"),
         }
     }
-    let root = PathBuf::from("../shared/refdata");
-    let (mut sum_ours, mut n_artist, mut lower) = (0.0, 0, 0);
+    let (mut ours, mut blender, mut lower) = (Vec::new(), Vec::new(), 0);
     println!("model | rig>2x | on-artist>2x | artist>2x | mean% | blender% | rigid ours/artist | width ours/artist");
-    for (folder, kind) in [
-        ("humanoid", SweepKind::Humanoid),
-        ("quadruped", SweepKind::Animal),
-    ] {
-        let mut dirs: Vec<PathBuf> = std::fs::read_dir(root.join(folder))
-            .unwrap()
-            .filter_map(Result::ok)
-            .map(|e| e.path())
-            .collect();
-        dirs.sort();
-        for dir in dirs {
-            let name = dir.file_name().unwrap().to_string_lossy().to_string();
-            if !name.contains(&only) {
-                continue;
-            }
-            let rig_over = if do_rig {
-                let mesh = load(&dir.join("mesh.obj")).unwrap();
-                let options = RigOptions {
-                    skin,
-                    ..Default::default()
-                };
-                match rig(&mesh, &options) {
-                    Ok(r) => over2(
+    for model in models(Path::new("../shared/refdata")) {
+        if !model.name.contains(&only) {
+            continue;
+        }
+        let rig_over = if do_rig {
+            let mesh = load(&model.dir.join("mesh.obj")).unwrap();
+            let options = RigOptions {
+                skin,
+                ..Default::default()
+            };
+            match rig(&mesh, &options) {
+                Ok(r) => {
+                    let weights = exported(&r.skin.engine);
+                    let over = over2(
                         &mesh,
                         &r.fit.skeleton,
                         &r.fit.canonical,
-                        &exported(&r.skin.engine),
-                        kind,
-                    )
-                    .to_string(),
-                    Err(e) => format!("err {e}"),
+                        &weights,
+                        model.kind,
+                    );
+                    over.map_or("-".into(), |o| o.to_string())
                 }
-            } else {
-                "-".into()
-            };
-            let source = dir.join("source.glb");
-            if !source.is_file() {
-                println!("{name} | {rig_over}");
-                continue;
+                Err(e) => format!("err {e}"),
             }
-            let line = artist_line(&dir, &source, folder, &name, kind, &skin);
-            if let Some((text, ours, blender)) = line {
-                sum_ours += ours;
-                n_artist += 1;
-                lower += usize::from(blender.is_some_and(|b| ours < b));
-                println!("{name} | {rig_over} | {text}");
-            }
+        } else {
+            "-".into()
+        };
+        let Some(Ok(artist)) = artist_rig(&model.dir) else {
+            println!("{} | {rig_over}", model.name);
+            continue;
+        };
+        let Some((text, mean, b)) = artist_line(&model, &artist, &skin) else {
+            println!("{} | {rig_over} | failed", model.name);
+            continue;
+        };
+        ours.push(mean);
+        if let Some(b) = b {
+            blender.push(b);
+            lower += usize::from(mean < b);
         }
+        println!("{} | {rig_over} | {text}", model.name);
     }
+    let average = |x: &[f64]| x.iter().sum::<f64>() / x.len().max(1) as f64;
     println!(
-        "mean on artist {:.3} % over {n_artist}; lower than Blender on {lower}",
-        sum_ours / n_artist.max(1) as f64
+        "mean on artist {:.3} % over {} (Blender {:.3} % over {}); lower than Blender on {lower}",
+        average(&ours),
+        ours.len(),
+        average(&blender),
+        blender.len(),
     );
 }
 
+/// The columns from `on-artist>2x` on, skelfit's and Blender's random-pose distance (% of the
+/// figure's size).
 fn artist_line(
-    dir: &Path,
-    source: &Path,
-    folder: &str,
-    name: &str,
-    kind: SweepKind,
+    model: &Model,
+    artist: &ArtistRig,
     skin: &SkinOptions,
 ) -> Option<(String, f64, Option<f64>)> {
-    let scene = load_gltf_scene(source).ok()?;
-    let skeleton = scene.skeleton?;
-    let artist = scene.weights?;
-    let mesh = scene.mesh;
-    let reference = std::fs::read_dir(dir)
-        .ok()?
-        .filter_map(Result::ok)
-        .map(|e| e.path())
-        .find(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("rig_") && n.ends_with(".json"))
-        })?;
-    let reference = skelfit::eval::load_skeleton(&reference).ok()?;
-    let canonical: BTreeMap<String, JointId> = reference
-        .canonical
-        .iter()
-        .filter_map(|(key, &id)| {
-            Some((
-                key.clone(),
-                skeleton.find(&reference.skeleton.joint(id).name)?,
-            ))
-        })
-        .collect();
+    let (mesh, skeleton) = (&artist.mesh, &artist.skeleton);
     let options = SkeletonSkinOptions {
         skin: *skin,
         ..Default::default()
     };
-    let skinned = skin_skeleton(&mesh, &skeleton, &options).ok()?;
+    let skinned = skin_skeleton(mesh, skeleton, &options).ok()?;
     let ours = exported(&skinned.skin.engine);
-    let (low, high) = mesh.bounding_box()?;
-    let size = (high - low).max_element();
+    let size = artist.size();
     let d = pose_distance(
-        &mesh,
-        &skeleton,
+        mesh,
+        skeleton,
         &ours,
-        &artist,
+        &artist.weights,
         &RandomPoseOptions::default(),
     )
     .ok()?;
     let mean = 100.0 * d.mean / size;
-    let blender: Option<f64> =
-        std::fs::read_to_string(Path::new("reports/deformation/deformation.json"))
-            .ok()
-            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-            .and_then(|j| {
-                let model = format!("{folder}/{name}");
-                j.as_array()
-                    .or_else(|| j.get("models").and_then(|m| m.as_array()))?
-                    .iter()
-                    .find(|m| m.get("model").and_then(|x| x.as_str()) == Some(model.as_str()))
-                    .and_then(|m| {
-                        m.pointer("/blender_bone_heat_on_artist_skeleton/random_pose_distance/mean")
-                    })
-                    .and_then(|x| x.as_f64())
-                    .map(|x| 100.0 * x / size)
-            });
+    let blender = blender_weights(
+        &blender_file(Path::new("reports/deformation"), model),
+        artist,
+    )
+    .ok()
+    .map(|(weights, _)| 100.0 * distance_with_unweighted(artist, &weights).mean / size);
     if std::env::var("PROBE_DIAG").is_ok() {
-        diag(&mesh, &skeleton, &ours, &artist);
+        diag(mesh, skeleton, &ours, &artist.weights);
     }
-    let on = over2(&mesh, &skeleton, &canonical, &ours, kind);
-    let art = over2(&mesh, &skeleton, &canonical, &artist, kind);
-    let fmt = |x: usize| {
-        if x == usize::MAX {
-            "-".to_string()
-        } else {
-            x.to_string()
-        }
-    };
+    let on = over2(mesh, skeleton, &artist.canonical, &ours, model.kind);
+    let art = over2(
+        mesh,
+        skeleton,
+        &artist.canonical,
+        &artist.weights,
+        model.kind,
+    );
+    let fmt = |x: Option<usize>| x.map_or("-".to_string(), |x| x.to_string());
     Some((
         format!(
             "{} | {} | {mean:.2} | {} | {:.2}/{:.2} | {:.2}/{:.2}",
@@ -277,9 +228,9 @@ fn artist_line(
             fmt(art),
             blender.map_or("?".into(), |b| format!("{b:.2}")),
             rigid_share(&ours),
-            rigid_share(&artist),
-            blend_width(&mesh, &skeleton, &ours),
-            blend_width(&mesh, &skeleton, &artist),
+            rigid_share(&artist.weights),
+            blend_width(mesh, skeleton, &ours),
+            blend_width(mesh, skeleton, &artist.weights),
         ),
         mean,
         blender,
