@@ -69,3 +69,23 @@ pub fn skelfit(args: &[&str]) -> Output {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
+
+/// The MakeHuman bodies of the reference data (`humanoid/mh_*`), sorted, or `None` (skip).
+pub fn makehuman_bodies() -> Option<Vec<PathBuf>> {
+    let root = refdata()?;
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(root.join("humanoid"))
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with("mh_"))
+        })
+        .collect();
+    dirs.sort();
+    assert!(
+        !dirs.is_empty(),
+        "no MakeHuman bodies in {}",
+        root.display()
+    );
+    Some(dirs)
+}

@@ -60,16 +60,9 @@ fn chain_end(r: &Rig, id: skelfit::skeleton::JointId) -> skelfit::skeleton::Join
 /// printed beside it.
 #[test]
 fn makehuman_toes_sit_at_the_ball_and_the_tip_of_the_foot() {
-    let Some(root) = crate::common::refdata() else {
+    let Some(dirs) = crate::common::makehuman_bodies() else {
         return;
     };
-    let mut dirs: Vec<_> = std::fs::read_dir(root.join("humanoid"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("mh_"))
-        .collect();
-    dirs.sort();
-    assert!(!dirs.is_empty());
     for dir in dirs {
         let mesh = load(&dir.join("mesh.obj")).unwrap();
         let h = height(&mesh);

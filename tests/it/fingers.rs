@@ -30,16 +30,9 @@ fn bundled() -> Mesh {
 /// than the reference pinky (the thumb on the correct side of the palm).
 #[test]
 fn makehuman_fingers_are_within_8_mm_with_thumbs_on_their_side() {
-    let Some(root) = crate::common::refdata() else {
+    let Some(dirs) = crate::common::makehuman_bodies() else {
         return;
     };
-    let mut dirs: Vec<_> = std::fs::read_dir(root.join("humanoid"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("mh_"))
-        .collect();
-    dirs.sort();
-    assert!(!dirs.is_empty());
     for dir in dirs {
         let mesh = load(&dir.join("mesh.obj")).unwrap();
         let r = rig(&mesh, &RigOptions::default()).unwrap();
