@@ -19,12 +19,14 @@ pub(super) struct VoxelWeights {
 
 /// The weights of every interior voxel and of every `needed` voxel (one flag per grid voxel:
 /// those around a vertex) from the geodesic field ([`voxel_row`]), then
-/// [`SkinOptions::voxel_smoothing_iterations`] rounds of diffusion ([`diffuse`]).
+/// [`SkinOptions::voxel_smoothing_iterations`] rounds of diffusion ([`diffuse`]) at the rates
+/// of [`rates`] (`radius`: each joint's bone radius, voxels).
 pub(super) fn smoothed_voxel_weights(
     field: &Field,
     grid: &Grid,
     needed: &[bool],
     options: &SkinOptions,
+    radius: &[f64],
 ) -> VoxelWeights {
     let mut slot = vec![NONE; grid.len()];
     let mut voxels: Vec<usize> = field.interior.clone();
@@ -43,7 +45,13 @@ pub(super) fn smoothed_voxel_weights(
         .collect();
     if options.voxel_smoothing_iterations > 0 {
         let linked = links(field, grid, &voxels, &slot);
-        diffuse(&mut rows, &linked, options.voxel_smoothing_iterations);
+        let rates = rates(field, &voxels, radius, options.blend_radius);
+        diffuse(
+            &mut rows,
+            &linked,
+            &rates,
+            options.voxel_smoothing_iterations,
+        );
     }
     VoxelWeights { slot, rows }
 }
@@ -94,6 +102,30 @@ fn voxel_row(
     mixer.pruned(0.0)
 }
 
+/// The diffusion rate of each of `voxels` (grid indices): `(r / blend_radius)²` of its nearest
+/// joint's bone radius `r` (voxels), between [`MIN_RATE`] and 1; 1 everywhere when
+/// `blend_radius` is 0. A round at rate `a` moves a voxel's weights the fraction `a` of the way
+/// to the mean of itself and its neighbours, so the blend spreads `sqrt(a)` times as far: in
+/// proportion to the thickness of the body part where it is thinner than `blend_radius`, as
+/// bone heat's blend scales with the distance to the bones.
+fn rates(field: &Field, voxels: &[usize], radius: &[f64], blend_radius: f64) -> Vec<f64> {
+    voxels
+        .par_iter()
+        .with_min_len(4096)
+        .map(|&index| {
+            let joint = field.labels[field.nearest[index] as usize * LABELS];
+            match radius.get(joint as usize) {
+                Some(&r) if blend_radius > 0.0 => (r / blend_radius).powi(2).clamp(MIN_RATE, 1.0),
+                _ => 1.0,
+            }
+        })
+        .collect()
+}
+
+/// The smallest diffusion rate of [`rates`]: a finger's or a hoof's blend still spreads about
+/// a fifth as far as a torso's.
+const MIN_RATE: f64 = 0.05;
+
 /// The weight of a joint at geodesic distance `d` (voxel units), before normalisation.
 fn falloff(d: f64, power: f64) -> f64 {
     d.max(0.5).powf(-power)
@@ -141,7 +173,10 @@ fn links(field: &Field, grid: &Grid, voxels: &[usize], slot: &[u32]) -> Vec<[u32
 /// allocation per round); a row whose neighbours all equal it stays, and one whose
 /// neighbours have its joints or together at most four is blended without the general
 /// mix-and-prune ([`Row::blend_same_joints`], [`blend_few`]).
-fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], iterations: usize) {
+///
+/// A row whose rate (`rates[v]`, see [`rates`]) is below 1 moves only that fraction of the way
+/// to the mean each round.
+fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], rates: &[f64], iterations: usize) {
     let mut next = vec![Row::EMPTY; rows.len()];
     for _ in 0..iterations {
         let current: &[Row] = rows;
@@ -149,15 +184,15 @@ fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], iterations: usize) {
             .enumerate()
             .with_min_len(256)
             .for_each_init(Mixer::default, |mixer, (v, out)| {
-                *out = diffused_row(current, &linked[v], v, mixer);
+                *out = diffused_row(current, &linked[v], v, rates[v], mixer);
             });
         std::mem::swap(rows, &mut next);
     }
 }
 
-/// One round of [`diffuse`] at row `v`.
+/// One round of [`diffuse`] at row `v`, at `rate`.
 #[inline]
-fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) -> Row {
+fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, rate: f64, mixer: &mut Mixer) -> Row {
     let own = &rows[v];
     let mut count = 0;
     let mut agree = true;
@@ -172,7 +207,8 @@ fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) ->
     if agree {
         return *own;
     }
-    let share = 1.0 / (count + 1) as f64;
+    let share = rate / (count + 1) as f64;
+    let keep = 1.0 - rate + share;
     let neighbours = || {
         linked
             .iter()
@@ -180,15 +216,15 @@ fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) ->
             .map(|&u| (&rows[u as usize], share))
     };
     if same_joints {
-        if let Some(row) = own.blend_same_joints(share, neighbours()) {
+        if let Some(row) = own.blend_same_joints(keep, neighbours()) {
             return row;
         }
     }
-    if let Some(row) = blend_few(own, share, neighbours()) {
+    if let Some(row) = blend_few(own, keep, neighbours()) {
         return row;
     }
     mixer.clear();
-    mixer.add_row(own, share);
+    mixer.add_row(own, keep);
     for (row, share) in neighbours() {
         mixer.add_row(row, share);
     }
