@@ -383,9 +383,10 @@ impl Walker<'_> {
     /// most `limit`, and the joint whose point it ran into, if any: to the last interior
     /// sample before the figure's surface or, where a segment of another joint (one of `lines`
     /// not touching `joint`) or another joint's point (one of `points`) comes within the local
-    /// radius (the inscribed ball of the sample reaches it: the walk has left the joint's body
-    /// part and entered another's), to the inscribed ball around that segment's or point's
-    /// nearest point, projected on the walk: a lower leg runs down to the ball of the IK foot
+    /// radius ahead of the joint (the inscribed ball of the sample reaches it: the walk has
+    /// left the joint's body part and entered another's; ears beside a head are not ahead of
+    /// its snout), to the inscribed ball around that segment's or point's nearest point,
+    /// projected on the walk: a lower leg runs down to the ball of the IK foot
     /// joint below it, which carries the hoof. Joints in `ignored` and their segments are not
     /// in the way.
     fn walk(
@@ -466,7 +467,7 @@ impl Walker<'_> {
                     };
                     (q.distance(p), q, hit)
                 })
-                .filter(|&(d, _, _)| d < radius)
+                .filter(|&(d, q, _)| d < radius && (q - origin).dot(direction) > 0.0)
                 .min_by(|a, b| a.0.total_cmp(&b.0));
             if let Some((_, q, hit)) = near {
                 let before = (q - origin).dot(direction) - self.distance.radius_at(q);
