@@ -41,15 +41,17 @@ impl SegmentVoxels {
 /// Segments derived from the bones of a skeleton alone, for skeletons that come without path
 /// tree chains (the anatomical fit, reference rigs, tests).
 ///
-/// Every deforming joint gets one segment per child (the bone from it to the child) and, where
-/// a part of the figure is nearer to the joint's point than to any bone, a segment of its own
-/// into that part ([`own_tips`]): a deforming leaf always (a head beyond a short neck, a hoof
-/// below a lower leg), a joint with children when the part reaches beyond the local radius (a
-/// head whose bones lead to the ears, not into the skull). The chain voxels are the interior
-/// voxels nearest to sample points every [`SkinOptions::bone_sample_spacing`] voxels along the
-/// segment (searched within [`SkinOptions::bone_search_radius`]). Segments come in joint
-/// order, a joint's own segment before those to its children, children in joint order. Joints
-/// must be valid ids of `skeleton` (parents before children).
+/// Every deforming joint gets one segment per child (the bone from it to the child) and may
+/// get one of its own into the part of the figure its child bones do not reach, along its bone
+/// axis where the skeleton's rest frames give one (see [`SkinOptions::leaf_extension`]): every
+/// deforming leaf (a head beyond a short neck; a lower leg down to the inscribed ball of the IK
+/// foot joint below it), a joint with children whose axis leads away from them (a head whose
+/// bones lead to the ears: into the snout), and a deforming leaf under a control root (a
+/// foot), towards the part nearest to it where its frame tells nothing. The chain voxels are
+/// the interior voxels nearest to sample points every [`SkinOptions::bone_sample_spacing`]
+/// voxels along the segment (searched within [`SkinOptions::bone_search_radius`]). Segments
+/// come in joint order, a joint's own segment before those to its children, children in joint
+/// order. Joints must be valid ids of `skeleton` (parents before children).
 pub fn bone_segments(
     skeleton: &Skeleton,
     solid: &Solid,
@@ -195,14 +197,15 @@ impl Regions {
 /// The distal end of every deforming joint's own segment, `None` where it has none.
 ///
 /// A leaf's segment runs along its bone's axis ([`bone_axes`]) or, where the skeleton's frames
-/// do not give it, along its parent bone, to the end of its body part ([`walk`]: where the
-/// figure ends, or up to the joint of another chain that carries the rest, such as an IK foot
-/// joint below a lower leg), for at most [`SkinOptions::leaf_extension`] of the parent bone's
-/// length. A joint with children gets one along its bone's axis where that axis leads away
-/// from all its children (a head whose bones lead to the ears, its axis into the snout). A
-/// deforming leaf without a deforming parent (a foot parented to a control root: its parent
-/// bone means nothing) is placed last, along its axis or, without one, towards the part of
-/// the figure nearer to its point than to every other segment ([`Regions`]).
+/// do not give it, along its parent bone, to the end of its body part ([`Walker::walk`]: where
+/// the figure ends, or up to the inscribed ball of another chain's joint ahead that carries the
+/// rest, such as an IK foot joint below a lower leg), for at most
+/// [`SkinOptions::leaf_extension`] of the parent bone's length. A joint with children gets one
+/// along its bone's axis where that axis leads away from all its children (by 30° or more) and
+/// not back along its parent bone (a head whose bones lead to the ears, its axis into the
+/// snout). A deforming leaf without a deforming parent (a foot parented to a control root: its
+/// parent bone means nothing) is placed last, along its axis or, without one, towards the part
+/// of the figure nearer to its point than to every other segment ([`Regions`]).
 fn own_tips(
     skeleton: &Skeleton,
     children: &[Vec<JointId>],
