@@ -21,7 +21,7 @@ mod refdata;
 
 use refdata::{
     artist_rig, blender_file, blender_weights, check, distance_with_unweighted, exported, models,
-    ArtistRig,
+    weight_difference, ArtistRig,
 };
 use skelfit::mesh::load;
 use skelfit::pipeline::{rig, RigOptions};
@@ -58,6 +58,8 @@ struct Blender {
     /// Vertices of the artist's mesh Blender left without weight (or that matched no vertex
     /// of Blender's export).
     unweighted: usize,
+    /// How far Blender's weights lie from the artist's ([`weight_difference`]).
+    difference: f64,
 }
 
 struct OnArtist {
@@ -68,6 +70,8 @@ struct OnArtist {
     size: f64,
     check_vertices: usize,
     warnings: usize,
+    /// How far skelfit's weights lie from the artist's ([`weight_difference`]).
+    difference: f64,
 }
 
 fn ours(dir: &Path, kind: SweepKind, method: SkinMethod) -> Result<DeformationCheck, String> {
@@ -121,6 +125,7 @@ fn on_artist(rig: &ArtistRig, kind: SweepKind) -> Result<OnArtist, String> {
         size,
         check_vertices: rig.mesh.positions.len(),
         warnings: skinned.warnings.len(),
+        difference: weight_difference(rig, &weights),
     })
 }
 
@@ -138,6 +143,7 @@ fn blender(file: &Path, rig: &ArtistRig, kind: SweepKind) -> Option<Result<Blend
             check,
             distance,
             unweighted,
+            difference: weight_difference(rig, &weights),
         })
     })())
 }
@@ -168,12 +174,16 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
          skeleton, the same mesh and the same deforming joints, at most four per vertex as its \
          glTF exporter writes, measured the same way; where bone heat left vertices unweighted \
          on the first try, after Merge by Distance; vertices it still leaves unweighted stay at \
-         rest, as in Blender, and count in the distance. Regenerate them with Blender 3.4 \
+         rest, as in Blender, and count in the distance. \"weights apart\" is how far \
+         skelfit's and Blender's weights lie from the artist's: per vertex, half the sum of the \
+         absolute weight differences over the joints (0: the same, 1: no joint in common), \
+         averaged; where Blender's are within a few hundredths, the artist's weights are bone \
+         heat's own, touched up. Regenerate them with Blender 3.4 \
          (not part of `cargo test`): `blender -b --python tools/blender_autoweights.py -- \
          reports/deformation/blender ../shared/refdata/humanoid/* ../shared/refdata/quadruped/*`, \
          then this example; \"not measured\" where no export is present.\n\n\
-         | model | artist sweep >2x (>1.5x) | skelfit on artist sweep >2x (>1.5x) | Blender bone heat sweep >2x (>1.5x) | random poses: skelfit mean % | skelfit max % | Blender bone heat mean % | Blender max % | anchor: mean % | vertices measured | Blender unweighted | skin warnings |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+         | model | artist sweep >2x (>1.5x) | skelfit on artist sweep >2x (>1.5x) | Blender bone heat sweep >2x (>1.5x) | random poses: skelfit mean % | skelfit max % | Blender bone heat mean % | Blender max % | weights apart from the artist's: skelfit / Blender | anchor: mean % | vertices measured | Blender unweighted | skin warnings |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
         options.poses, options.max_degrees, options.seed
     );
     let sweep = |c: &DeformationCheck| {
@@ -200,14 +210,21 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
                 let anchor = 100.0 * o.anchor.mean / o.size;
                 means.push(mean);
                 anchor_means.push(anchor);
-                let (b_sweep, b_mean, b_max, b_unweighted) = match &row.blender {
+                let (b_sweep, b_mean, b_max, b_apart, b_unweighted) = match &row.blender {
                     None => (
                         "not measured".to_string(),
                         "not measured".to_string(),
                         "—".to_string(),
                         "—".to_string(),
+                        "—".to_string(),
                     ),
-                    Some(Err(e)) => (format!("failed: {e}"), "—".into(), "—".into(), "—".into()),
+                    Some(Err(e)) => (
+                        format!("failed: {e}"),
+                        "—".into(),
+                        "—".into(),
+                        "—".into(),
+                        "—".into(),
+                    ),
                     Some(Ok(b)) => {
                         let b_mean = 100.0 * b.distance.mean / o.size;
                         pairs.push((mean, b_mean));
@@ -215,13 +232,14 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
                             sweep(&b.check),
                             format!("{b_mean:.2}"),
                             format!("{:.1}", 100.0 * b.distance.max / o.size),
+                            format!("{:.2}", b.difference),
                             b.unweighted.to_string(),
                         )
                     }
                 };
                 let _ = writeln!(
                     md,
-                    "| {} | {} | {} | {} | {:.2} | {:.1} | {} | {} | {:.2} | {} / {} | {} | {} |",
+                    "| {} | {} | {} | {} | {:.2} | {:.1} | {} | {} | {:.2} / {} | {:.2} | {} / {} | {} | {} |",
                     row.model,
                     artist,
                     sweep(&o.check),
@@ -230,6 +248,8 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
                     100.0 * o.distance.max / o.size,
                     b_mean,
                     b_max,
+                    o.difference,
+                    b_apart,
                     anchor,
                     o.distance.vertices,
                     o.check_vertices,
@@ -240,7 +260,7 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
             Err(e) => {
                 let _ = writeln!(
                     md,
-                    "| {} | {} | failed: {e} | — | — | — | — | — | — | — | — | — |",
+                    "| {} | {} | failed: {e} | — | — | — | — | — | — | — | — | — | — |",
                     row.model, artist
                 );
             }
@@ -267,16 +287,38 @@ fn on_artist_section(md: &mut String, rows: &[Row]) {
             pairs.iter().filter(|p| p.0 < p.1).count()
         );
     }
+    // The models whose artist's weights are bone heat's own (Blender's lie within 0.1).
+    let bone_heat: Vec<String> = rows
+        .iter()
+        .filter_map(|row| match (&row.on_artist, &row.blender) {
+            (Some(Ok(o)), Some(Ok(b))) if b.difference < 0.1 => Some(format!(
+                "{} ({:.2} apart; {:.2} % against skelfit's {:.2} %)",
+                row.model.rsplit('/').next().unwrap_or(&row.model),
+                b.difference,
+                100.0 * b.distance.mean / o.size,
+                100.0 * o.distance.mean / o.size
+            )),
+            _ => None,
+        })
+        .collect();
+    if !bone_heat.is_empty() {
+        let _ = writeln!(
+            md,
+            "\nWhere Blender's weights lie within 0.1 of the artist's, the artist kept bone heat's \
+             own weights, touched up, and Blender's distance measures its own output: {}.",
+            bone_heat.join(", ")
+        );
+    }
     let _ = writeln!(
         md,
-        "\nThe largest distances (35-55 %) are on the Quaternius animals whose hoof or paw bones \
-         are IK joints outside the leg chains (`IKFrontLeg.L`, `IKBackLeg.R`...: deforming root \
-         joints at the feet). The geodesic binding gives them the skin nearest to them, part of \
-         the lower leg as well as the hoof; the artist gives them the hoof alone. Random \
-         forward-kinematics poses leave those joints where they are while the leg turns, so the \
-         lower leg's skin splits between them; under the IK solver they are meant for, they \
-         follow the leg. The animals without such joints (apatosaurus, rat, triceratops) stay \
-         below 25 %."
+        "\nThe largest distances (20-30 % of the figure at the worst vertex) are on the \
+         Quaternius animals whose hoof or paw bones are IK joints outside the leg chains \
+         (`IKFrontLeg.L`, `IKBackLeg.R`...: deforming root joints at the feet). The lower leg's \
+         segment ends where the IK joint's inscribed ball begins, so the hoof follows the IK \
+         joint as the artist's does, but the ankle blends the two, and random \
+         forward-kinematics poses leave the IK joints where they are while the leg turns; \
+         under the IK solver they are meant for, they follow the leg. The animals without such \
+         joints (apatosaurus, rat, triceratops) stay below 15 %."
     );
 }
 
@@ -427,6 +469,7 @@ fn run() -> Result<(), String> {
                         "random_pose_distance": o.distance,
                         "anchor_random_pose_distance": o.anchor,
                         "figure_size": o.size,
+                        "weight_difference": o.difference,
                         "mean_percent": 100.0 * o.distance.mean / o.size,
                         "max_percent": 100.0 * o.distance.max / o.size,
                         "warnings": o.warnings,
@@ -438,6 +481,7 @@ fn run() -> Result<(), String> {
                         "check": b.check,
                         "random_pose_distance": b.distance,
                         "unweighted_vertices": b.unweighted,
+                        "weight_difference": b.difference,
                     }),
                     Err(e) => serde_json::json!({"error": e}),
                 }),

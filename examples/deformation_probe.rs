@@ -7,8 +7,8 @@
 //! skelfit's weights differ from the artist's on each model (`diag`).
 //!
 //! Run: `cargo run --release --example deformation_probe -- [key=value ...]` with keys
-//! `falloff`, `blend_ratio`, `depth_exponent`, `voxel_smoothing`, `smoothing`, `leaf`, `rig=0`
-//! (skip skelfit's own rigs), `only=SUBSTRING`.
+//! `falloff`, `blend_ratio`, `depth_exponent`, `voxel_smoothing`, `blend_radius`,
+//! `enclosed_air`, `smoothing`, `leaf`, `rig=0` (skip skelfit's own rigs), `only=SUBSTRING`.
 
 #[path = "common/refdata.rs"]
 mod refdata;
@@ -120,6 +120,8 @@ fn main() {
             "voxel_smoothing" => skin.voxel_smoothing_iterations = v.parse().unwrap(),
             "smoothing" => skin.smoothing_iterations = v.parse().unwrap(),
             "leaf" => skin.leaf_extension = v.parse().unwrap(),
+            "blend_radius" => skin.blend_radius = v.parse().unwrap(),
+            "enclosed_air" => skin.enclosed_air = v.parse().unwrap(),
             "rig" => do_rig = v != "0",
             "only" => only = v.into(),
             _ => panic!("unknown key {k}"),

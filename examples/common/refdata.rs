@@ -283,3 +283,31 @@ pub fn distance_with_unweighted(rig: &ArtistRig, weights: &[Vec<(JointId, f64)>]
         vertices: rig.weights.iter().filter(|w| !w.is_empty()).count(),
     }
 }
+
+/// How far `weights` lie from the artist's: per vertex the artist skinned, half the sum over
+/// joints of the absolute weight differences (0: the same weights, 1: no joint in common),
+/// averaged over those vertices.
+pub fn weight_difference(rig: &ArtistRig, weights: &[Vec<(JointId, f64)>]) -> f64 {
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (artist, other) in rig.weights.iter().zip(weights) {
+        if artist.is_empty() {
+            continue;
+        }
+        let mut joints: Vec<JointId> = artist.iter().chain(other).map(|e| e.0).collect();
+        joints.sort_unstable();
+        joints.dedup();
+        let of =
+            |w: &[(JointId, f64)], j: JointId| w.iter().find(|e| e.0 == j).map_or(0.0, |e| e.1);
+        sum += joints
+            .iter()
+            .map(|&j| (of(artist, j) - of(other, j)).abs())
+            .sum::<f64>()
+            / 2.0;
+        count += 1;
+    }
+    if count > 0 {
+        sum / count as f64
+    } else {
+        0.0
+    }
+}

@@ -46,6 +46,7 @@ pub mod check;
 pub mod compare;
 mod deform;
 mod digits;
+mod enclosed;
 mod error;
 mod geodesic;
 mod given;

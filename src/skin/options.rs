@@ -47,6 +47,26 @@ pub struct SkinOptions {
     /// armpits tear (54 edges past 2× over the sweep on `mh_male_heavy_short`, about 30 with
     /// the default; `reports/deformation/`).
     pub voxel_smoothing_iterations: usize,
+    /// Bone radius (voxels) from which the diffusion of
+    /// [`Self::voxel_smoothing_iterations`] runs at full rate ([`SkinMethod::Geodesic`] only):
+    /// where the nearest joint's bones run through a thinner body part (inscribed radius `r`
+    /// along them, median), each round moves a voxel's weights only `(r / blend_radius)²` of
+    /// the way to its neighbours' mean (at least 5 %), so the blend across a joint spreads in
+    /// proportion to the part's thickness, as bone heat's does: a hoof or a finger blends over
+    /// a voxel or two, a thigh or a torso over the full width. Default 3 (the full rate on a
+    /// MakeHuman thigh and torso; on the artists' skeletons of `reports/deformation/` the mean
+    /// random-pose distance to the artists' weights drops from 0.88 to 0.71 % of the figure's
+    /// size, most on the Quaternius animals' feet); 0 diffuses everywhere at the full rate.
+    pub blend_radius: f64,
+    /// Air the figure encloses ([`SkinMethod::Geodesic`] only): an outside voxel that meets
+    /// the figure in all six axis directions within this fraction of the grid's longest side
+    /// counts as inside for the weights, which may then cross it. A garment modelled as a thin
+    /// shell around a hollow (a jacket over a skinny torso, open at the hem) then follows the
+    /// bones of the body inside it rather than the arms it touches at the shoulders
+    /// (`quaternius_cyberpunk_character` on its artist's skeleton: 7 edges past 2× over the
+    /// sweep → 0, `reports/deformation/`). The gaps between limbs (armpits, the crotch) are
+    /// open to the front and back and stay outside. Default 0.15; 0 turns it off.
+    pub enclosed_air: f64,
     /// Rounds of Laplacian smoothing of the geodesic weights over the mesh's edges
     /// ([`SkinMethod::Geodesic`] only); an edge's share is scaled by (voxel size / edge
     /// length)², so coarse low-poly meshes are barely smoothed. Meshes much finer than the
@@ -72,14 +92,16 @@ pub struct SkinOptions {
     pub bone_search_radius: usize,
     /// Longest extension of the segment of a leaf joint (one without children) in
     /// [`bone_segments`](super::bone_segments), as a multiple of its parent bone's length,
-    /// continued along the parent bone's direction. The extension ends earlier where the
-    /// figure ends (crossing gaps between shells no wider than
-    /// [`Self::bone_search_radius`]) or where another bone comes within the local radius (the
-    /// extension has entered another body part). Default infinite: a leaf bone carries the
-    /// whole end of the figure it points into, however short its parent bone (a head beyond a
-    /// short neck: with one parent length, the neck shared the head's skin and the head moved
-    /// apart from the artist's, CesiumMan 0.74 → 0.26 % random-pose distance,
-    /// `reports/deformation/`). Beyond the seed, which ends chains at end-effector points.
+    /// along the leaf's bone axis (where the skeleton's rest frames give one) or its parent
+    /// bone's direction. The extension ends earlier where the figure ends (crossing gaps
+    /// between shells no wider than [`Self::bone_search_radius`]) or where another bone or
+    /// joint comes within the local radius (the extension has entered another body part:
+    /// it then ends at that joint's inscribed ball, so that an IK foot joint below a lower leg
+    /// keeps the hoof). Default infinite: a leaf bone carries the whole end of the figure it
+    /// points into, however short its parent bone (a head beyond a short neck: with one parent
+    /// length, the neck shared the head's skin and the head moved apart from the artist's,
+    /// CesiumMan 0.74 → 0.26 % random-pose distance, `reports/deformation/`). Beyond the seed,
+    /// which ends chains at end-effector points.
     pub leaf_extension: f64,
 }
 
@@ -91,6 +113,8 @@ impl Default for SkinOptions {
             depth_exponent: 1.0,
             blend_ratio: 2.0,
             voxel_smoothing_iterations: 75,
+            blend_radius: 3.0,
+            enclosed_air: 0.15,
             smoothing_iterations: 32,
             sphere_scale: 1.0,
             connectivity: Connectivity::TwentySix,
@@ -138,6 +162,18 @@ impl SkinOptions {
                 self.depth_exponent,
                 (0.0..=8.0).contains(&self.depth_exponent),
                 "give a number from 0 to 8",
+            ),
+            (
+                "blend_radius",
+                self.blend_radius,
+                self.blend_radius >= 0.0,
+                "give zero or more voxels (0: the full rate everywhere)",
+            ),
+            (
+                "enclosed_air",
+                self.enclosed_air,
+                (0.0..=1.0).contains(&self.enclosed_air),
+                "give a fraction from 0 to 1 of the grid's longest side (0: off)",
             ),
             (
                 "leaf_extension",

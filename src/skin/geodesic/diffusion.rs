@@ -19,12 +19,14 @@ pub(super) struct VoxelWeights {
 
 /// The weights of every interior voxel and of every `needed` voxel (one flag per grid voxel:
 /// those around a vertex) from the geodesic field ([`voxel_row`]), then
-/// [`SkinOptions::voxel_smoothing_iterations`] rounds of diffusion ([`diffuse`]).
+/// [`SkinOptions::voxel_smoothing_iterations`] rounds of diffusion ([`diffuse`]) at the rates
+/// of [`rates`] (`radius`: each joint's bone radius, voxels).
 pub(super) fn smoothed_voxel_weights(
     field: &Field,
     grid: &Grid,
     needed: &[bool],
     options: &SkinOptions,
+    radius: &[f64],
 ) -> VoxelWeights {
     let mut slot = vec![NONE; grid.len()];
     let mut voxels: Vec<usize> = field.interior.clone();
@@ -43,7 +45,13 @@ pub(super) fn smoothed_voxel_weights(
         .collect();
     if options.voxel_smoothing_iterations > 0 {
         let linked = links(field, grid, &voxels, &slot);
-        diffuse(&mut rows, &linked, options.voxel_smoothing_iterations);
+        let rates = rates(field, &voxels, radius, options.blend_radius);
+        diffuse(
+            &mut rows,
+            &linked,
+            &rates,
+            options.voxel_smoothing_iterations,
+        );
     }
     VoxelWeights { slot, rows }
 }
@@ -99,6 +107,30 @@ fn falloff(d: f64, power: f64) -> f64 {
     d.max(0.5).powf(-power)
 }
 
+/// The diffusion rate of each of `voxels` (grid indices): `(r / blend_radius)²` of its nearest
+/// joint's bone radius `r` (voxels), between [`MIN_RATE`] and 1; 1 everywhere when
+/// `blend_radius` is 0. A round at rate `a` moves a voxel's weights the fraction `a` of the way
+/// to the mean of itself and its neighbours, so the blend spreads `sqrt(a)` times as far: in
+/// proportion to the thickness of the body part where it is thinner than `blend_radius`, as
+/// bone heat's blend scales with the distance to the bones.
+fn rates(field: &Field, voxels: &[usize], radius: &[f64], blend_radius: f64) -> Vec<f64> {
+    voxels
+        .par_iter()
+        .with_min_len(4096)
+        .map(|&index| {
+            let joint = field.labels[field.nearest[index] as usize * LABELS];
+            match radius.get(joint as usize) {
+                Some(&r) if blend_radius > 0.0 => (r / blend_radius).powi(2).clamp(MIN_RATE, 1.0),
+                _ => 1.0,
+            }
+        })
+        .collect()
+}
+
+/// The smallest diffusion rate of [`rates`]: a finger's or a hoof's blend still spreads about
+/// a fifth as far as a torso's.
+const MIN_RATE: f64 = 0.05;
+
 /// Per weighted voxel (`voxels`, grid indices), the rows (`slot`) of its face neighbours
 /// that diffusion links it to, `NONE` for the rest: two voxels outside the figure, or one
 /// outside and one inside, are linked only where their nearest interior voxels touch, so
@@ -144,7 +176,10 @@ fn links(field: &Field, grid: &Grid, voxels: &[usize], slot: &[u32]) -> Vec<[u32
 /// where it or one of its neighbours changed in the round before ([`Settled`]); the others
 /// (a limb's core on one bone, and whatever has stopped moving) keep their value, which both
 /// buffers already hold.
-fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], iterations: usize) {
+///
+/// A row whose rate (`rates[v]`, see [`rates`]) is below 1 moves only that fraction of the way
+/// to the mean each round.
+fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], rates: &[f64], iterations: usize) {
     let mut next = rows.clone();
     let mut settled = Settled::new(rows.len());
     for _ in 0..iterations {
@@ -160,7 +195,7 @@ fn diffuse(rows: &mut Vec<Row>, linked: &[[u32; 6]], iterations: usize) {
                     *moves = false;
                     return;
                 }
-                let row = diffused_row(current, link, v, mixer);
+                let row = diffused_row(current, link, v, rates[v], mixer);
                 *moves = row != current[v];
                 *out = row;
             });
@@ -197,9 +232,9 @@ impl Settled {
     }
 }
 
-/// One round of [`diffuse`] at row `v`.
+/// One round of [`diffuse`] at row `v`, at `rate`.
 #[inline]
-fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) -> Row {
+fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, rate: f64, mixer: &mut Mixer) -> Row {
     let own = &rows[v];
     let mut count = 0;
     let mut agree = true;
@@ -214,7 +249,8 @@ fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) ->
     if agree {
         return *own;
     }
-    let share = 1.0 / (count + 1) as f64;
+    let share = rate / (count + 1) as f64;
+    let keep = 1.0 - rate + share;
     let neighbours = || {
         linked
             .iter()
@@ -222,9 +258,9 @@ fn diffused_row(rows: &[Row], linked: &[u32; 6], v: usize, mixer: &mut Mixer) ->
             .map(|&u| (&rows[u as usize], share))
     };
     if same_joints {
-        if let Some(row) = own.blend_same_joints(share, neighbours()) {
+        if let Some(row) = own.blend_same_joints(keep, neighbours()) {
             return row;
         }
     }
-    mix(own, share, neighbours(), mixer)
+    mix(own, keep, neighbours(), mixer)
 }

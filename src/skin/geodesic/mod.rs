@@ -5,7 +5,8 @@
 //! continuously over the surface, so no edge is torn when a joint turns.
 //!
 //! ```text
-//! bone voxels (SegmentVoxels, one label per joint)
+//! bone voxels (SegmentVoxels, one label per joint); interior voxels, plus the air the
+//! figure encloses (`enclosed_air`: the hollow inside a jacket modelled as a thin shell)
 //!   │ K-nearest-label Dijkstra through the interior voxels (26-neighbourhood, lengths 1, √2,
 //!   │ √3, each step costing its length × depth^-depth_exponent: shallow contacts cost more)
 //!   ▼
@@ -15,7 +16,8 @@
 //!   ▼ times as long as the nearest joint's, f(d) = d^(−falloff)
 //! per voxel (interior, and around the vertices): ≤ 4 joints
 //!   │ `voxel_smoothing_iterations` rounds of diffusion between face neighbours (outside
-//!   ▼ voxels only where their nearest interior voxels touch), pruned to four each round
+//!   │ voxels only where their nearest interior voxels touch), pruned to four each round,
+//!   ▼ slower where the nearest joint's bones are thinner than `blend_radius`
 //! per vertex: trilinear blend of the weight vectors of the 8 voxel centres around it
 //!   │ every prune to four joints subtracts the fifth's weight, so a joint leaves the set
 //!   ▼ with weight 0 (no jump)
@@ -37,6 +39,7 @@ mod field;
 mod rows;
 mod surface;
 
+use super::enclosed::with_enclosed_air;
 use super::weights::nearest_segment;
 use super::{SegmentVoxels, SkinOptions};
 use crate::distance::DistanceMap;
@@ -71,6 +74,12 @@ pub(crate) fn geodesic_weights(
     segments: &[SegmentVoxels],
     options: &SkinOptions,
 ) -> (Vec<Vec<(JointId, f64)>>, Vec<usize>) {
+    // The figure with the air it encloses, which the weights may cross (a hollow jacket).
+    let enclosed = with_enclosed_air(solid, options.enclosed_air).map(|solid| {
+        let distance = crate::distance::edt(&solid);
+        (solid, distance)
+    });
+    let (solid, distance) = enclosed.as_ref().map_or((solid, distance), |(s, d)| (s, d));
     let grid = solid.grid;
     let needed = voxels_around_vertices(mesh, solid);
     // The mesh's adjacency does not depend on the field: built beside the shortest paths
@@ -78,7 +87,8 @@ pub(crate) fn geodesic_weights(
     let (voxels, adjacency) = rayon::join(
         || {
             let field = field(solid, distance, segments, options, &needed);
-            smoothed_voxel_weights(&field, &grid, &needed, options)
+            let radius = bone_radius(skeleton, distance, segments);
+            smoothed_voxel_weights(&field, &grid, &needed, options, &radius)
         },
         || Adjacency::new(mesh),
     );
@@ -96,6 +106,25 @@ pub(crate) fn geodesic_weights(
         grid.voxel_size,
     );
     (vertex_weights(&rows), isolated)
+}
+
+/// Per joint, the thickness of its bones' body part: the median inscribed radius (voxels) over
+/// the chain voxels of its segments (0 without any).
+fn bone_radius(
+    skeleton: &Skeleton,
+    distance: &DistanceMap,
+    segments: &[SegmentVoxels],
+) -> Vec<f64> {
+    let mut per: Vec<Vec<f64>> = vec![Vec::new(); skeleton.len()];
+    for s in segments {
+        per[s.joint.0].extend(s.voxels.iter().map(|&v| distance.distance(v)));
+    }
+    per.into_iter()
+        .map(|mut r| {
+            r.sort_by(f64::total_cmp);
+            r.get(r.len() / 2).copied().unwrap_or(0.0)
+        })
+        .collect()
 }
 
 /// One flag per grid voxel: whether it is one of the eight voxels around a vertex.
