@@ -41,23 +41,18 @@ fn walls(solid: &Solid, reach: usize) -> Vec<u8> {
         .enumerate()
         .for_each(|(z, slice)| {
             let base = z * nx * ny;
-            for y in 0..ny {
-                scan(
-                    nx,
-                    |x| base + y * nx + x,
-                    inside,
-                    reach,
-                    |x, c| slice[y * nx + x] += c,
-                );
-            }
-            for x in 0..nx {
-                scan(
-                    ny,
-                    |y| base + y * nx + x,
-                    inside,
-                    reach,
-                    |y, c| slice[y * nx + x] += c,
-                );
+            // Rows along x (stride 1, one per y), then along y (stride nx, one per x).
+            for (len, lines, along, across) in [(nx, ny, 1, nx), (ny, nx, nx, 1)] {
+                for line in 0..lines {
+                    let at = |k: usize| line * across + k * along;
+                    scan(
+                        len,
+                        |k| base + at(k),
+                        inside,
+                        reach,
+                        |k, c| slice[at(k)] += c,
+                    );
+                }
             }
         });
     // z: along columns.
