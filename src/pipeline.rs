@@ -5,8 +5,8 @@ mod rig;
 mod warning;
 
 pub use rig::{
-    auto_template, label_by_bones, missing_parts, more_limbs_than, no_template_fits, rig, Rig,
-    RigOptions, RigWarning, TemplateChoice, GENERAL, MEDIAL_FALLBACK,
+    auto_template, label_by_bones, label_by_skin, missing_parts, more_limbs_than, no_template_fits,
+    rig, Rig, RigOptions, RigWarning, TemplateChoice, GENERAL, MEDIAL_FALLBACK,
 };
 
 use crate::distance::{edt, DistanceMap};

@@ -1,5 +1,5 @@
 //! `skelfit label MESH -o labels.json [--up +Y] [--forward +Z|auto] [--labels OVERRIDE.json]
-//! [--ply OUT.ply] [--svg OUT.svg] [--vertex-labels bones|medial]`: body-part labels
+//! [--ply OUT.ply] [--svg OUT.svg] [--vertex-labels skin|bones|medial]`: body-part labels
 //! (dissertation ch.7); and
 //! `skelfit label --table REFDATA -o DIR`: the labelling accuracy table over reference models.
 
@@ -10,17 +10,20 @@ use skelfit::anatomy::{
     label_with_overrides, labels_json, labels_ply, labels_svg, LabelPipelineOptions, Overrides,
 };
 use skelfit::eval::{label_table_json, label_table_markdown, label_table_models, label_table_row};
-use skelfit::pipeline::{label_by_bones, RigOptions, RigWarning};
+use skelfit::pipeline::{label_by_bones, label_by_skin, RigOptions, RigWarning};
 use skelfit::warning::Warning;
 use std::path::{Path, PathBuf};
 
 /// Where the per-mesh-vertex labels come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
 pub enum VertexLabels {
-    /// From the nearest bone of the anatomical skeleton fitted to the labels (`skelfit rig`),
-    /// so a vertex's part is that of the bone that moves it; the medial labels when no rig
-    /// can be fitted (with a warning).
+    /// From the rig fitted to the labels (`skelfit rig`): each vertex takes the part whose
+    /// bones carry most of its skin weight (else its nearest bone's), so a vertex's part is
+    /// that of the bones that move it; the medial labels when no rig can be fitted (with a
+    /// warning) or the figure got the general skeleton.
     #[default]
+    Skin,
+    /// From the same rig, each vertex the part of its nearest bone.
     Bones,
     /// From the labelled medial surface through the interior voxels (dissertation ch.7).
     Medial,
@@ -81,10 +84,10 @@ pub struct LabelArgs {
     /// radius count as trunk in the per-vertex labels, in [0, 1] (default 0.4; 0 = off).
     #[arg(long, value_name = "F")]
     pub pectoral_root_scale: Option<f64>,
-    /// Per-vertex labels from the nearest bone of the anatomical skeleton fitted to the labels
-    /// (`bones`, default: runs `skelfit rig`'s fit) or from the labelled medial surface
+    /// Per-vertex labels from the skin weights of the anatomical skeleton fitted to the labels
+    /// (`skin`, default: runs `skelfit rig`), from its nearest bone (`bones`) or from the labelled medial surface
     /// (`medial`, dissertation ch.7).
-    #[arg(long, value_enum, default_value_t = VertexLabels::Bones)]
+    #[arg(long, value_enum, default_value_t = VertexLabels::Skin)]
     pub vertex_labels: VertexLabels,
     /// Regenerate the accuracy table over the reference models below this folder
     /// (`<kind>/<model>/mesh.obj` + `rig_*.json`); writes labels.md and labels.json to -o.
@@ -149,15 +152,14 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
         Some(p) => Some(Overrides::load(p)?),
         None => None,
     };
+    let rig_options = || RigOptions {
+        overrides: overrides.clone(),
+        ..RigOptions::from(options)
+    };
     let labels = match args.vertex_labels {
         VertexLabels::Medial => label_with_overrides(&mesh, &options, overrides.as_ref()),
-        VertexLabels::Bones => label_by_bones(
-            &mesh,
-            &RigOptions {
-                overrides,
-                ..RigOptions::from(options)
-            },
-        ),
+        VertexLabels::Skin => label_by_skin(&mesh, &rig_options()),
+        VertexLabels::Bones => label_by_bones(&mesh, &rig_options()),
     }
     .with_context(|| format!("labelling {}", mesh_path.display()))?;
     let json = serde_json::to_string_pretty(&labels_json(&labels, Some(&source)))?;
@@ -181,8 +183,12 @@ pub fn run(args: &LabelArgs) -> anyhow::Result<()> {
     super::common::say!(
         "vertex labels   {}",
         match args.vertex_labels {
+            VertexLabels::Skin if !fell_back =>
+                "the bones carrying most of each vertex's skin weight",
             VertexLabels::Bones if !fell_back => "nearest bone of the fitted skeleton",
-            VertexLabels::Bones => "medial surface (no rig could be fitted, see the warning)",
+            VertexLabels::Skin | VertexLabels::Bones => {
+                "medial surface (no rig could be fitted, see the warning)"
+            }
             VertexLabels::Medial => "medial surface",
         }
     );

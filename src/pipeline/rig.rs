@@ -203,15 +203,34 @@ pub struct Rig {
 }
 
 impl Rig {
-    /// Its labelling with the per-mesh-vertex labels following the fitted bones
-    /// ([`label_vertices_by_bones`]); `mesh` is the mesh it was rigged from.
+    /// Its labelling with the per-mesh-vertex labels following the fitted bones, each vertex
+    /// the part of its nearest bone ([`label_vertices_by_bones`]); `mesh` is the mesh it was
+    /// rigged from. A rig on the general skeleton (no template fits) has no body parts on its
+    /// joints and keeps the labelling's own per-vertex labels.
     pub fn into_bone_labels(self, mesh: &Mesh) -> Labelling {
-        let mut labelling = self.labelling;
+        self.vertex_labels(mesh, false)
+    }
+
+    /// Like [`Rig::into_bone_labels`], but each vertex takes the part whose joints carry most
+    /// of its skin weight (its nearest bone's where no weight lies on a joint with a part): the
+    /// part of the bones that move it.
+    pub fn into_skin_labels(self, mesh: &Mesh) -> Labelling {
+        self.vertex_labels(mesh, true)
+    }
+
+    /// The labelling with per-vertex labels by skin weight (`by_weight`) or nearest bone; see
+    /// [`Rig::into_skin_labels`] and [`Rig::into_bone_labels`].
+    pub fn vertex_labels(&self, mesh: &Mesh, by_weight: bool) -> Labelling {
+        let mut labelling = self.labelling.clone();
+        if self.fit.template == GENERAL {
+            return labelling;
+        }
         label_vertices_by_bones(
             &mut labelling,
             mesh,
             &self.fit.skeleton,
             &self.fit.canonical,
+            by_weight.then_some(self.skin.weights.as_slice()),
         );
         labelling
     }
@@ -509,18 +528,30 @@ fn checked_template(options: &RigOptions) -> crate::Result<Option<Template>> {
 /// surface, a bad override).
 pub fn label_by_bones(mesh: &Mesh, options: &RigOptions) -> crate::Result<Labelling> {
     checked_template(options)?;
-    bones_or_medial(mesh, options, rig(mesh, options))
+    bones_or_medial(mesh, options, rig(mesh, options), false)
 }
 
-/// The bone-following labels of a fitted `rigged`, or the medial ones with a warning when the
-/// rig failed.
+/// [`rig`], then the labels of [`Rig::into_skin_labels`]: each vertex the part of the bones
+/// carrying most of its skin weight. The medial labels with a warning when the rig fails, as
+/// [`label_by_bones`].
+///
+/// # Errors
+/// As [`label_by_bones`].
+pub fn label_by_skin(mesh: &Mesh, options: &RigOptions) -> crate::Result<Labelling> {
+    checked_template(options)?;
+    bones_or_medial(mesh, options, rig(mesh, options), true)
+}
+
+/// The bone-following labels of a fitted `rigged` (by skin weight or nearest bone), or the
+/// medial ones with a warning when the rig failed.
 fn bones_or_medial(
     mesh: &Mesh,
     options: &RigOptions,
     rigged: crate::Result<Rig>,
+    by_weight: bool,
 ) -> crate::Result<Labelling> {
     match rigged {
-        Ok(r) => Ok(r.into_bone_labels(mesh)),
+        Ok(r) => Ok(r.vertex_labels(mesh, by_weight)),
         Err(e) => {
             let mut labelling =
                 label_with_overrides(mesh, &options.label_pipeline(), options.overrides.as_ref())?;
@@ -639,7 +670,7 @@ mod tests {
         let mesh = Mesh::capsule(glam::DVec3::ZERO, 0.2, 1.0, 8, 24);
         let options = RigOptions::default();
         let failed = Err(AnatomyError::EmptySurface.into());
-        let labels = bones_or_medial(&mesh, &options, failed).unwrap();
+        let labels = bones_or_medial(&mesh, &options, failed, true).unwrap();
         let medial = label(&mesh, &options.label_pipeline()).unwrap();
         assert_eq!(labels.mesh_parts, medial.mesh_parts);
         let warning = labels.warnings.last().unwrap();
