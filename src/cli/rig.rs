@@ -118,13 +118,14 @@ pub struct RigArgs {
     pub spine: String,
     /// Fingers of a humanoid's hands: `auto`, the digits found on each hand's surface beyond
     /// the wrist (thumb..pinky, three joints and a tip each; a mitten hand gets one chain and a
-    /// thumb, with a warning), skinned finger by finger; `off`, the template's single finger
-    /// chain per hand.
+    /// thumb, with a warning), skinned finger by finger; an animal's fore feet get the digits
+    /// their hooves or paws show (no thumb); `off`, the template's single finger chain per hand.
     #[arg(long, value_name = "auto|off", default_value = "auto", value_parser = ["auto", "off"])]
     pub fingers: String,
     /// Toes of an upright figure's feet: `auto`, the toe joint at the ball of the foot (its
     /// widest cross-section) and the toe end at the foot's tip, read from the foot's surface;
-    /// `off`, where the template's leg ratios put them.
+    /// an animal's hind feet get the digits their hooves or paws show; `off`, where the
+    /// template's leg ratios put them.
     #[arg(long, value_name = "auto|off", default_value = "auto", value_parser = ["auto", "off"])]
     pub toes: String,
     /// Fail (exit code 1, nothing written) when the rig lacks a body part the template expects

@@ -29,6 +29,18 @@ pub(super) struct Branch {
     pub split_level: usize,
 }
 
+impl Branch {
+    /// Arc length of its path.
+    pub fn free_length(&self) -> f64 {
+        self.path.windows(2).map(|p| p[0].distance(p[1])).sum()
+    }
+
+    /// The path's web end (its last contour centre).
+    pub fn base(&self) -> DVec3 {
+        self.path[self.path.len() - 1]
+    }
+}
+
 /// The leaf branches of the contour tree, shorter ones than `min_levels` pruned; only
 /// branches that part from a split are returned (a mitten gives none).
 pub(super) fn digit_branches(surface: &HandSurface, step: f64, min_levels: usize) -> Vec<Branch> {

@@ -2,21 +2,22 @@
 
 use super::contour::{digit_branches, Branch};
 use super::place::{digit_frame, place_digit, DigitJoints};
-use super::surface::hand_surface;
+use super::surface::{hand_surface, HandSurface};
 use super::{DigitOptions, DigitWarning};
 use crate::bones::windings;
 use crate::fit::Fit;
 use crate::mesh::Mesh;
 use crate::skeleton::canonical::{CanonicalJoints, Finger};
 use crate::skeleton::{Canonical, Dof, Joint, JointId, Side, Skeleton};
-use crate::template::{LimbGroup, Template};
+use crate::template::{LimbGroup, Posture, Template};
 use glam::DVec3;
 
 /// Replaces each hand's finger chain in `fit` by the digits its surface shows (module docs):
 /// `thumb_01_L`..`pinky_03_R` joints with their canonical keys and a `_end` joint at each tip,
 /// hung from the wrist. A mitten keeps one finger chain, moved onto the mitten (plus a thumb
-/// when it separates). Does nothing when the fit has no wrists or the template's wrist limb
-/// names no digits; `options.enabled: false` switches it off.
+/// when it separates). Does nothing when the fit has no wrists, the template's wrist limb
+/// names no digits or the template is not upright (an animal's feet are
+/// [`super::paws::fit_paws`]'s); `options.enabled: false` switches it off.
 ///
 /// Returns a warning per hand that is not a five-digit hand. Never fails: a hand it cannot read
 /// keeps the fit's chain.
@@ -27,6 +28,9 @@ pub fn fit_hands(
     options: &DigitOptions,
 ) -> Vec<DigitWarning> {
     let mut warnings = Vec::new();
+    if template.posture != Posture::Upright {
+        return warnings; // an animal's feet: `fit_paws`
+    }
     let Some(group) = hand_group(template) else {
         return warnings;
     };
@@ -86,23 +90,7 @@ fn fit_hand(
     ) else {
         return Some(DigitWarning::NoHand { side });
     };
-    let mut branches = digit_branches(&surface, options.level_step * forearm, options.min_levels);
-    // A digit stands out longer than it is wide; a shorter branch is a bump of the palm or of
-    // another body part's surface in reach.
-    branches.retain(|b| free_length(b) >= mean_width(b));
-    // The contour centres of a digit lie inside the figure (a coarse or open surface can give
-    // branches whose centres do not).
-    let centres: Vec<DVec3> = branches
-        .iter()
-        .flat_map(|b| b.path.iter().copied())
-        .collect();
-    let inside: Vec<bool> = windings(mesh, &centres).iter().map(|&w| w != 0).collect();
-    let mut first = 0;
-    branches.retain(|b| {
-        let all = inside[first..first + b.path.len()].iter().all(|&i| i);
-        first += b.path.len();
-        all
-    });
+    let mut branches = separated_digits(mesh, &surface, options.level_step * forearm, options);
     // Thumb first: the deepest web, at equal webs the thinner digit.
     branches.sort_by(|a, b| {
         (a.split_level, base_perimeter(a))
@@ -114,13 +102,13 @@ fn fit_hand(
         return Some(DigitWarning::FingersFused { side, thumb: false });
     }
     let thumb = branches.remove(0);
-    let thumb_base = thumb.path[thumb.path.len() - 1];
+    let thumb_base = thumb.base();
     // Six or more: the four longest fingers; then in order of their bases from the thumb's.
-    branches.sort_by(|a, b| free_length(b).total_cmp(&free_length(a)));
+    branches.sort_by(|a, b| b.free_length().total_cmp(&a.free_length()));
     branches.truncate(Finger::ALL.len() - 1);
     branches.sort_by(|a, b| {
-        let da = a.path[a.path.len() - 1].distance(thumb_base);
-        let db = b.path[b.path.len() - 1].distance(thumb_base);
+        let da = a.base().distance(thumb_base);
+        let db = b.base().distance(thumb_base);
         da.total_cmp(&db)
     });
     let mut digits = vec![(
@@ -146,7 +134,7 @@ fn fit_hand(
         ));
     }
     let palm = palm_normal(w, &digits, axis);
-    replace_hand(fit, group, wrist, side, &digits, palm);
+    replace_hand(fit, group, wrist, side, &digits, palm, true);
     match found {
         2 => Some(DigitWarning::FingersFused { side, thumb: true }),
         5 => None,
@@ -164,9 +152,30 @@ fn mean_width(b: &Branch) -> f64 {
     b.perimeters.iter().sum::<f64>() / (b.perimeters.len().max(1) as f64 * std::f64::consts::PI)
 }
 
-/// Arc length of a branch's path.
-fn free_length(b: &Branch) -> f64 {
-    b.path.windows(2).map(|p| p[0].distance(p[1])).sum()
+/// The digits of a hand's or foot's `surface`: the contour tree's leaf branches (levels
+/// `step` apart) that stand out at least as long as they are wide (a shorter one is a bump of
+/// the palm or of another body part's surface in reach) and whose contour centres all lie
+/// inside the figure (a coarse or open surface can give branches whose centres do not).
+pub(super) fn separated_digits(
+    mesh: &Mesh,
+    surface: &HandSurface,
+    step: f64,
+    options: &DigitOptions,
+) -> Vec<Branch> {
+    let mut branches = digit_branches(surface, step, options.min_levels);
+    branches.retain(|b| b.free_length() >= mean_width(b));
+    let centres: Vec<DVec3> = branches
+        .iter()
+        .flat_map(|b| b.path.iter().copied())
+        .collect();
+    let inside: Vec<bool> = windings(mesh, &centres).iter().map(|&w| w != 0).collect();
+    let mut first = 0;
+    branches.retain(|b| {
+        let all = inside[first..first + b.path.len()].iter().all(|&i| i);
+        first += b.path.len();
+        all
+    });
+    branches
 }
 
 /// The palm's normal on its inner side: normal to the hand's direction and the line across
@@ -192,15 +201,17 @@ fn palm_normal(wrist: DVec3, digits: &[(Option<Finger>, DigitJoints)], axis: DVe
     }
 }
 
-/// Removes the wrist's descendants (the template's hand and finger chain) and hangs the
-/// digits from the wrist; canonical keys for named digits.
-fn replace_hand(
+/// Removes the descendants of `wrist` (the template's hand and finger chain; or a foot's
+/// metapodial joint and its digit chain) and hangs the digits from it; with `canonical`,
+/// canonical keys for named digits (a hand's or fore foot's: the keys name hand digits).
+pub(super) fn replace_hand(
     fit: &mut Fit,
     group: &LimbGroup,
     wrist: JointId,
     side: Side,
     digits: &[(Option<Finger>, DigitJoints)],
     palm: DVec3,
+    canonical: bool,
 ) {
     remove_descendants(fit, wrist);
     for (finger, d) in digits {
@@ -233,7 +244,7 @@ fn replace_hand(
             joint.dofs = digit_dofs(group, *finger, k);
             fit.skeleton.joints.push(joint);
             let id = JointId(fit.skeleton.joints.len() - 1);
-            if let (Some(f), false) = (finger, end) {
+            if let (Some(f), false, true) = (finger, end, canonical) {
                 fit.canonical.insert(
                     Canonical::Digit(side, *f, k as u8 + 1).as_str().to_string(),
                     id,

@@ -33,13 +33,18 @@
 //! horizontally towards the point farthest over the surface (the longest toe), the toe end at
 //! the foot's front tip and the toe joint at the ball of the foot, the centre of the widest
 //! cross-section between ankle and tip (the forefoot is widest across the metatarsal heads).
-//! Toes are not separated: every human foot keeps one toe chain. A horizontal figure's paws
-//! and hooves keep the fit's single digit chain per foot.
+//! Toes are not separated: every human foot keeps one toe chain.
+//!
+//! [`fit_paws`] reads a horizontal figure's fore and hind feet as hands, but an animal's
+//! foot has no thumb: the digits that separate (at least two; a hoof or a low-poly paw keeps
+//! the fit's single digit chain, silently) are ordered across the foot and numbered by the
+//! mammalian reduction pattern (`paws.rs`), hung from the metapodial joint.
 
 mod contour;
 mod feet;
 mod hands;
 mod options;
+mod paws;
 mod place;
 mod surface;
 mod warning;
@@ -47,14 +52,16 @@ mod warning;
 pub use feet::fit_feet;
 pub use hands::fit_hands;
 pub use options::DigitOptions;
+pub use paws::fit_paws;
 pub(crate) use surface::edge_geodesic;
 
 use crate::fit::Fit;
 use crate::mesh::Mesh;
-use crate::template::Template;
+use crate::template::{Posture, Template};
 use glam::DVec3;
 
-/// The digit stage: [`fit_hands`], then [`fit_feet`] (`up`: the figure's up); their warnings.
+/// The digit stage: [`fit_hands`], then [`fit_feet`] (`up`: the figure's up); a horizontal
+/// figure's (an animal's) feet [`fit_paws`] instead. Their warnings.
 pub fn fit_digits(
     mesh: &Mesh,
     template: &Template,
@@ -62,6 +69,9 @@ pub fn fit_digits(
     up: DVec3,
     options: &DigitOptions,
 ) -> Vec<DigitWarning> {
+    if template.posture != Posture::Upright {
+        return fit_paws(mesh, template, fit, up, options);
+    }
     let mut warnings = fit_hands(mesh, template, fit, options);
     warnings.extend(fit_feet(mesh, template, fit, up, options));
     warnings

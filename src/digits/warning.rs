@@ -27,6 +27,15 @@ pub enum DigitWarning {
         /// Whether a thumb separated.
         thumb: bool,
     },
+    /// An animal's foot shows more than five separate digits: the five longest are kept.
+    FootDigitCount {
+        /// The foot's side.
+        side: Side,
+        /// A fore foot (else a hind foot).
+        fore: bool,
+        /// Digits found.
+        found: usize,
+    },
     /// Fewer or more than five digits separate: the digits found are named thumb first, the
     /// rest are left out.
     DigitCount {
@@ -45,6 +54,7 @@ impl DigitWarning {
             Self::NoFoot { .. } => "no_foot",
             Self::FingersFused { .. } => "fingers_fused",
             Self::DigitCount { .. } => "digit_count",
+            Self::FootDigitCount { .. } => "foot_digit_count",
         }
     }
 
@@ -72,6 +82,12 @@ impl fmt::Display for DigitWarning {
                 "the fingers of the {} hand are fused (a mitten or fist): one mitten chain{}",
                 side.as_str(),
                 if *thumb { " and a thumb" } else { ", no thumb separates" }
+            ),
+            Self::FootDigitCount { side, fore, found } => write!(
+                f,
+                "the {} {} foot shows {found} separate digits, more than five: the five longest are kept",
+                side.as_str(),
+                if *fore { "fore" } else { "hind" }
             ),
             Self::DigitCount { side, found } => write!(
                 f,

@@ -331,11 +331,8 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut skin = skin_from_bones(mesh, &fit.skeleton, &solid, &distance, &options.skin)?;
     if options.digits.enabled {
         // Fingers are thinner than the voxels: their weights again over the hand's surface.
-        let wrists: Vec<JointId> = Side::BOTH
-            .iter()
-            .filter_map(|&side| fit.canonical.joint_of(Canonical::Wrist(side)))
-            .collect();
-        skin.engine = digit_weights(mesh, &fit.skeleton, &wrists, &mut skin.weights);
+        let roots = digit_roots(&fit);
+        skin.engine = digit_weights(mesh, &fit.skeleton, &roots, &mut skin.weights);
     }
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
@@ -529,6 +526,28 @@ fn checked_template(options: &RigOptions) -> crate::Result<Option<Template>> {
 pub fn label_by_bones(mesh: &Mesh, options: &RigOptions) -> crate::Result<Labelling> {
     checked_template(options)?;
     bones_or_medial(mesh, options, rig(mesh, options), false)
+}
+
+/// The joints the digits of each hand and foot hang from: below each wrist and ankle, the
+/// first joint with more than one child (the wrist of a human hand; an animal's metapodial
+/// joint where its hoof or paw shows separate digits). A foot with a single digit chain has
+/// none.
+fn digit_roots(fit: &Fit) -> Vec<JointId> {
+    let sk = &fit.skeleton;
+    Side::BOTH
+        .iter()
+        .flat_map(|&side| [Canonical::Wrist(side), Canonical::Ankle(side)])
+        .filter_map(|key| {
+            let mut j = fit.canonical.joint_of(key)?;
+            loop {
+                match sk.children(j).as_slice() {
+                    [] => return None,
+                    [only] => j = *only,
+                    _ => return Some(j),
+                }
+            }
+        })
+        .collect()
 }
 
 /// [`rig`], then the labels of [`Rig::into_skin_labels`]: each vertex the part of the bones

@@ -215,3 +215,63 @@ fn animal_paws_keep_a_single_digit_chain() {
         assert!(r.fit.skeleton.children(end).is_empty());
     }
 }
+
+/// Hooves and paws get the digits their surface shows (issue 25, item 5), numbered by the
+/// mammalian reduction pattern, never a thumb: the cow's and the deer's cloven fore hooves
+/// show two digits, the third and fourth, ordered from the median plane outwards and hanging
+/// from the metapodial joint (`hand`); a hoof that shows none (the horse's) keeps the fit's
+/// single digit chain; no animal's foot is reported as a hand with fused fingers.
+#[test]
+fn cloven_hooves_get_their_third_and_fourth_digits_and_no_hand_warnings() {
+    for (model, cloven) in [
+        ("quadruped/quaternius_cow", true),
+        ("quadruped/quaternius_deer", true),
+        ("quadruped/quaternius_horse", false),
+    ] {
+        let Some(dir) = crate::common::model(model) else {
+            return;
+        };
+        let mesh = load(&dir.join("mesh.obj")).unwrap();
+        let r = rig(&mesh, &RigOptions::default()).unwrap();
+        let hand_warnings: Vec<String> = r
+            .warnings
+            .iter()
+            .filter(|w| matches!(w, Warning::Digits(_)))
+            .map(|w| w.to_string())
+            .collect();
+        assert!(hand_warnings.is_empty(), "{model}: {hand_warnings:?}");
+        let sk = &r.fit.skeleton;
+        assert!(
+            !r.fit.canonical.contains_key("thumb_01_L"),
+            "{model}: an animal has no thumb"
+        );
+        for side in Side::BOTH {
+            let s = side.suffix();
+            let named = |n: &str| sk.joints.iter().position(|j| j.name == format!("{n}{s}"));
+            let (third, fourth) = (named("fore_digit_3_01"), named("fore_digit_4_01"));
+            if !cloven {
+                assert!(third.is_none() && fourth.is_none(), "{model}: {side:?}");
+                assert!(
+                    named("finger_01").is_some(),
+                    "{model}: {side:?} single chain"
+                );
+                continue;
+            }
+            let (Some(third), Some(fourth)) = (third, fourth) else {
+                panic!("{model}: {side:?} has no cloven hoof");
+            };
+            let parent = |j: usize| sk.joints[sk.joints[j].parent.unwrap().0].name.clone();
+            assert_eq!(parent(third), format!("hand{s}"), "{model}");
+            assert_eq!(parent(fourth), format!("hand{s}"), "{model}");
+            let lateral = |j: usize| sk.joints[j].position.x.abs();
+            assert!(lateral(third) < lateral(fourth), "{model}: {side:?} order");
+            assert!(
+                r.fit.canonical.contains_key(
+                    Canonical::Digit(side, skelfit::skeleton::canonical::Finger::Middle, 1)
+                        .as_str()
+                ),
+                "{model}: the third digit's canonical key"
+            );
+        }
+    }
+}

@@ -600,12 +600,16 @@ fn every_foot_reaches_the_ground() {
         let h = hi.y - lo.y;
         let sk = &r.fit.skeleton;
         let mut lowest = Vec::new();
-        for chain in ["finger", "toe"] {
+        // The fit's single digit chain per foot, or the digits a hoof's or paw's surface shows.
+        for (chain, digits) in [("finger", "fore_digit"), ("toe", "hind_digit")] {
             for side in ["L", "R"] {
                 let low = sk
                     .joints
                     .iter()
-                    .filter(|j| j.name.starts_with(chain) && j.name.ends_with(side))
+                    .filter(|j| {
+                        (j.name.starts_with(chain) || j.name.starts_with(digits))
+                            && j.name.ends_with(side)
+                    })
                     .map(|j| (j.position.y - lo.y) / h)
                     .fold(f64::INFINITY, f64::min);
                 lowest.push(low);

@@ -1,0 +1,225 @@
+//! The feet of a horizontal figure (quadrupeds, a winged figure's legs): hooves and paws get
+//! the digits their surface shows (issue 25, item 5).
+//!
+//! Each fore and hind foot is read as a hand is (the surface beyond the wrist or ankle, its
+//! contour tree; [`super::hands::separated_digits`]). An animal's foot has no thumb that
+//! parts first and opposes the rest: its digits are ordered across the foot from the median
+//! plane outwards and numbered by the mammalian reduction pattern (the first digit goes first,
+//! then the fifth, then the second), so two digits are the third and fourth (a cloven hoof),
+//! three the second to fourth, four the second to fifth (a dog's paw without its dewclaw),
+//! five all of them. They hang from the metapodial joint (`hand`, `foot`: the start of the
+//! cannon bone or the sole) in place of the template's single digit chain, which a foot with
+//! fewer than two separate digits (a horse's hoof, a low-poly paw) keeps, without a warning:
+//! that is the foot it is.
+
+use super::hands::{replace_hand, separated_digits};
+use super::place::{place_digit, DigitJoints};
+use super::surface::hand_surface;
+use super::{DigitOptions, DigitWarning};
+use crate::fit::Fit;
+use crate::mesh::Mesh;
+use crate::skeleton::canonical::{CanonicalJoints, Finger};
+use crate::skeleton::{Canonical, JointId, Side};
+use crate::template::{LimbGroup, Template};
+use glam::DVec3;
+
+/// The digit numbers (0-based: 0 the first digit) of a foot showing `n` separate digits,
+/// by the mammalian reduction pattern; `None` for none or more than five.
+pub(super) fn reduced_digits(n: usize) -> Option<&'static [usize]> {
+    match n {
+        1 => Some(&[2]),
+        2 => Some(&[2, 3]),
+        3 => Some(&[1, 2, 3]),
+        4 => Some(&[1, 2, 3, 4]),
+        5 => Some(&[0, 1, 2, 3, 4]),
+        _ => None,
+    }
+}
+
+/// Gives each foot of a horizontal figure the digits its surface shows (module docs). `up` is
+/// the figure's up; the forward direction is taken from the pelvis to the head. The fore feet
+/// only with `options.enabled` (`--fingers`), the hind feet with `options.feet` (`--toes`).
+/// Returns a warning per foot showing more than five digits (the five longest are kept).
+pub fn fit_paws(
+    mesh: &Mesh,
+    template: &Template,
+    fit: &mut Fit,
+    up: DVec3,
+    options: &DigitOptions,
+) -> Vec<DigitWarning> {
+    let mut warnings = Vec::new();
+    let (Some(pelvis), Some(head)) = (
+        fit.canonical.joint_of(Canonical::Pelvis),
+        fit.canonical.joint_of(Canonical::Head),
+    ) else {
+        return warnings;
+    };
+    let (pelvis, head) = (
+        fit.skeleton.joint(pelvis).position,
+        fit.skeleton.joint(head).position,
+    );
+    let Some(up) = up.try_normalize() else {
+        return warnings;
+    };
+    let Some(forward) = (head - pelvis).reject_from_normalized(up).try_normalize() else {
+        return warnings;
+    };
+    let body = Body {
+        up,
+        forward,
+        left: up.cross(forward),
+        centre: pelvis,
+    };
+    let feet = [
+        (
+            Canonical::Elbow as fn(Side) -> Canonical,
+            Canonical::Wrist as fn(Side) -> Canonical,
+            true,
+        ),
+        (Canonical::Knee, Canonical::Ankle, false),
+    ];
+    for (proximal, root, fore) in feet {
+        // `--fingers` switches the fore feet, `--toes` the hind feet.
+        if !(if fore { options.enabled } else { options.feet }) {
+            continue;
+        }
+        for side in Side::BOTH {
+            let (Some(p), Some(r)) = (
+                fit.canonical.joint_of(proximal(side)),
+                fit.canonical.joint_of(root(side)),
+            ) else {
+                continue;
+            };
+            let Some(group) = limb_of(template, fit, r) else {
+                continue;
+            };
+            if let Some(w) = fit_paw(mesh, group, fit, (p, r), side, fore, &body, options) {
+                warnings.push(w);
+            }
+        }
+    }
+    warnings
+}
+
+/// The figure's axes and a point on its median plane.
+struct Body {
+    up: DVec3,
+    forward: DVec3,
+    left: DVec3,
+    centre: DVec3,
+}
+
+/// The template's limb group whose chain holds the fitted joint `root` and names digits.
+fn limb_of<'t>(template: &'t Template, fit: &Fit, root: JointId) -> Option<&'t LimbGroup> {
+    let name = &fit.skeleton.joint(root).name;
+    template
+        .limbs
+        .iter()
+        .find(|g| !g.digits.is_empty() && g.chain.iter().any(|c| name.starts_with(c.as_str())))
+}
+
+/// One foot: `joints` are the joint above the foot's root (elbow, knee) and the root (wrist,
+/// ankle). Leaves the fit's chain when fewer than two digits separate.
+#[allow(clippy::too_many_arguments)]
+fn fit_paw(
+    mesh: &Mesh,
+    group: &LimbGroup,
+    fit: &mut Fit,
+    joints: (JointId, JointId),
+    side: Side,
+    fore: bool,
+    body: &Body,
+    options: &DigitOptions,
+) -> Option<DigitWarning> {
+    let (p, r) = (
+        fit.skeleton.joint(joints.0).position,
+        fit.skeleton.joint(joints.1).position,
+    );
+    let length = p.distance(r);
+    let axis = (r - p).try_normalize()?;
+    let surface = hand_surface(
+        mesh,
+        r,
+        axis,
+        options.reach * length,
+        options.wrist_band * length,
+    )?;
+    let mut branches = separated_digits(mesh, &surface, options.level_step * length, options);
+    // A foot's digits reach down to the ground the figure stands on: a branch whose tip is
+    // higher than the root is another part within reach (a tail, the rump behind a hind foot).
+    branches.retain(|b| b.path[0].dot(body.up) < r.dot(body.up));
+    let found = branches.len();
+    let warning =
+        (found > Finger::ALL.len()).then_some(DigitWarning::FootDigitCount { side, fore, found });
+    branches.sort_by(|a, b| b.free_length().total_cmp(&a.free_length()));
+    branches.truncate(Finger::ALL.len());
+    let numbers = reduced_digits(branches.len()).filter(|n| n.len() >= 2)?;
+    // Across the foot from the median plane outwards.
+    let lateral =
+        |b: &super::contour::Branch| (b.base() - body.centre).dot(body.left) * side.sign();
+    branches.sort_by(|a, b| lateral(a).total_cmp(&lateral(b)));
+    let digits: Vec<(Option<Finger>, DigitJoints)> = branches
+        .iter()
+        .zip(numbers)
+        .map(|(b, &n)| {
+            let joints = place_digit(
+                b,
+                options.free_share[n],
+                options.finger_from_tip,
+                None,
+                axis,
+            );
+            (Some(Finger::ALL[n]), joints)
+        })
+        .collect();
+    let attach = metapodial(fit, group, joints.1, side, axis, &digits);
+    // The sole (or the back of a hoof) faces down and backwards: digits curl that way.
+    let sole = -(body.up + body.forward);
+    replace_hand(fit, group, attach, side, &digits, sole, fore);
+    warning
+}
+
+/// The joint the digits hang from: the limb chain's metapodial joint (the template's joint at
+/// `digit_row`, `hand` or `foot`) when it lies on the root's distal side and behind every
+/// digit's base along `axis`; else the root itself.
+fn metapodial(
+    fit: &Fit,
+    group: &LimbGroup,
+    root: JointId,
+    side: Side,
+    axis: DVec3,
+    digits: &[(Option<Finger>, DigitJoints)],
+) -> JointId {
+    let Some(stem) = group.chain.get(group.digit_row) else {
+        return root;
+    };
+    let name = format!("{stem}{}", side.suffix());
+    let root_at = fit.skeleton.joint(root).position;
+    let found = fit.skeleton.children(root).into_iter().find(|&c| {
+        let j = fit.skeleton.joint(c);
+        let along = (j.position - root_at).dot(axis);
+        j.name == name
+            && along >= 0.0
+            && digits
+                .iter()
+                .all(|(_, d)| (d.joints[0] - root_at).dot(axis) > along)
+    });
+    found.unwrap_or(root)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::reduced_digits;
+
+    #[test]
+    fn reduction_keeps_the_middle_digits_longest() {
+        assert_eq!(reduced_digits(0), None);
+        assert_eq!(reduced_digits(1), Some(&[2][..]));
+        // A cloven hoof: the third and fourth digits (artiodactyls).
+        assert_eq!(reduced_digits(2), Some(&[2, 3][..]));
+        // A dog's paw without its dewclaw: the second to fifth.
+        assert_eq!(reduced_digits(4), Some(&[1, 2, 3, 4][..]));
+        assert_eq!(reduced_digits(5), Some(&[0, 1, 2, 3, 4][..]));
+        assert_eq!(reduced_digits(6), None);
+    }
+}
