@@ -219,3 +219,85 @@ fn finger_bones_are_sized_on_the_surface() {
         );
     }
 }
+
+/// The bundled body without its left index finger (the triangles of the vertices its joints
+/// move most removed, leaving an open hole at the knuckle): the left hand gets the four digits
+/// it shows with a warning naming that hand (issue 25, bad input), never a panic.
+#[test]
+fn a_missing_finger_is_named_in_a_warning() {
+    let mesh = bundled();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let sk = &r.fit.skeleton;
+    let cut: Vec<bool> = r
+        .skin
+        .weights
+        .iter()
+        .map(|w| {
+            w.iter()
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+                .is_some_and(|&(j, _)| {
+                    let name = &sk.joint(j).name;
+                    name.starts_with("index_") && name.ends_with("_L")
+                })
+        })
+        .collect();
+    assert!(cut.iter().filter(|&&c| c).count() > 20, "no finger to cut");
+    assert!(
+        (0..cut.len()).all(|v| !cut[v] || mesh.positions[v].x > 0.0),
+        "the left hand is at +x"
+    );
+    let triangles: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .copied()
+        .filter(|t| t.iter().all(|&v| !cut[v as usize]))
+        .collect();
+    let maimed = Mesh::new(mesh.positions.clone(), triangles).unwrap();
+    let p = rig(&maimed, &RigOptions::default()).unwrap();
+    let warnings = digit_warnings(&p);
+    println!("{warnings:?}");
+    for k in DIGITS {
+        if !p.fit.canonical.contains_key(k.as_str()) {
+            println!("missing {}", k.as_str());
+        }
+    }
+    assert!(
+        warnings.iter().any(|w| matches!(
+            w,
+            DigitWarning::DigitCount {
+                side: Side::Left,
+                found: 4
+            }
+        )),
+        "{warnings:?}"
+    );
+    assert!(
+        p.fit
+            .canonical
+            .contains_key(Canonical::Digit(Side::Left, Finger::Thumb, 1).as_str()),
+        "the left thumb"
+    );
+}
+
+/// Hands hanging against the thighs (the arms turned down until the fingertips lie on the
+/// thighs' surface) still rig without a panic: each hand keeps its five digits or the rig
+/// names that hand in a warning (issue 25, bad input).
+#[test]
+fn hands_touching_the_thighs_keep_their_digits_or_are_named() {
+    let mesh = bundled();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let pressed = posed(&mesh, &r, |_| -0.75);
+    let p = rig(&pressed, &RigOptions::default()).unwrap();
+    let warnings = digit_warnings(&p);
+    println!("{warnings:?}");
+    for side in Side::BOTH {
+        let complete = DIGITS
+            .iter()
+            .filter(|k| k.as_str().ends_with(side.suffix()))
+            .all(|k| p.fit.canonical.contains_key(k.as_str()));
+        let named = warnings
+            .iter()
+            .any(|w| w.to_string().contains(side.as_str()));
+        assert!(complete || named, "{side:?}: {warnings:?}");
+    }
+}
