@@ -3,9 +3,10 @@
 use super::driver::{frame_point, Found, Rough, Scene};
 use super::limb::trace_limb;
 use super::limb_joints::{arc_near, bend, centre_in_depth, surface_above, wrist};
-use super::shoulder::{armpit, shoulder, upper_arm_line, upper_arm_radius};
+use super::shoulder::{armpit, off_axis, shoulder, upper_arm_line, upper_arm_radius};
 use super::RefineWarning;
 use crate::skeleton::{Canonical, Side};
+use glam::DVec3;
 
 /// Heights tried in turn as the bottom of the gap under the armpit, as fractions of the way
 /// from the waist to the rough shoulder (the armpit is about 0.7 of the way up).
@@ -77,14 +78,25 @@ pub(super) fn arm(
         })?;
         let radius = upper_arm_radius(&profile, ss, se)?;
         let s = shoulder(frame, line, pit, sign)? - line.1 * (options.shoulder_proximal * radius);
+        // The joint is a ball on the upper arm's axis: a correction from the surface around
+        // it that would put it more than an arm's radius off that axis measured a shoulder
+        // pad, an armour plate or the torso's shell, not the arm, and is not taken.
+        let on_ball = |moved: DVec3, kept: DVec3| {
+            if off_axis(line, moved) <= radius {
+                moved
+            } else {
+                kept
+            }
+        };
         let s = match options.shoulder_depth {
-            Some(depth) => centre_in_depth(mesh, frame, s, depth).unwrap_or(s),
+            Some(depth) => on_ball(centre_in_depth(mesh, frame, s, depth).unwrap_or(s), s),
             None => s,
         };
         let s = match options.shoulder_below_top {
-            Some(k) => {
-                surface_above(mesh, frame, s).map_or(s, |top| frame.at_height(s, top - k * radius))
-            }
+            Some(k) => on_ball(
+                surface_above(mesh, frame, s).map_or(s, |top| frame.at_height(s, top - k * radius)),
+                s,
+            ),
             None => s,
         };
         Some(s)

@@ -93,6 +93,12 @@ pub fn upper_arm_radius(arm: &LimbProfile, from: f64, to: f64) -> Option<f64> {
     r.get(r.len() / 2).copied()
 }
 
+/// Distance of `p` from the line `(point, unit direction)`, mesh units.
+pub fn off_axis(line: (DVec3, DVec3), p: DVec3) -> f64 {
+    let d = p - line.0;
+    (d - line.1 * d.dot(line.1)).length()
+}
+
 /// The shoulder from the armpit and the upper arm's line `(point, distal direction)`: the line
 /// cut by the plane through `armpit` whose normal is half-way between the outward lateral
 /// direction (`sign` × left) and the arm's direction.
