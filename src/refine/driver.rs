@@ -10,7 +10,8 @@ use super::legs::leg;
 use super::limb_joints::centre_in_depth;
 use super::spine::{spine, Spine};
 use super::torso::{
-    hips, leg_split_height, legs_apart_below, torso_points, TorsoBounds, TorsoPoints,
+    hips, leg_split_height, legs_apart_below, split_flare, torso_points, TorsoBounds, TorsoPoints,
+    HEM_FLARE,
 };
 use super::{RefineError, RefineOptions, RefineWarning};
 use crate::fit::{assign_trunk_keys, Fit};
@@ -487,12 +488,7 @@ fn hips_and_pelvis(
         _ => 0.15 * height,
     };
     let knees = rough.pair_height(&frame, Canonical::Knee);
-    // Hidden only when the legs show apart below the knees: a blob's silhouette also ends low.
-    let crotch_hidden = torso.is_some_and(|t| {
-        knees.is_some_and(|k| {
-            frame.h(t.crotch) < k && legs_apart_below(mesh, &frame, centre, k, reach)
-        })
-    });
+    let crotch_hidden = crotch_hidden(scene, torso, knees, reach);
     let hip_height = match torso {
         // The median silhouette runs down past the knees: a skirt, robe or long coat hides
         // the crotch, and the hips go where the arm's length puts them.
@@ -505,15 +501,7 @@ fn hips_and_pelvis(
         }
         Some(t) => {
             let bottom = frame.h(t.crotch);
-            let split = leg_split_height(
-                mesh,
-                &frame,
-                centre,
-                bottom - 0.02 * height,
-                bottom + 0.1 * height,
-                0.001 * height,
-                reach,
-            );
+            let split = crotch_split(scene, bottom, reach);
             Some(split.unwrap_or(bottom) + options.hip_above_crotch * height)
         }
         None => hips_h,
@@ -535,6 +523,57 @@ fn hips_and_pelvis(
         None => warnings.push(RefineWarning::NoHipSlice),
     }
     crotch_hidden
+}
+
+/// The sections compared for a hem's flare ([`split_flare`]) lie this fraction of height
+/// below and above the leg split: close enough that a crotch's outline barely changes between
+/// them (the buttocks widen the MakeHuman bodies' depth by 15 % within 0.02 above it).
+const FLARE_GAP: f64 = 0.01;
+
+/// Whether clothing hides the crotch: the median silhouette runs down below the rough knees
+/// while the legs show apart lower down (a skirt, robe or long coat; a blob's silhouette also
+/// ends low but shows no legs apart), unless the legs' own sections leave the trunk at the
+/// silhouette's lowest point without a hem's flare ([`split_flare`] at most [`HEM_FLARE`]):
+/// there the crotch shows, and the rough knees are too high (short cartoon legs, whose rough
+/// knees the adult leg ratios put above the crotch).
+fn crotch_hidden(
+    scene: &Scene,
+    torso: Option<&TorsoPoints>,
+    knees: Option<f64>,
+    reach: f64,
+) -> bool {
+    let Scene {
+        mesh,
+        frame,
+        height,
+        centre,
+        ..
+    } = *scene;
+    let Some(crotch) = torso.map(|t| frame.h(t.crotch)) else {
+        return false;
+    };
+    let low = knees.is_some_and(|k| crotch < k && legs_apart_below(mesh, &frame, centre, k, reach));
+    let shows = || {
+        crotch_split(scene, crotch, reach)
+            .and_then(|split| split_flare(mesh, &frame, centre, split, FLARE_GAP * height, reach))
+            .is_some_and(|flare| flare <= HEM_FLARE)
+    };
+    low && !shows()
+}
+
+/// The top of the gap between the legs ([`leg_split_height`]) from 0.02 of height below the
+/// median silhouette's lowest point `bottom` up to 0.1 above it.
+fn crotch_split(scene: &Scene, bottom: f64, reach: f64) -> Option<f64> {
+    let height = scene.height;
+    leg_split_height(
+        scene.mesh,
+        &scene.frame,
+        scene.centre,
+        bottom - 0.02 * height,
+        bottom + 0.1 * height,
+        0.001 * height,
+        reach,
+    )
 }
 
 /// The trunk from the shoulder joints down to the hip joints is this many times as long as the

@@ -48,7 +48,10 @@ pub fn head_joint(
 /// a chin or a collar), in the lower part of the head, at most `head_nose_max` of the
 /// sliced length up (a nose tip is about a third of the way up from the chin; higher, the
 /// forward-most part is a visor, a hat brim or hair), and narrow ([`is_narrow_tip`]: the front
-/// of a round cartoon head is the cap of a sphere, no nose).
+/// of a round cartoon head is the cap of a sphere, no nose). A head sliced down further than
+/// `head_max_depth` of the height (longer than a child's head: a helmet or a stylised big head)
+/// has no face either: its narrow front is a visor's edge or a snout, and such figures' rigs
+/// put the head joint at the neck's top.
 fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bool {
     let (Some(nose), Some(top), Some(bottom)) = (
         forward_most(frame, head),
@@ -58,6 +61,9 @@ fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bo
         return false;
     };
     let (top, bottom) = (frame.h(*top), frame.h(*bottom));
+    if top - bottom > options.head_max_depth * frame.height() {
+        return false;
+    }
     let Some(tip) = nose.points.first() else {
         return false;
     };
