@@ -206,7 +206,7 @@ fn refine_with(
     let mut found = Found::new();
 
     // 3.1 Head and body frame.
-    head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
+    let on_trunk = head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
 
     // 3.2 Torso points.
     let head_point = found
@@ -261,6 +261,9 @@ fn refine_with(
 
     // 3.2 Spine and neck.
     let spine_result = spine_and_neck(&scene, torso.as_ref(), &mut found, &mut warnings);
+    if on_trunk {
+        neck_at_junction(&scene.frame, &mut found);
+    }
 
     let (mut targets, moved) = accepted(&rough, &found, &scene.frame, options, &mut warnings);
     let spine_ends_moved = moved.contains_key(Canonical::Pelvis.as_str())
@@ -287,7 +290,8 @@ fn refine_with(
 }
 
 /// Places the head joint, and turns `frame` to the head's axes when the head slices give them
-/// (seed 004, 3.1).
+/// (seed 004, 3.1). Returns whether the head sits on the trunk with no neck between
+/// ([`super::HeadJoint::on_trunk`]).
 fn head(
     mesh: &Mesh,
     frame: &mut BodyFrame,
@@ -295,7 +299,7 @@ fn head(
     options: &RefineOptions,
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
-) {
+) -> bool {
     let near_head = rough
         .at(Canonical::Head)
         .unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
@@ -309,11 +313,30 @@ fn head(
             match head_joint(mesh, frame, &slices, shoulders, options) {
                 Some(h) => {
                     found.insert(Canonical::Head, h.joint);
+                    return h.on_trunk;
                 }
                 None => warnings.push(RefineWarning::NoOccipitalCircle),
             }
         }
         None => warnings.push(RefineWarning::NoHead),
+    }
+    false
+}
+
+/// A head sitting on its trunk with no neck between ([`super::HeadJoint::on_trunk`]) has its
+/// joint at the junction, which is the trunk's top: the neck joint rises to that height (at
+/// the spine's depth), and the head joint goes above it by the neck's length as the spine gave
+/// it (from C7 up to the junction), as such figures' rigs keep a neck bone inside the head's
+/// base. Nothing moves unless the neck lies below the head.
+fn neck_at_junction(frame: &BodyFrame, found: &mut Found) {
+    let (Some(&head), Some(&neck)) = (found.get(&Canonical::Head), found.get(&Canonical::Neck))
+    else {
+        return;
+    };
+    let length = frame.h(head) - frame.h(neck);
+    if length > 0.0 {
+        found.insert(Canonical::Neck, frame.at_height(neck, frame.h(head)));
+        found.insert(Canonical::Head, head + frame.up * length);
     }
 }
 

@@ -21,6 +21,10 @@ pub struct HeadJoint {
     pub roof: DVec3,
     /// Perimeter-weighted centroid of the head slices.
     pub centroid: DVec3,
+    /// Whether the head sits on the trunk with no neck between: no section above the narrowest
+    /// one below the head widens to `head_neck_widening` times it (a cartoon's big head), so
+    /// the joint is at that junction, the trunk's top.
+    pub on_trunk: bool,
 }
 
 /// Computes the head joint from the head slices in the body frame, at the level
@@ -172,16 +176,16 @@ fn neck_top(
     // A head that never widens to `head_neck_widening` times its narrowest section sits on the
     // trunk with no neck between (a cartoon's big head): the joint is at that section, where
     // head and trunk meet.
-    let h = column[..neck]
+    let widened = column[..neck]
         .iter()
         .rev()
-        .find(|&&(_, d, _)| d >= options.head_neck_widening * narrowest)
-        .map_or(valley, |&(h, _, _)| h);
-    let joint = frame.at_height(axis, h);
+        .find(|&&(_, d, _)| d >= options.head_neck_widening * narrowest);
+    let joint = frame.at_height(axis, widened.map_or(valley, |&(h, _, _)| h));
     Some(HeadJoint {
         joint,
         roof: frame.at_height(joint, frame.top),
         centroid,
+        on_trunk: widened.is_none(),
     })
 }
 
@@ -221,5 +225,6 @@ fn nose_level(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> 
         joint,
         roof: frame.at_height(joint, frame.top),
         centroid,
+        on_trunk: false,
     })
 }

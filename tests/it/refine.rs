@@ -1010,3 +1010,26 @@ fn short_legs_show_their_crotch() {
     }
     assert!(core < 6.5, "core mean {core:.2} %");
 }
+
+/// A big head sitting on the trunk with no neck between (quaternius_platformer_character): the
+/// neck rises to the junction, the trunk's top, and the head joint goes a neck's length above
+/// it (neck 7.6 % and head 6.1 % of height off before, the neck low in the trunk between the
+/// arms and the head at the junction; 4.6 % and 2.4 % now).
+#[test]
+fn a_head_on_its_trunk_keeps_a_neck_below_it() {
+    let Some((_, _, result)) = real_core("quaternius_platformer_character") else {
+        return;
+    };
+    let evaluation = result.evaluation.as_ref().unwrap();
+    let joint = |key: Canonical| {
+        evaluation
+            .joints
+            .iter()
+            .find(|j| j.key == key.as_str())
+            .expect("paired")
+    };
+    let (neck, head) = (joint(Canonical::Neck), joint(Canonical::Head));
+    assert!(neck.error_percent < 5.5, "neck {:.2} %", neck.error_percent);
+    assert!(head.error_percent < 4.0, "head {:.2} %", head.error_percent);
+    assert!(neck.predicted[1] < head.predicted[1], "neck above the head");
+}
