@@ -1031,5 +1031,5 @@ fn a_head_on_its_trunk_keeps_a_neck_below_it() {
     let (neck, head) = (joint(Canonical::Neck), joint(Canonical::Head));
     assert!(neck.error_percent < 5.5, "neck {:.2} %", neck.error_percent);
     assert!(head.error_percent < 4.0, "head {:.2} %", head.error_percent);
-    assert!(neck.predicted[1] < head.predicted[1], "neck above the head");
+    assert!(neck.predicted.y < head.predicted.y, "neck above the head");
 }
