@@ -260,10 +260,7 @@ fn refine_with(
     }
 
     // 3.2 Spine and neck.
-    let spine_result = spine_and_neck(&scene, torso.as_ref(), &mut found, &mut warnings);
-    if on_trunk {
-        neck_at_junction(&scene.frame, &mut found);
-    }
+    let spine_result = spine_and_neck(&scene, torso.as_ref(), on_trunk, &mut found, &mut warnings);
 
     let (mut targets, moved) = accepted(&rough, &found, &scene.frame, options, &mut warnings);
     let spine_ends_moved = moved.contains_key(Canonical::Pelvis.as_str())
@@ -341,10 +338,12 @@ fn neck_at_junction(frame: &BodyFrame, found: &mut Found) {
 }
 
 /// The spine from the head joint and the torso silhouette, and the neck at its C7 (at the
-/// silhouette's neck point when there is no spine).
+/// silhouette's neck point when there is no spine); for a head `on_trunk`, the neck and head
+/// then as [`neck_at_junction`] says.
 fn spine_and_neck(
     scene: &Scene,
     torso: Option<&TorsoPoints>,
+    on_trunk: bool,
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
 ) -> Option<Spine> {
@@ -364,6 +363,9 @@ fn spine_and_neck(
             warnings.push(RefineWarning::SpineOutOfOrder);
         }
         (None, None) => warnings.push(RefineWarning::NoSpine),
+    }
+    if on_trunk {
+        neck_at_junction(&scene.frame, found);
     }
     spine_result
 }
