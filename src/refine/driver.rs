@@ -10,7 +10,8 @@ use super::legs::leg;
 use super::limb_joints::centre_in_depth;
 use super::spine::{spine, Spine};
 use super::torso::{
-    hips, leg_split_height, legs_apart_below, torso_points, TorsoBounds, TorsoPoints,
+    hips, leg_split_height, legs_apart_below, split_flare, torso_points, TorsoBounds, TorsoPoints,
+    HEM_FLARE,
 };
 use super::{RefineError, RefineOptions, RefineWarning};
 use crate::fit::{assign_trunk_keys, Fit};
@@ -205,7 +206,7 @@ fn refine_with(
     let mut found = Found::new();
 
     // 3.1 Head and body frame.
-    head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
+    let on_trunk = head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
 
     // 3.2 Torso points.
     let head_point = found
@@ -259,7 +260,7 @@ fn refine_with(
     }
 
     // 3.2 Spine and neck.
-    let spine_result = spine_and_neck(&scene, torso.as_ref(), &mut found, &mut warnings);
+    let spine_result = spine_and_neck(&scene, torso.as_ref(), on_trunk, &mut found, &mut warnings);
 
     let (mut targets, moved) = accepted(&rough, &found, &scene.frame, options, &mut warnings);
     let spine_ends_moved = moved.contains_key(Canonical::Pelvis.as_str())
@@ -286,7 +287,8 @@ fn refine_with(
 }
 
 /// Places the head joint, and turns `frame` to the head's axes when the head slices give them
-/// (seed 004, 3.1).
+/// (seed 004, 3.1). Returns whether the head sits on the trunk with no neck between
+/// ([`super::HeadJoint::on_trunk`]).
 fn head(
     mesh: &Mesh,
     frame: &mut BodyFrame,
@@ -294,7 +296,7 @@ fn head(
     options: &RefineOptions,
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
-) {
+) -> bool {
     let near_head = rough
         .at(Canonical::Head)
         .unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
@@ -308,19 +310,40 @@ fn head(
             match head_joint(mesh, frame, &slices, shoulders, options) {
                 Some(h) => {
                     found.insert(Canonical::Head, h.joint);
+                    return h.on_trunk;
                 }
                 None => warnings.push(RefineWarning::NoOccipitalCircle),
             }
         }
         None => warnings.push(RefineWarning::NoHead),
     }
+    false
+}
+
+/// A head sitting on its trunk with no neck between ([`super::HeadJoint::on_trunk`]) has its
+/// joint at the junction, which is the trunk's top: the neck joint rises to that height (at
+/// the spine's depth), and the head joint goes above it by the neck's length as the spine gave
+/// it (from C7 up to the junction), as such figures' rigs keep a neck bone inside the head's
+/// base. Nothing moves unless the neck lies below the head.
+fn neck_at_junction(frame: &BodyFrame, found: &mut Found) {
+    let (Some(&head), Some(&neck)) = (found.get(&Canonical::Head), found.get(&Canonical::Neck))
+    else {
+        return;
+    };
+    let length = frame.h(head) - frame.h(neck);
+    if length > 0.0 {
+        found.insert(Canonical::Neck, frame.at_height(neck, frame.h(head)));
+        found.insert(Canonical::Head, head + frame.up * length);
+    }
 }
 
 /// The spine from the head joint and the torso silhouette, and the neck at its C7 (at the
-/// silhouette's neck point when there is no spine).
+/// silhouette's neck point when there is no spine); for a head `on_trunk`, the neck and head
+/// then as [`neck_at_junction`] says.
 fn spine_and_neck(
     scene: &Scene,
     torso: Option<&TorsoPoints>,
+    on_trunk: bool,
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
 ) -> Option<Spine> {
@@ -340,6 +363,9 @@ fn spine_and_neck(
             warnings.push(RefineWarning::SpineOutOfOrder);
         }
         (None, None) => warnings.push(RefineWarning::NoSpine),
+    }
+    if on_trunk {
+        neck_at_junction(&scene.frame, found);
     }
     spine_result
 }
@@ -487,12 +513,7 @@ fn hips_and_pelvis(
         _ => 0.15 * height,
     };
     let knees = rough.pair_height(&frame, Canonical::Knee);
-    // Hidden only when the legs show apart below the knees: a blob's silhouette also ends low.
-    let crotch_hidden = torso.is_some_and(|t| {
-        knees.is_some_and(|k| {
-            frame.h(t.crotch) < k && legs_apart_below(mesh, &frame, centre, k, reach)
-        })
-    });
+    let crotch_hidden = crotch_hidden(scene, torso, knees, reach);
     let hip_height = match torso {
         // The median silhouette runs down past the knees: a skirt, robe or long coat hides
         // the crotch, and the hips go where the arm's length puts them.
@@ -505,15 +526,7 @@ fn hips_and_pelvis(
         }
         Some(t) => {
             let bottom = frame.h(t.crotch);
-            let split = leg_split_height(
-                mesh,
-                &frame,
-                centre,
-                bottom - 0.02 * height,
-                bottom + 0.1 * height,
-                0.001 * height,
-                reach,
-            );
+            let split = crotch_split(scene, bottom, reach);
             Some(split.unwrap_or(bottom) + options.hip_above_crotch * height)
         }
         None => hips_h,
@@ -535,6 +548,57 @@ fn hips_and_pelvis(
         None => warnings.push(RefineWarning::NoHipSlice),
     }
     crotch_hidden
+}
+
+/// The sections compared for a hem's flare ([`split_flare`]) lie this fraction of height
+/// below and above the leg split: close enough that a crotch's outline barely changes between
+/// them (the buttocks widen the MakeHuman bodies' depth by 15 % within 0.02 above it).
+const FLARE_GAP: f64 = 0.01;
+
+/// Whether clothing hides the crotch: the median silhouette runs down below the rough knees
+/// while the legs show apart lower down (a skirt, robe or long coat; a blob's silhouette also
+/// ends low but shows no legs apart), unless the legs' own sections leave the trunk at the
+/// silhouette's lowest point without a hem's flare ([`split_flare`] at most [`HEM_FLARE`]):
+/// there the crotch shows, and the rough knees are too high (short cartoon legs, whose rough
+/// knees the adult leg ratios put above the crotch).
+fn crotch_hidden(
+    scene: &Scene,
+    torso: Option<&TorsoPoints>,
+    knees: Option<f64>,
+    reach: f64,
+) -> bool {
+    let Scene {
+        mesh,
+        frame,
+        height,
+        centre,
+        ..
+    } = *scene;
+    let Some(crotch) = torso.map(|t| frame.h(t.crotch)) else {
+        return false;
+    };
+    let low = knees.is_some_and(|k| crotch < k && legs_apart_below(mesh, &frame, centre, k, reach));
+    let shows = || {
+        crotch_split(scene, crotch, reach)
+            .and_then(|split| split_flare(mesh, &frame, centre, split, FLARE_GAP * height, reach))
+            .is_some_and(|flare| flare <= HEM_FLARE)
+    };
+    low && !shows()
+}
+
+/// The top of the gap between the legs ([`leg_split_height`]) from 0.02 of height below the
+/// median silhouette's lowest point `bottom` up to 0.1 above it.
+fn crotch_split(scene: &Scene, bottom: f64, reach: f64) -> Option<f64> {
+    let height = scene.height;
+    leg_split_height(
+        scene.mesh,
+        &scene.frame,
+        scene.centre,
+        bottom - 0.02 * height,
+        bottom + 0.1 * height,
+        0.001 * height,
+        reach,
+    )
 }
 
 /// The trunk from the shoulder joints down to the hip joints is this many times as long as the

@@ -21,6 +21,10 @@ pub struct HeadJoint {
     pub roof: DVec3,
     /// Perimeter-weighted centroid of the head slices.
     pub centroid: DVec3,
+    /// Whether the head sits on the trunk with no neck between: no section above the narrowest
+    /// one below the head widens to `head_neck_widening` times it (a cartoon's big head), so
+    /// the joint is at that junction, the trunk's top.
+    pub on_trunk: bool,
 }
 
 /// Computes the head joint from the head slices in the body frame, at the level
@@ -48,7 +52,10 @@ pub fn head_joint(
 /// a chin or a collar), in the lower part of the head, at most `head_nose_max` of the
 /// sliced length up (a nose tip is about a third of the way up from the chin; higher, the
 /// forward-most part is a visor, a hat brim or hair), and narrow ([`is_narrow_tip`]: the front
-/// of a round cartoon head is the cap of a sphere, no nose).
+/// of a round cartoon head is the cap of a sphere, no nose). A head sliced down further than
+/// `head_max_depth` of the height (longer than a child's head: a helmet or a stylised big head)
+/// has no face either: its narrow front is a visor's edge or a snout, and such figures' rigs
+/// put the head joint at the neck's top.
 fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bool {
     let (Some(nose), Some(top), Some(bottom)) = (
         forward_most(frame, head),
@@ -58,6 +65,9 @@ fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bo
         return false;
     };
     let (top, bottom) = (frame.h(*top), frame.h(*bottom));
+    if top - bottom > options.head_max_depth * frame.height() {
+        return false;
+    }
     let Some(tip) = nose.points.first() else {
         return false;
     };
@@ -166,16 +176,16 @@ fn neck_top(
     // A head that never widens to `head_neck_widening` times its narrowest section sits on the
     // trunk with no neck between (a cartoon's big head): the joint is at that section, where
     // head and trunk meet.
-    let h = column[..neck]
+    let widened = column[..neck]
         .iter()
         .rev()
-        .find(|&&(_, d, _)| d >= options.head_neck_widening * narrowest)
-        .map_or(valley, |&(h, _, _)| h);
-    let joint = frame.at_height(axis, h);
+        .find(|&&(_, d, _)| d >= options.head_neck_widening * narrowest);
+    let joint = frame.at_height(axis, widened.map_or(valley, |&(h, _, _)| h));
     Some(HeadJoint {
         joint,
         roof: frame.at_height(joint, frame.top),
         centroid,
+        on_trunk: widened.is_none(),
     })
 }
 
@@ -215,5 +225,6 @@ fn nose_level(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> 
         joint,
         roof: frame.at_height(joint, frame.top),
         centroid,
+        on_trunk: false,
     })
 }

@@ -55,5 +55,7 @@ pub use options::{HeadLevel, RefineOptions};
 pub use shoulder::{armpit, shoulder, upper_arm_line};
 pub use spine::{spine, Spine, SPINE_JOINTS};
 pub use symmetry::{symmetrize, Symmetry, SYMMETRIC_SHARE};
-pub use torso::{hips, leg_split_height, torso_points, TorsoBounds, TorsoPoints};
+pub use torso::{
+    hips, leg_split_height, split_flare, torso_points, TorsoBounds, TorsoPoints, HEM_FLARE,
+};
 pub use warning::RefineWarning;

@@ -790,7 +790,8 @@ fn hips_hidden_by_a_skirt_come_from_the_proportions() {
 
 /// A helmet deeper than a human head (quaternius_knight: head and helmet a third of the
 /// height) is still sliced down to its neck: the head search reaches the rough shoulders
-/// (head joint 13 % of height off before, 6.8 % after).
+/// (head joint 13 % of height off before, 6.8 % after; 4.3 % once its visor's edge was no
+/// longer taken for a nose).
 #[test]
 fn a_helmet_deeper_than_a_human_head_is_still_found() {
     let Some((_, codes, result)) = real_core("quaternius_knight") else {
@@ -803,7 +804,7 @@ fn a_helmet_deeper_than_a_human_head_is_still_found() {
         .iter()
         .find(|j| j.key == Canonical::Head.as_str())
         .unwrap();
-    assert!(head.error_percent < 9.0, "head {:.2} %", head.error_percent);
+    assert!(head.error_percent < 5.0, "head {:.2} %", head.error_percent);
 }
 
 /// A big head with long ears (quaternius_platformer_character): the ears mirror each other, so
@@ -930,4 +931,127 @@ fn shoulder_pads_and_a_chest_plate_do_not_move_the_shoulder_off_the_arm() {
         "shoulder_L {:.2} %",
         shoulder.error_percent
     );
+
+/// The flare of a leg split: two legs as wide and deep together as the trunk they leave run
+/// on into it (a short-legged cartoon's crotch, about 1); a skirt standing out around the legs
+/// it hides is a hem ([`skelfit::refine::HEM_FLARE`]).
+#[test]
+fn a_skirt_flares_over_the_legs_and_a_crotch_does_not() {
+    use skelfit::refine::{split_flare, HEM_FLARE};
+    let b = |lo: [f64; 3], hi: [f64; 3]| Mesh::cuboid(DVec3::from(lo), DVec3::from(hi));
+    let legs = [
+        b([-0.2, 0.0, -0.1], [-0.02, 0.5, 0.1]),
+        b([0.02, 0.0, -0.1], [0.2, 0.5, 0.1]),
+    ];
+    let crotch = merged(&[
+        b([-0.2, 0.5, -0.1], [0.2, 1.5, 0.1]),
+        legs[0].clone(),
+        legs[1].clone(),
+    ]);
+    let skirt = merged(&[
+        b([-0.3, 0.5, -0.2], [0.3, 1.5, 0.2]),
+        legs[0].clone(),
+        legs[1].clone(),
+    ]);
+    let flare = |mesh: &Mesh| {
+        let frame = skelfit::refine::BodyFrame::new(mesh, DVec3::Y, DVec3::Z).unwrap();
+        split_flare(mesh, &frame, DVec3::new(0.0, 0.5, 0.0), 0.5, 0.015, 0.6).unwrap()
+    };
+    let (at_crotch, at_hem) = (flare(&crotch), flare(&skirt));
+    assert!((at_crotch - 1.0).abs() < 1e-6, "{at_crotch}");
+    assert!(at_hem > HEM_FLARE, "{at_hem}");
+}
+
+/// A big head (a helmet or a stylised head, sliced down further than `head_max_depth` of the
+/// height) with a narrow ridge low on its front: the ridge is no nose, and the head joint goes
+/// at the neck's top (quaternius_knight: a visor's edge took the head joint up to nose level,
+/// 6.9 % of height too high; 4.3 % off now, in depth only).
+#[test]
+fn a_ridge_on_a_big_head_is_no_nose() {
+    let b = |lo: [f64; 3], hi: [f64; 3]| Mesh::cuboid(DVec3::from(lo), DVec3::from(hi));
+    let head = Mesh::uv_sphere(DVec3::ZERO, 1.0, 48, 64).transformed(|p| {
+        let (x, y, z) = (0.2 * p.x, 0.3 * p.y, 0.2 * p.z);
+        let ridge = (-(x / 0.015).powi(2)).exp() * (-((y + 0.1) / 0.03).powi(2)).exp();
+        DVec3::new(x, 1.8 + y, z + if z > 0.0 { 0.05 * ridge } else { 0.0 })
+    });
+    let mesh = merged(&[
+        b([-0.15, 0.0, -0.06], [-0.03, 0.9, 0.06]),
+        b([0.03, 0.0, -0.06], [0.15, 0.9, 0.06]),
+        b([-0.18, 0.9, -0.1], [0.18, 1.45, 0.1]),
+        b([-0.05, 1.45, -0.05], [0.05, 1.55, 0.05]),
+        head,
+    ]);
+    let frame = skelfit::refine::BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap();
+    let near = DVec3::new(0.0, 1.8, 0.0);
+    let options = RefineOptions::default();
+    let slices = skelfit::refine::head_slices(&mesh, &frame, near, Some(1.45), &options)
+        .expect("head slices");
+    let joint = |level| {
+        let options = RefineOptions {
+            head_level: level,
+            ..RefineOptions::default()
+        };
+        skelfit::refine::head_joint(&mesh, &frame, &slices, Some(1.45), &options)
+            .expect("a head joint")
+            .joint
+    };
+    let auto = joint(skelfit::refine::HeadLevel::Auto);
+    let neck = joint(skelfit::refine::HeadLevel::NeckTop);
+    let nose = joint(skelfit::refine::HeadLevel::NoseLevel);
+    assert!(nose.y > 1.65, "the ridge's level: {}", nose.y);
+    assert!(auto.distance(neck) < 1e-9, "auto {auto} vs neck top {neck}");
+    assert!(auto.y < 1.6, "head joint at {}", auto.y);
+}
+
+/// Short legs (quaternius_platformer_character, legs 11 % of its height): the rough knees,
+/// which the adult leg ratios put above the crotch, made the median silhouette look as if it
+/// ran below the knees (a skirt), and the hips stayed where the leg labels begin (hips 9.0 %,
+/// pelvis 9.5 % of height off; 4.6 % and 3.9 % now). The legs leave the trunk at the crotch
+/// without a hem's flare, so the crotch shows.
+#[test]
+fn short_legs_show_their_crotch() {
+    let Some((core, codes, result)) = real_core("quaternius_platformer_character") else {
+        return;
+    };
+    assert!(!codes.iter().any(|c| c == "crotch_hidden"), "{codes:?}");
+    let evaluation = result.evaluation.as_ref().unwrap();
+    let error = |key: Canonical| {
+        evaluation
+            .joints
+            .iter()
+            .find(|j| j.key == key.as_str())
+            .expect("paired")
+            .error_percent
+    };
+    for key in [
+        Canonical::Pelvis,
+        Canonical::Hip(Side::Left),
+        Canonical::Hip(Side::Right),
+    ] {
+        assert!(error(key) < 6.0, "{} {:.2} %", key.as_str(), error(key));
+    }
+    assert!(core < 6.5, "core mean {core:.2} %");
+}
+
+/// A big head sitting on the trunk with no neck between (quaternius_platformer_character): the
+/// neck rises to the junction, the trunk's top, and the head joint goes a neck's length above
+/// it (neck 7.6 % and head 6.1 % of height off before, the neck low in the trunk between the
+/// arms and the head at the junction; 4.6 % and 2.4 % now).
+#[test]
+fn a_head_on_its_trunk_keeps_a_neck_below_it() {
+    let Some((_, _, result)) = real_core("quaternius_platformer_character") else {
+        return;
+    };
+    let evaluation = result.evaluation.as_ref().unwrap();
+    let joint = |key: Canonical| {
+        evaluation
+            .joints
+            .iter()
+            .find(|j| j.key == key.as_str())
+            .expect("paired")
+    };
+    let (neck, head) = (joint(Canonical::Neck), joint(Canonical::Head));
+    assert!(neck.error_percent < 5.5, "neck {:.2} %", neck.error_percent);
+    assert!(head.error_percent < 4.0, "head {:.2} %", head.error_percent);
+    assert!(neck.predicted.y < head.predicted.y, "neck above the head");
 }
