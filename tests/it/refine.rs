@@ -931,6 +931,7 @@ fn shoulder_pads_and_a_chest_plate_do_not_move_the_shoulder_off_the_arm() {
         "shoulder_L {:.2} %",
         shoulder.error_percent
     );
+}
 
 /// The flare of a leg split: two legs as wide and deep together as the trunk they leave run
 /// on into it (a short-legged cartoon's crotch, about 1); a skirt standing out around the legs
