@@ -65,15 +65,35 @@ pub fn on_axis(
     Some(point + dir * ((h - frame.h(point)) / rise))
 }
 
+/// The hand's flat section begins where a slice is this many times as wide as it is thick
+/// (major / minor diameter): a palm is two to four times as wide as thick, a forearm's slices
+/// at most about one and a half (its flat distal end, measured on the MakeHuman and game
+/// bodies).
+const HAND_FLATNESS: f64 = 1.6;
+
+/// Walking back from the hand's flat section towards the elbow, the narrowing before it ends
+/// where the perimeter has risen this fraction above its smallest value on the way (out of the
+/// valley, past the B-spline's ripples).
+const VALLEY_RISE: f64 = 0.1;
+
 /// The wrist: among the local minima of the arm's thickness (minor diameter) beyond `from`
-/// (arc length), the one nearest the global minimum of the width (major diameter) there.
+/// (arc length), the one nearest the arm's last narrowing before the hand's flat section
+/// ([`hand_flat_start`]): the bottom of the perimeter's valley reached walking back from that
+/// section ([`last_narrowing`]). A forearm thinner in its middle than at the wrist (a jointed
+/// mannequin's rod before its wrist piece) so keeps the wrist at the hand. Without a flat
+/// section (the trace stops short of the hand, a fist), the narrowing is the global minimum of
+/// the width (major diameter) beyond `from`.
 pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
     let dense: Vec<LimbSlice> = profile
         .dense(step)
         .into_iter()
         .filter(|s| s.arc >= from)
         .collect();
-    let narrowest = dense.iter().min_by(|a, b| a.major.total_cmp(&b.major))?.arc;
+    let flat = hand_flat_start(&dense).filter(|&i| i > 0);
+    let narrowest = match flat {
+        Some(i) => last_narrowing(&dense[..=i])?.arc,
+        None => dense.iter().min_by(|a, b| a.major.total_cmp(&b.major))?.arc,
+    };
     let minima = (1..dense.len().saturating_sub(1))
         .filter(|&i| dense[i].minor <= dense[i - 1].minor && dense[i].minor <= dense[i + 1].minor);
     let best = minima
@@ -84,6 +104,33 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
         })
         .map(|i| dense[i].centre);
     best.or_else(|| dense.iter().find(|s| s.arc == narrowest).map(|s| s.centre))
+}
+
+/// Index of the first of `slices` where the hand's flat section begins: the slices from it on
+/// are all [`HAND_FLATNESS`] times as wide as thick over half its width (a palm is about as long
+/// as it is wide) or to the end of the trace. A lone flat slice (a sleeve's or gauntlet's rim
+/// caught by the sphere) is no hand. `None` when no section is that flat.
+fn hand_flat_start(slices: &[LimbSlice]) -> Option<usize> {
+    let flat = |s: &LimbSlice| s.major >= HAND_FLATNESS * s.minor;
+    (0..slices.len()).find(|&i| {
+        let reach = slices[i].arc + 0.5 * slices[i].major;
+        slices[i..].iter().take_while(|s| s.arc <= reach).all(flat)
+    })
+}
+
+/// The slice at the bottom of the last valley of the perimeter in `slices`: walking back from
+/// the last slice, the thinnest one until the perimeter has risen [`VALLEY_RISE`] above it.
+/// `None` for no slices.
+fn last_narrowing(slices: &[LimbSlice]) -> Option<&LimbSlice> {
+    let mut best = slices.last()?;
+    for s in slices.iter().rev() {
+        if s.perimeter < best.perimeter {
+            best = s;
+        } else if s.perimeter > (1.0 + VALLEY_RISE) * best.perimeter {
+            break;
+        }
+    }
+    Some(best)
 }
 
 /// A bend found within this fraction of the limb's span from the edges of its middle half is
@@ -231,4 +278,57 @@ fn line_crossings(mesh: &Mesh, p: DVec3, normal: DVec3, along: DVec3) -> Vec<f64
         .collect();
     crossings.sort_by(f64::total_cmp);
     crossings
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// A straight arm along x with slices every half unit: `section(x)` gives (major, minor)
+    /// diameters, the perimeter that of the ellipse's mean circle.
+    fn arm(section: impl Fn(f64) -> (f64, f64)) -> LimbProfile {
+        let slices = (0..=80)
+            .map(|i| {
+                let x = 0.5 * i as f64;
+                let (major, minor) = section(x);
+                LimbSlice {
+                    centre: DVec3::new(x, 0.0, 0.0),
+                    perimeter: PI * 0.5 * (major + minor),
+                    major,
+                    minor,
+                    arc: x,
+                }
+            })
+            .collect();
+        LimbProfile { slices }
+    }
+
+    #[test]
+    fn wrist_of_a_jointed_mannequin_is_at_its_wrist_piece_not_its_thin_forearm_rod() {
+        // Forearm, a thin rod (the narrowest part), a bulge, the wrist piece's narrowing, then
+        // the flat hand (three times as wide as thick). The global minimum of the width put
+        // the wrist on the rod, 11 units short of the hand (gdquest_mannequiny's wrists, 4 %
+        // of its height).
+        let profile = arm(|x| match x {
+            x if x < 10.0 => (4.0, 4.0),
+            x if x < 16.0 => (2.0, 2.0),
+            x if x < 22.0 => (4.0, 4.0),
+            x if x < 26.0 => (3.0, 3.0),
+            _ => (8.0, 2.5),
+        });
+        let w = wrist(&profile, 0.0, 0.25).unwrap();
+        assert!((21.0..27.0).contains(&w.x), "wrist at {w}");
+    }
+
+    #[test]
+    fn wrist_of_a_tapering_forearm_is_at_its_narrowest_before_the_hand() {
+        // A forearm tapering to the wrist, the flat hand beyond: the narrowing just before it.
+        let profile = arm(|x| match x {
+            x if x < 24.0 => (5.0 - 0.1 * x, 5.0 - 0.1 * x),
+            _ => (8.0, 2.5),
+        });
+        let w = wrist(&profile, 0.0, 0.25).unwrap();
+        assert!((20.0..26.0).contains(&w.x), "wrist at {w}");
+    }
 }
