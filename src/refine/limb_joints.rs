@@ -78,8 +78,8 @@ const VALLEY_RISE: f64 = 0.1;
 
 /// The wrist: among the local minima of the arm's thickness (minor diameter) beyond `from`
 /// (arc length), the one nearest the arm's last narrowing before the hand's flat section
-/// ([`hand_flat_start`]): the bottom of the perimeter's valley reached walking back from that
-/// section ([`last_narrowing`]). A forearm thinner in its middle than at the wrist (a jointed
+/// (`hand_flat_start`): the bottom of the perimeter's valley reached walking back from that
+/// section (`last_narrowing`). A forearm thinner in its middle than at the wrist (a jointed
 /// mannequin's rod before its wrist piece) so keeps the wrist at the hand. Without a flat
 /// section (the trace stops short of the hand, a fist), the narrowing is the global minimum of
 /// the width (major diameter) beyond `from`.

@@ -884,28 +884,32 @@ fn mirrored_ears_above_the_head_are_not_its_slices() {
     }
 }
 
+/// The head joint of `mesh` (a figure whose neck ends at height 1.45) with the head's slices
+/// started `near`, at `HeadLevel::Auto`, `NeckTop` and `NoseLevel`.
+fn head_joints_by_level(mesh: &Mesh, near: DVec3) -> [DVec3; 3] {
+    use skelfit::refine::HeadLevel;
+    let frame = skelfit::refine::BodyFrame::new(mesh, DVec3::Y, DVec3::Z).unwrap();
+    let slices =
+        skelfit::refine::head_slices(mesh, &frame, near, Some(1.45), &RefineOptions::default())
+            .expect("head slices");
+    [HeadLevel::Auto, HeadLevel::NeckTop, HeadLevel::NoseLevel].map(|level| {
+        let options = RefineOptions {
+            head_level: level,
+            ..RefineOptions::default()
+        };
+        skelfit::refine::head_joint(mesh, &frame, &slices, Some(1.45), &options)
+            .expect("a head joint")
+            .joint
+    })
+}
+
 /// The front of a round head is the cap of a sphere, no nose: the head joint goes at the top of
 /// the neck (the game-rig convention), as with `HeadLevel::NeckTop`, not at nose level.
 #[test]
 fn a_round_head_without_a_nose_has_its_joint_at_the_neck() {
     let head = Mesh::uv_sphere(DVec3::new(0.0, 1.66, 0.0), 0.11, 24, 32);
     let mesh = eared_figure(head);
-    let frame = skelfit::refine::BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap();
-    let options = RefineOptions::default();
-    let near = DVec3::new(0.0, 1.66, 0.0);
-    let slices = skelfit::refine::head_slices(&mesh, &frame, near, Some(1.45), &options)
-        .expect("head slices");
-    let joint = |level| {
-        let options = RefineOptions {
-            head_level: level,
-            ..RefineOptions::default()
-        };
-        skelfit::refine::head_joint(&mesh, &frame, &slices, Some(1.45), &options)
-            .expect("a head joint")
-            .joint
-    };
-    let auto = joint(skelfit::refine::HeadLevel::Auto);
-    let neck = joint(skelfit::refine::HeadLevel::NeckTop);
+    let [auto, neck, _] = head_joints_by_level(&mesh, DVec3::new(0.0, 1.66, 0.0));
     assert!(auto.distance(neck) < 1e-9, "auto {auto} vs neck top {neck}");
     assert!(auto.y < 1.62, "head joint at {}", auto.y);
 }
@@ -982,23 +986,7 @@ fn a_ridge_on_a_big_head_is_no_nose() {
         b([-0.05, 1.45, -0.05], [0.05, 1.55, 0.05]),
         head,
     ]);
-    let frame = skelfit::refine::BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap();
-    let near = DVec3::new(0.0, 1.8, 0.0);
-    let options = RefineOptions::default();
-    let slices = skelfit::refine::head_slices(&mesh, &frame, near, Some(1.45), &options)
-        .expect("head slices");
-    let joint = |level| {
-        let options = RefineOptions {
-            head_level: level,
-            ..RefineOptions::default()
-        };
-        skelfit::refine::head_joint(&mesh, &frame, &slices, Some(1.45), &options)
-            .expect("a head joint")
-            .joint
-    };
-    let auto = joint(skelfit::refine::HeadLevel::Auto);
-    let neck = joint(skelfit::refine::HeadLevel::NeckTop);
-    let nose = joint(skelfit::refine::HeadLevel::NoseLevel);
+    let [auto, neck, nose] = head_joints_by_level(&mesh, DVec3::new(0.0, 1.8, 0.0));
     assert!(nose.y > 1.65, "the ridge's level: {}", nose.y);
     assert!(auto.distance(neck) < 1e-9, "auto {auto} vs neck top {neck}");
     assert!(auto.y < 1.6, "head joint at {}", auto.y);
