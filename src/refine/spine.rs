@@ -57,7 +57,11 @@ pub fn spine(
         .into_iter()
         .map(median)
         .collect();
-    if control.windows(2).any(|w| frame.h(w[0]) <= frame.h(w[1])) {
+    // Ordered top to bottom (a NaN from a broken mesh compares as unordered and is refused).
+    if control
+        .windows(2)
+        .any(|w| frame.h(w[0]).partial_cmp(&frame.h(w[1])) != Some(std::cmp::Ordering::Greater))
+    {
         return None;
     }
     let curve = CatmullRom::new(&control);
@@ -178,6 +182,11 @@ impl Gradient for LengthDeviation {
 /// joints, sacrum centre) with the `fixed` parameters of [`FIXED`], starting from a uniform
 /// spacing between the ends. `None` when the solver fails.
 fn spacing(fixed: &[f64]) -> Option<Vec<f64>> {
+    // A non-finite parameter (a joint off the curve of a broken mesh) makes every cost NaN, and
+    // the line search never ends on NaN.
+    if !fixed.iter().all(|t| t.is_finite()) {
+        return None;
+    }
     let problem = LengthDeviation {
         fixed: fixed.to_vec(),
     };
@@ -218,6 +227,12 @@ mod tests {
         }
         // 7 → 20 over 6 intervals.
         assert!((t[10] - (7.0 + 13.0 * 3.0 / 6.0)).abs() < 1e-6, "{t:?}");
+    }
+
+    #[test]
+    fn a_non_finite_joint_gives_no_spacing() {
+        assert!(spacing(&[0.0, f64::NAN, 20.0, 29.0, 35.0]).is_none());
+        assert!(spacing(&[0.0, 7.0, f64::INFINITY, 29.0, 35.0]).is_none());
     }
 
     #[test]
