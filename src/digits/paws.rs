@@ -90,7 +90,7 @@ pub fn fit_paws(
             ) else {
                 continue;
             };
-            let Some(group) = limb_of(template, fit, r) else {
+            let Some(group) = limb_of(template, fit, r, side) else {
                 continue;
             };
             if let Some(w) = fit_paw(mesh, group, fit, (p, r), side, fore, &body, options) {
@@ -109,13 +109,20 @@ struct Body {
     centre: DVec3,
 }
 
-/// The template's limb group whose chain holds the fitted joint `root` and names digits.
-fn limb_of<'t>(template: &'t Template, fit: &Fit, root: JointId) -> Option<&'t LimbGroup> {
+/// The template's limb group whose chain holds the fitted joint `root` of `side` (the digit
+/// stage runs before the preset's names: joints carry the template's names) and names digits.
+fn limb_of<'t>(
+    template: &'t Template,
+    fit: &Fit,
+    root: JointId,
+    side: Side,
+) -> Option<&'t LimbGroup> {
     let name = &fit.skeleton.joint(root).name;
+    let stem = name.strip_suffix(side.suffix())?;
     template
         .limbs
         .iter()
-        .find(|g| !g.digits.is_empty() && g.chain.iter().any(|c| name.starts_with(c.as_str())))
+        .find(|g| !g.digits.is_empty() && g.chain.iter().any(|c| c == stem))
 }
 
 /// One foot: `joints` are the joint above the foot's root (elbow, knee) and the root (wrist,

@@ -513,7 +513,9 @@ fn hips_and_pelvis(
         _ => 0.15 * height,
     };
     let knees = rough.pair_height(&frame, Canonical::Knee);
-    let crotch_hidden = crotch_hidden(scene, torso, knees, reach);
+    // The top of the gap between the legs, read once for both the hem test and the hips.
+    let split = torso.and_then(|t| crotch_split(scene, frame.h(t.crotch), reach));
+    let crotch_hidden = crotch_hidden(scene, torso, split, knees, reach);
     let hip_height = match torso {
         // The median silhouette runs down past the knees: a skirt, robe or long coat hides
         // the crotch, and the hips go where the arm's length puts them.
@@ -524,11 +526,7 @@ fn hips_and_pelvis(
             });
             from_arms.or(hips_h)
         }
-        Some(t) => {
-            let bottom = frame.h(t.crotch);
-            let split = crotch_split(scene, bottom, reach);
-            Some(split.unwrap_or(bottom) + options.hip_above_crotch * height)
-        }
+        Some(t) => Some(split.unwrap_or(frame.h(t.crotch)) + options.hip_above_crotch * height),
         None => hips_h,
     };
     match hip_height.and_then(|h| hips(mesh, &frame, centre, h, reach)) {
@@ -560,10 +558,12 @@ const FLARE_GAP: f64 = 0.01;
 /// ends low but shows no legs apart), unless the legs' own sections leave the trunk at the
 /// silhouette's lowest point without a hem's flare ([`split_flare`] at most [`HEM_FLARE`]):
 /// there the crotch shows, and the rough knees are too high (short cartoon legs, whose rough
-/// knees the adult leg ratios put above the crotch).
+/// knees the adult leg ratios put above the crotch). `split` is [`crotch_split`] at the
+/// silhouette's lowest point.
 fn crotch_hidden(
     scene: &Scene,
     torso: Option<&TorsoPoints>,
+    split: Option<f64>,
     knees: Option<f64>,
     reach: f64,
 ) -> bool {
@@ -579,7 +579,7 @@ fn crotch_hidden(
     };
     let low = knees.is_some_and(|k| crotch < k && legs_apart_below(mesh, &frame, centre, k, reach));
     let shows = || {
-        crotch_split(scene, crotch, reach)
+        split
             .and_then(|split| split_flare(mesh, &frame, centre, split, FLARE_GAP * height, reach))
             .is_some_and(|flare| flare <= HEM_FLARE)
     };
