@@ -81,18 +81,34 @@ const VALLEY_RISE: f64 = 0.1;
 /// (`hand_flat_start`): the bottom of the perimeter's valley reached walking back from that
 /// section (`last_narrowing`). A forearm thinner in its middle than at the wrist (a jointed
 /// mannequin's rod before its wrist piece) so keeps the wrist at the hand. Without a flat
-/// section (the trace stops short of the hand, a fist), the narrowing is the global minimum of
-/// the width (major diameter) beyond `from`.
+/// section (a fist or a mitten, or a trace that stops short of the hand), the narrowing is the
+/// narrowest width (major diameter) beyond `from` that a wider section follows
+/// (`narrowest_before_widening`: the hand or fist beyond the wrist), else the narrowest width
+/// there. The slices past the trace's tip (the slice farthest from its first, where spheres
+/// beyond the end of the limb fold the centroid curve back) are no part of the limb.
 pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
-    let dense: Vec<LimbSlice> = profile
-        .dense(step)
+    let all = profile.dense(step);
+    let start = all.first()?.centre;
+    let tip = all
+        .iter()
+        .enumerate()
+        .max_by(|a, b| {
+            a.1.centre
+                .distance_squared(start)
+                .total_cmp(&b.1.centre.distance_squared(start))
+        })
+        .map_or(0, |(i, _)| i);
+    let dense: Vec<LimbSlice> = all
         .into_iter()
+        .take(tip + 1)
         .filter(|s| s.arc >= from)
         .collect();
     let flat = hand_flat_start(&dense).filter(|&i| i > 0);
     let narrowest = match flat {
         Some(i) => last_narrowing(&dense[..=i])?.arc,
-        None => dense.iter().min_by(|a, b| a.major.total_cmp(&b.major))?.arc,
+        None => narrowest_before_widening(&dense)
+            .or_else(|| dense.iter().min_by(|a, b| a.major.total_cmp(&b.major)))?
+            .arc,
     };
     let minima = (1..dense.len().saturating_sub(1))
         .filter(|&i| dense[i].minor <= dense[i - 1].minor && dense[i].minor <= dense[i + 1].minor);
@@ -104,6 +120,24 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
         })
         .map(|i| dense[i].centre);
     best.or_else(|| dense.iter().find(|s| s.arc == narrowest).map(|s| s.centre))
+}
+
+/// The slice of least width (major diameter) among those that a slice further on exceeds in
+/// width by [`VALLEY_RISE`]: the bottom of a valley with the hand or fist beyond it. The cap at
+/// the end of a fist only narrows to the tip and has no such slice after it. `None` when no
+/// slice is followed by a wider one.
+fn narrowest_before_widening(slices: &[LimbSlice]) -> Option<&LimbSlice> {
+    let mut widest_after = f64::NEG_INFINITY;
+    let mut best: Option<&LimbSlice> = None;
+    for s in slices.iter().rev() {
+        if widest_after > (1.0 + VALLEY_RISE) * s.major
+            && best.is_none_or(|b| s.major <= b.major)
+        {
+            best = Some(s);
+        }
+        widest_after = widest_after.max(s.major);
+    }
+    best
 }
 
 /// Index of the first of `slices` where the hand's flat section begins: the slices from it on
@@ -319,6 +353,30 @@ mod tests {
         });
         let w = wrist(&profile, 0.0, 0.25).unwrap();
         assert!((21.0..27.0).contains(&w.x), "wrist at {w}");
+    }
+
+    #[test]
+    fn wrist_of_a_fist_is_at_the_narrowing_before_it_not_at_its_tip() {
+        // A round forearm narrowing at the wrist, a round fist (no flat section) wider than
+        // the forearm, its cap tapering to the tip, and spheres beyond the tip folding the
+        // centroid curve back. The global minimum of the width put the wrist on the fist's cap
+        // (quaternius_platformer_character: 8 % of its height out along the arm).
+        let mut profile = arm(|x| match x {
+            x if x < 20.0 => (4.0, 4.0),
+            x if x < 24.0 => (3.6, 3.6),
+            x if x < 34.0 => (4.6, 4.6),
+            x => (4.6 - 0.4 * (x - 34.0), 4.6 - 0.4 * (x - 34.0)),
+        });
+        // The last slices fold back towards the shoulder, narrow as the cap.
+        let n = profile.slices.len();
+        for k in 0..4 {
+            let s = &mut profile.slices[n - 1 - k];
+            s.centre.x = 37.0 - 0.5 * (4 - k) as f64;
+            s.major = 2.0 + 0.5 * k as f64;
+            s.minor = s.major;
+        }
+        let w = wrist(&profile, 10.0, 0.25).unwrap();
+        assert!((20.0..24.5).contains(&w.x), "wrist at {w}");
     }
 
     #[test]
