@@ -106,9 +106,11 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
     let flat = hand_flat_start(&dense).filter(|&i| i > 0);
     let narrowest = match flat {
         Some(i) => last_narrowing(&dense[..=i])?.arc,
-        None => narrowest_before_widening(&dense)
-            .or_else(|| dense.iter().min_by(|a, b| a.major.total_cmp(&b.major)))?
-            .arc,
+        None => {
+            narrowest_before_widening(&dense)
+                .or_else(|| dense.iter().min_by(|a, b| a.major.total_cmp(&b.major)))?
+                .arc
+        }
     };
     let minima = (1..dense.len().saturating_sub(1))
         .filter(|&i| dense[i].minor <= dense[i - 1].minor && dense[i].minor <= dense[i + 1].minor);
@@ -130,9 +132,7 @@ fn narrowest_before_widening(slices: &[LimbSlice]) -> Option<&LimbSlice> {
     let mut widest_after = f64::NEG_INFINITY;
     let mut best: Option<&LimbSlice> = None;
     for s in slices.iter().rev() {
-        if widest_after > (1.0 + VALLEY_RISE) * s.major
-            && best.is_none_or(|b| s.major <= b.major)
-        {
+        if widest_after > (1.0 + VALLEY_RISE) * s.major && best.is_none_or(|b| s.major <= b.major) {
             best = Some(s);
         }
         widest_after = widest_after.max(s.major);
@@ -218,8 +218,20 @@ pub fn bend(
         return Some((q, BendRule::SmallestAngle));
     }
     // The ratio point on the straight line between the joints, taken to the curve (the trace
-    // may start below the hip, so arc lengths from its start would shift it).
-    let target = arc_near(profile, proximal.lerp(distal, ratio));
+    // may start below the hip, so arc lengths from its start would shift it): the sample of
+    // the smoothed curve at that fraction along the line, as for the middle half above. The
+    // raw slice nearest the point is not it: the B-spline runs a slice or more ahead of its
+    // control points where the sphere slices zigzag (a cartoon's short arm entering its
+    // trunk), which had put the elbow of quaternius_platformer_character 0.8 of the way to
+    // the wrist.
+    let target = dense
+        .iter()
+        .min_by(|a, b| {
+            (along(a.centre) - ratio)
+                .abs()
+                .total_cmp(&(along(b.centre) - ratio).abs())
+        })?
+        .arc;
     let half = options.ratio_window * (s1 - s0);
     let best = dense
         .iter()
@@ -353,6 +365,38 @@ mod tests {
         });
         let w = wrist(&profile, 0.0, 0.25).unwrap();
         assert!((21.0..27.0).contains(&w.x), "wrist at {w}");
+    }
+
+    #[test]
+    fn bend_ratio_point_is_taken_along_the_line_between_the_joints() {
+        // A straight limb along x sliced unevenly: close slices near the shoulder (where a
+        // cartoon's arm enters its trunk), sparse ones beyond. The smoothed curve is not at a
+        // raw slice's centre at that slice's arc length, so the raw slice nearest the ratio
+        // point gave a target on the curve far from it.
+        let xs = [0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 10.0, 20.0, 30.0, 40.0];
+        let slices = xs
+            .iter()
+            .map(|&x| LimbSlice {
+                centre: DVec3::new(x, 0.0, 0.0),
+                perimeter: 10.0,
+                major: 3.2,
+                minor: 3.2,
+                arc: x,
+            })
+            .collect();
+        let profile = LimbProfile { slices };
+        let options = RefineOptions::default();
+        let (e, rule) = bend(
+            &profile,
+            DVec3::ZERO,
+            DVec3::new(40.0, 0.0, 0.0),
+            0.54,
+            0.1,
+            &options,
+        )
+        .unwrap();
+        assert_eq!(rule, BendRule::Ratio);
+        assert!((e.x - 21.6).abs() < 1.5, "elbow at {e}");
     }
 
     #[test]
