@@ -526,7 +526,10 @@ fn hips_and_pelvis(
             });
             from_arms.or(hips_h)
         }
-        Some(t) => Some(split.unwrap_or(frame.h(t.crotch)) + options.hip_above_crotch * height),
+        Some(t) => {
+            let crotch = split.unwrap_or(frame.h(t.crotch));
+            hips_above_crotch(rough, found, &frame, crotch, options.hip_above_crotch).or(hips_h)
+        }
         None => hips_h,
     };
     match hip_height.and_then(|h| hips(mesh, &frame, centre, h, reach)) {
@@ -599,6 +602,30 @@ fn crotch_split(scene: &Scene, bottom: f64, reach: f64) -> Option<f64> {
         0.001 * height,
         reach,
     )
+}
+
+/// The hips' height when the crotch shows: `fraction` ([`RefineOptions::hip_above_crotch`]) of
+/// the way from the crotch at height `crotch` up to the shoulders (refined, else rough). The
+/// pelvis belongs to the trunk, so its height above the crotch scales with the trunk rather
+/// than with the stature: a short-legged cartoon's legs take little of its height, and a
+/// fraction of the height had put its hips 2 % of its height too high. `None` without
+/// shoulders above the crotch.
+fn hips_above_crotch(
+    rough: &Rough,
+    found: &Found,
+    frame: &BodyFrame,
+    crotch: f64,
+    fraction: f64,
+) -> Option<f64> {
+    let refined = match (
+        found.get(&Canonical::Shoulder(Side::Left)),
+        found.get(&Canonical::Shoulder(Side::Right)),
+    ) {
+        (Some(l), Some(r)) => Some((frame.h(*l) + frame.h(*r)) * 0.5),
+        _ => None,
+    };
+    let shoulders = refined.or_else(|| rough.pair_height(frame, Canonical::Shoulder))?;
+    (shoulders > crotch).then(|| crotch + fraction * (shoulders - crotch))
 }
 
 /// The trunk from the shoulder joints down to the hip joints is this many times as long as the

@@ -44,7 +44,31 @@ pub(super) fn leg(
         return;
     };
     let Some(profile) = trace_limb(mesh, &[hip, knee, ank], height, options) else {
-        warnings.push(RefineWarning::LegNotSliced(side));
+        // No tube to slice (a short cartoon leg about as thick as it is long, whose rough
+        // knee by adult ratios sits in the trunk): as when the trace stops short, the ankle
+        // at the ankle's height above the sole and the knee by the leg's proportions from the
+        // refined hip, each only inside the leg's own section; else both stay rough.
+        let placed = ankle_above_sole(scene, side, ank);
+        let h = knee_height(scene, hip, placed.unwrap_or(ank));
+        let by_ratio = own_section(scene, side, frame.at_height(knee, h));
+        if let Some(a) = placed {
+            found.insert(Canonical::Ankle(side), a);
+        }
+        if let Some(k) = by_ratio {
+            found.insert(Canonical::Knee(side), k);
+        }
+        if placed.is_none() && by_ratio.is_none() {
+            warnings.push(RefineWarning::LegNotSliced(side));
+        } else {
+            warnings.push(RefineWarning::NoAnkle {
+                side,
+                placed: placed.is_some(),
+            });
+            warnings.push(RefineWarning::NoKnee {
+                side,
+                placed: by_ratio.is_some(),
+            });
+        }
         return;
     };
     let step = 0.25 * options.limb_step * height;

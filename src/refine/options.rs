@@ -152,11 +152,15 @@ pub struct RefineOptions {
     /// Curvature on the leg's centroid curve is measured over this arc-length window, fraction
     /// of height. Default 0.03 (5 cm).
     pub curvature_window: f64,
-    /// Height of the hip slice above the crotch, fraction of height. Default 0.050. The seed
-    /// (3.3) averages the crotch and sacroiliac heights; on the MakeHuman bodies the buttocks'
-    /// flat bulge made the sacroiliac height unstable (the hip joints lay at 0.7-1.1 of the way
-    /// from crotch to sacroiliac point), while the reference hips lay 0.048-0.049 of height
-    /// above the crotch on the five adults and 0.058 on the child (mean 0.050, measurement).
+    /// Height of the hip slice above the crotch, fraction of the way from the crotch up to the
+    /// shoulders (refined, else rough). Default 0.155. The seed (3.3) averages the crotch and
+    /// sacroiliac heights; on the MakeHuman bodies the buttocks' flat bulge made the
+    /// sacroiliac height unstable (the hip joints lay at 0.7-1.1 of the way from crotch to
+    /// sacroiliac point), while the reference hips lay 0.150-0.159 of the way from the crotch
+    /// to the shoulders on the five adults and 0.184 on the child (measurement). It was 0.050
+    /// of the height (0.048-0.058 on those bodies), which sent a short-legged figure's hips
+    /// too high: the pelvis scales with the trunk, not the stature (quaternius_knight 0.163
+    /// of its trunk, men_adventurer 0.150, platformer character about 0.10).
     /// The crotch is the top of the gap between the legs (where transverse slices stop cutting
     /// two thighs), or the lowest point of the median-plane silhouette when the legs touch.
     pub hip_above_crotch: f64,
@@ -329,7 +333,7 @@ impl Default for RefineOptions {
             ankle_on_shin_axis: true,
             wrist_search_from: 0.5,
             curvature_window: 0.03,
-            hip_above_crotch: 0.050,
+            hip_above_crotch: 0.155,
             hip_depth: Some(0.45),
             pelvis_above_hips: 0.006,
             neck_window: 0.6,
