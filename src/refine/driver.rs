@@ -625,7 +625,7 @@ fn hips_above_crotch(
         _ => None,
     };
     let shoulders = refined.or_else(|| rough.pair_height(frame, Canonical::Shoulder))?;
-    (shoulders > crotch).then(|| crotch + fraction * (shoulders - crotch))
+    (shoulders > crotch).then_some(crotch + fraction * (shoulders - crotch))
 }
 
 /// The trunk from the shoulder joints down to the hip joints is this many times as long as the
