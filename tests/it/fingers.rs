@@ -301,3 +301,91 @@ fn hands_touching_the_thighs_keep_their_digits_or_are_named() {
         assert!(complete || named, "{side:?}: {warnings:?}");
     }
 }
+
+/// The bundled body with a sixth digit on its left hand: a copy of the pinky that shares the
+/// pinky's base ring (the corners where the pinky's triangles meet the palm's) and splays away
+/// from the ring finger, by one finger spacing at the tip. The rig does not panic, the right
+/// hand keeps its five digits without a warning, and the left hand is named in a warning that
+/// says six digits separate, its thumb still found (issue 25, bad input: six fingers).
+#[test]
+fn a_sixth_finger_is_named_in_a_warning() {
+    let mesh = bundled();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let sk = &r.fit.skeleton;
+    let joint = |k: &str| sk.joint(r.fit.canonical[k]).position;
+    let pinky: Vec<bool> = r
+        .skin
+        .weights
+        .iter()
+        .map(|w| {
+            w.iter()
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+                .is_some_and(|&(j, _)| {
+                    let name = &sk.joint(j).name;
+                    name.starts_with("pinky_") && name.ends_with("_L")
+                })
+        })
+        .collect();
+    assert!(
+        pinky.iter().filter(|&&c| c).count() > 20,
+        "no pinky to copy"
+    );
+    // The base ring: pinky corners that also belong to a triangle with a non-pinky corner.
+    let mut ring = vec![false; pinky.len()];
+    for t in &mesh.triangles {
+        if t.iter().any(|&v| !pinky[v as usize]) {
+            for &v in t {
+                ring[v as usize] |= pinky[v as usize];
+            }
+        }
+    }
+    let spacing = joint("pinky_01_L") - joint("ring_01_L");
+    let (base, tip) = (joint("pinky_01_L"), joint("pinky_03_L"));
+    let reach = base.distance(tip);
+    assert!(spacing.length() > 0.005 && reach > 0.01, "a pinky to copy");
+    let mut positions = mesh.positions.clone();
+    let mut copy: Vec<u32> = (0..positions.len() as u32).collect();
+    for v in (0..pinky.len()).filter(|&v| pinky[v] && !ring[v]) {
+        let p = mesh.positions[v];
+        copy[v] = positions.len() as u32;
+        positions.push(p + spacing * (p.distance(base) / reach).min(1.0));
+    }
+    let mut triangles = mesh.triangles.clone();
+    triangles.extend(
+        mesh.triangles
+            .iter()
+            .filter(|t| t.iter().all(|&v| pinky[v as usize]))
+            .map(|t| t.map(|v| copy[v as usize])),
+    );
+    let six = Mesh::new(positions, triangles).unwrap();
+    let p = rig(&six, &RigOptions::default()).unwrap();
+    let warnings = digit_warnings(&p);
+    println!("{warnings:?}");
+    let complete = DIGITS
+        .iter()
+        .filter(|k| k.as_str().ends_with(Side::Right.suffix()))
+        .all(|k| p.fit.canonical.contains_key(k.as_str()));
+    assert!(complete, "the right hand keeps five digits");
+    assert!(
+        warnings
+            .iter()
+            .all(|w| !w.to_string().contains(Side::Right.as_str())),
+        "{warnings:?}"
+    );
+    assert!(
+        warnings.iter().any(|w| matches!(
+            w,
+            DigitWarning::DigitCount {
+                side: Side::Left,
+                found: 6
+            }
+        )),
+        "{warnings:?}"
+    );
+    assert!(
+        p.fit
+            .canonical
+            .contains_key(Canonical::Digit(Side::Left, Finger::Thumb, 1).as_str()),
+        "the left thumb"
+    );
+}
