@@ -74,20 +74,18 @@ pub(crate) fn geodesic_weights(
     segments: &[SegmentVoxels],
     options: &SkinOptions,
 ) -> (Vec<Vec<(JointId, f64)>>, Vec<usize>) {
-    // The mesh's adjacency and its smoothing graph depend on the mesh alone: built beside the
-    // enclosed air, the shortest paths (one thread) and the diffusion. (The enclosed air
-    // leaves the grid as it is.)
+    // The figure with the air it encloses, which the weights may cross (a hollow jacket).
+    let enclosed = with_enclosed_air(solid, options.enclosed_air).map(|solid| {
+        let distance = crate::distance::edt(&solid);
+        (solid, distance)
+    });
+    let (solid, distance) = enclosed.as_ref().map_or((solid, distance), |(s, d)| (s, d));
     let grid = solid.grid;
+    let needed = voxels_around_vertices(mesh, solid);
+    // The mesh's adjacency and its smoothing graph depend on the mesh alone: built beside the
+    // shortest paths (one thread) and the diffusion, not after them.
     let (voxels, (adjacency, smoothing)) = rayon::join(
         || {
-            // The figure with the air it encloses, which the weights may cross (a hollow
-            // jacket).
-            let enclosed = with_enclosed_air(solid, options.enclosed_air).map(|solid| {
-                let distance = crate::distance::edt(&solid);
-                (solid, distance)
-            });
-            let (solid, distance) = enclosed.as_ref().map_or((solid, distance), |(s, d)| (s, d));
-            let needed = voxels_around_vertices(mesh, solid);
             let field = field(solid, distance, segments, options, &needed);
             let radius = bone_radius(skeleton, distance, segments);
             smoothed_voxel_weights(&field, &grid, &needed, options, &radius)
