@@ -50,7 +50,7 @@ use diffusion::smoothed_voxel_weights;
 use field::field;
 use rayon::prelude::*;
 use rows::{Mixer, Row};
-use surface::{corners, smooth, spread_to_unreached, vertex_rows, Adjacency};
+use surface::{corners, spread_to_unreached, vertex_rows, Adjacency, Smoothing};
 
 /// Nearest joints kept per interior voxel: the four influences a vertex may keep, and one
 /// more whose weight is subtracted so that joints enter and leave the set smoothly.
@@ -82,15 +82,24 @@ pub(crate) fn geodesic_weights(
     let (solid, distance) = enclosed.as_ref().map_or((solid, distance), |(s, d)| (s, d));
     let grid = solid.grid;
     let needed = voxels_around_vertices(mesh, solid);
-    // The mesh's adjacency does not depend on the field: built beside the shortest paths
-    // (one thread) and the diffusion.
-    let (voxels, adjacency) = rayon::join(
+    // The mesh's adjacency and its smoothing graph depend on the mesh alone: built beside the
+    // shortest paths (one thread) and the diffusion, not after them.
+    let (voxels, (adjacency, smoothing)) = rayon::join(
         || {
             let field = field(solid, distance, segments, options, &needed);
             let radius = bone_radius(skeleton, distance, segments);
             smoothed_voxel_weights(&field, &grid, &needed, options, &radius)
         },
-        || Adjacency::new(mesh),
+        || {
+            let adjacency = Adjacency::new(mesh);
+            let smoothing = Smoothing::new(
+                mesh,
+                &adjacency,
+                options.smoothing_iterations,
+                grid.voxel_size,
+            );
+            (adjacency, smoothing)
+        },
     );
     let mut rows = vertex_rows(&voxels, &grid, mesh);
     // A vertex the field does not reach (no joint reached any interior voxel near it) takes
@@ -98,13 +107,7 @@ pub(crate) fn geodesic_weights(
     // piece with no weighted vertex at all follows the joint of its nearest bone.
     spread_to_unreached(&mut rows, &adjacency);
     let isolated = bind_isolated(mesh, skeleton, segments, &mut rows);
-    smooth(
-        mesh,
-        &adjacency,
-        &mut rows,
-        options.smoothing_iterations,
-        grid.voxel_size,
-    );
+    smoothing.smooth(&mut rows);
     (vertex_weights(&rows), isolated)
 }
 

@@ -176,10 +176,10 @@ pub(super) fn spread_to_unreached(rows: &mut [Row], adjacency: &Adjacency) {
 }
 
 /// Meshes whose edges are on average (root mean square, each capped at a voxel) at least this
-/// fraction of a voxel long get every round of [`smooth`]; finer ones proportionally fewer.
+/// fraction of a voxel long get every round of [`Smoothing`]; finer ones proportionally fewer.
 const FINE_EDGE: f64 = 0.25;
 
-/// `iterations` rounds of Laplacian smoothing of `rows` over the mesh's edges: each vertex's
+/// Rounds of Laplacian smoothing of the vertices' rows over the mesh's edges: each vertex's
 /// weights move towards its neighbours' by half their mean difference, each edge's share
 /// scaled by (voxel size `h` / edge length)² so that meshes coarser than the voxels are barely
 /// smoothed, then pruned to four joints ([`Mixer::pruned`]). Removes what is left of the voxel
@@ -194,58 +194,118 @@ const FINE_EDGE: f64 = 0.25;
 /// measured on the MakeHuman body subdivided to 1.7M triangles (6 rounds instead of 32): 2691
 /// instead of 2370 of its 2.6M edges past 2× over the humanoid sweep (3103 without
 /// smoothing), at a fifth of the smoothing time.
-pub(super) fn smooth(
-    mesh: &Mesh,
-    adjacency: &Adjacency,
-    rows: &mut Vec<Row>,
-    iterations: usize,
-    h: f64,
-) {
-    if iterations == 0 {
-        return;
+///
+/// Everything but the rounds depends on the mesh alone ([`Smoothing::new`]), so it is built
+/// beside the weight field; [`Smoothing::smooth`] runs the rounds.
+pub(super) struct Smoothing {
+    /// The vertices in the order the rounds visit them (by position on large meshes, see
+    /// [`NEAR_ORDER_MIN`]) with each vertex's position in it; `None`: vertex order.
+    order: Option<(Vec<u32>, Vec<u32>)>,
+    /// The neighbours in the rounds' order, compressed rows (vertex numbers in that order).
+    start: Vec<usize>,
+    adjacent: Vec<u32>,
+    /// Each edge's share and what each vertex keeps of its own ([`Graph`]).
+    shares: Vec<f64>,
+    keep: Vec<f64>,
+    /// The rounds to run ([`rounds_for_fineness`]).
+    rounds: usize,
+}
+
+impl Smoothing {
+    /// The smoothing of `mesh` (adjacency `adjacency`) in `iterations` rounds for voxels of
+    /// size `h`, before the rounds.
+    pub fn new(mesh: &Mesh, adjacency: &Adjacency, iterations: usize, h: f64) -> Self {
+        let by_position = mesh.positions.len() >= NEAR_ORDER_MIN;
+        Self::in_order(mesh, adjacency, iterations, h, by_position)
     }
-    if rows.len() < NEAR_ORDER_MIN {
-        let graph = Graph::new(&mesh.positions, &adjacency.start, &adjacency.adjacent, h);
-        let rounds = rounds_for_fineness(&graph.fine, adjacency.adjacent.len(), iterations, h);
-        smoothing_rounds(rows, &graph, rounds);
-        return;
-    }
-    // A large mesh's rows do not fit in the caches: the rounds run over the vertices ordered
-    // by position (slabs of voxels), so that a vertex's neighbours lie near it in memory.
-    // Every vertex keeps its neighbours in their order, so each row is computed as without
-    // the reordering.
-    let order = near_order(mesh, h);
-    let mut new_index = vec![0u32; order.len()];
-    for (k, &v) in order.iter().enumerate() {
-        new_index[v as usize] = k as u32;
-    }
-    let mut start = Vec::with_capacity(order.len() + 1);
-    let mut end = 0;
-    start.push(end);
-    for &v in &order {
-        end += adjacency.around(v as usize).len();
+
+    /// [`Smoothing::new`], the rounds in position order or not (`by_position`).
+    fn in_order(
+        mesh: &Mesh,
+        adjacency: &Adjacency,
+        iterations: usize,
+        h: f64,
+        by_position: bool,
+    ) -> Self {
+        if iterations == 0 {
+            return Self {
+                order: None,
+                start: Vec::new(),
+                adjacent: Vec::new(),
+                shares: Vec::new(),
+                keep: Vec::new(),
+                rounds: 0,
+            };
+        }
+        if !by_position {
+            let graph = Graph::new(&mesh.positions, &adjacency.start, &adjacency.adjacent, h);
+            let rounds = rounds_for_fineness(&graph.fine, adjacency.adjacent.len(), iterations, h);
+            return Self {
+                order: None,
+                start: adjacency.start.clone(),
+                adjacent: adjacency.adjacent.clone(),
+                shares: graph.shares,
+                keep: graph.keep,
+                rounds,
+            };
+        }
+        // A large mesh's rows do not fit in the caches: the rounds run over the vertices
+        // ordered by position (slabs of voxels), so that a vertex's neighbours lie near it in
+        // memory. Every vertex keeps its neighbours in their order, so each row is computed
+        // as without the reordering.
+        let order = near_order(mesh, h);
+        let mut new_index = vec![0u32; order.len()];
+        for (k, &v) in order.iter().enumerate() {
+            new_index[v as usize] = k as u32;
+        }
+        let mut start = Vec::with_capacity(order.len() + 1);
+        let mut end = 0;
         start.push(end);
+        for &v in &order {
+            end += adjacency.around(v as usize).len();
+            start.push(end);
+        }
+        let mut adjacent = vec![0u32; end];
+        split_rows(&mut adjacent, &start)
+            .into_par_iter()
+            .with_min_len(4096)
+            .for_each(|(k, out)| {
+                for (o, &u) in out.iter_mut().zip(adjacency.around(order[k] as usize)) {
+                    *o = new_index[u as usize];
+                }
+            });
+        let positions: Vec<DVec3> = order
+            .par_iter()
+            .map(|&v| mesh.positions[v as usize])
+            .collect();
+        let graph = Graph::new(&positions, &start, &adjacent, h);
+        let rounds = rounds_for_fineness(&graph.fine, adjacent.len(), iterations, h);
+        let (shares, keep) = (graph.shares, graph.keep);
+        Self {
+            order: Some((order, new_index)),
+            start,
+            adjacent,
+            shares,
+            keep,
+            rounds,
+        }
     }
-    let mut adjacent = vec![0u32; end];
-    split_rows(&mut adjacent, &start)
-        .into_par_iter()
-        .with_min_len(4096)
-        .for_each(|(k, out)| {
-            for (o, &u) in out.iter_mut().zip(adjacency.around(order[k] as usize)) {
-                *o = new_index[u as usize];
-            }
-        });
-    let positions: Vec<DVec3> = order
-        .par_iter()
-        .map(|&v| mesh.positions[v as usize])
-        .collect();
-    let graph = Graph::new(&positions, &start, &adjacent, h);
-    let rounds = rounds_for_fineness(&graph.fine, adjacent.len(), iterations, h);
-    let mut ordered: Vec<Row> = order.par_iter().map(|&v| rows[v as usize]).collect();
-    smoothing_rounds(&mut ordered, &graph, rounds);
-    rows.par_iter_mut()
-        .zip(&new_index)
-        .for_each(|(row, &k)| *row = ordered[k as usize]);
+
+    /// Runs the rounds on `rows` (one per vertex, in vertex order).
+    pub fn smooth(&self, rows: &mut Vec<Row>) {
+        if self.rounds == 0 {
+            return;
+        }
+        let Some((order, new_index)) = &self.order else {
+            smoothing_rounds(rows, self);
+            return;
+        };
+        let mut ordered: Vec<Row> = order.par_iter().map(|&v| rows[v as usize]).collect();
+        smoothing_rounds(&mut ordered, self);
+        rows.par_iter_mut()
+            .zip(new_index)
+            .for_each(|(row, &k)| *row = ordered[k as usize]);
+    }
 }
 
 /// Meshes with at least this many vertices are smoothed in [`near_order`].
@@ -287,18 +347,16 @@ fn split_rows<'a, T>(mut values: &'a mut [T], start: &[usize]) -> Vec<(usize, &'
 /// The mesh's edges as [`smoothing_rounds`] reads them: compressed rows of neighbours, each
 /// edge's share (fixed over the rounds) and what each vertex keeps of its own, and per vertex
 /// the sum of its edges' (length / `h`)², each capped at one ([`rounds_for_fineness`]).
-struct Graph<'a> {
-    start: &'a [usize],
-    adjacent: &'a [u32],
+struct Graph {
     shares: Vec<f64>,
     keep: Vec<f64>,
     fine: Vec<f64>,
 }
 
-impl<'a> Graph<'a> {
+impl Graph {
     /// The graph of the vertices at `positions` with neighbours `adjacent[start[v]..start[v
     /// + 1]]`, for voxels of size `h`: in one pass over the vertices.
-    fn new(positions: &[DVec3], start: &'a [usize], adjacent: &'a [u32], h: f64) -> Self {
+    fn new(positions: &[DVec3], start: &[usize], adjacent: &[u32], h: f64) -> Self {
         let mut shares = vec![0.0f64; adjacent.len()];
         let h2 = h * h;
         let (keep, fine): (Vec<f64>, Vec<f64>) = split_rows(&mut shares, start)
@@ -319,26 +377,21 @@ impl<'a> Graph<'a> {
                 (1.0 - shared, fine)
             })
             .unzip();
-        Self {
-            start,
-            adjacent,
-            shares,
-            keep,
-            fine,
-        }
+        Self { shares, keep, fine }
     }
 }
 
-/// `iterations` rounds of [`smooth`] over `graph`; a vertex is computed again only where it or
-/// one of its neighbours changed in the round before ([`Settled`]).
-fn smoothing_rounds(rows: &mut Vec<Row>, graph: &Graph, iterations: usize) {
-    let Graph {
-        start,
-        adjacent,
+/// The rounds of `smoothing` on `rows` (in its order); a vertex is computed again only where
+/// it or one of its neighbours changed in the round before ([`Settled`]).
+fn smoothing_rounds(rows: &mut Vec<Row>, smoothing: &Smoothing) {
+    let Smoothing {
+        ref start,
+        ref adjacent,
         ref shares,
         ref keep,
+        rounds: iterations,
         ..
-    } = *graph;
+    } = *smoothing;
     let mut next = rows.clone();
     let mut settled = Settled::new(rows.len());
     for _ in 0..iterations {
@@ -393,9 +446,9 @@ fn smoothed_row(
     mix(own, keep, neighbours(), mixer)
 }
 
-/// The rounds of [`smooth`] for `iterations` asked, from each vertex's sum over its `edges`
+/// The rounds of [`Smoothing`] for `iterations` asked, from each vertex's sum over its `edges`
 /// (directed) of (edge length / voxel size `h`)², each capped at one: all of them unless the
-/// mesh is much finer than the voxels (see [`smooth`]).
+/// mesh is much finer than the voxels (see [`Smoothing`]).
 fn rounds_for_fineness(fine: &[f64], edges: usize, iterations: usize, h: f64) -> usize {
     if edges == 0 || h.is_nan() || h <= 0.0 {
         return iterations;
@@ -406,5 +459,49 @@ fn rounds_for_fineness(fine: &[f64], edges: usize, iterations: usize, h: f64) ->
         iterations
     } else {
         ((iterations as f64 * fineness).ceil() as usize).clamp(1, iterations)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rows of two to five joints varying over the vertices of a ringed tube.
+    fn tube_rows(mesh: &Mesh) -> Vec<Row> {
+        let mut mixer = Mixer::default();
+        mesh.positions
+            .iter()
+            .map(|p| {
+                mixer.clear();
+                let t = p.y.clamp(0.0, 2.0);
+                mixer.add(0, 1.0 + (2.0 - t).powi(2));
+                mixer.add(1, 1.0 + t * t);
+                mixer.add(2, 0.5 + (3.0 * t).sin().abs());
+                if p.x > 0.0 {
+                    mixer.add(3, p.x);
+                }
+                if p.z > 0.05 {
+                    mixer.add(4, 0.3 * p.z);
+                }
+                mixer.pruned(0.0)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn smoothing_in_position_order_gives_the_rows_of_vertex_order_to_the_bit() {
+        let rings: Vec<(f64, f64)> = (0..=40).map(|r| (0.2, 1.0 - r as f64 / 20.0)).collect();
+        let mesh = Mesh::lathe(DVec3::new(0.0, 1.0, 0.0), 1.0, &rings, -1.0, 12);
+        let adjacency = Adjacency::new(&mesh);
+        let rows = tube_rows(&mesh);
+        let (h, rounds) = (0.05, 12);
+        let mut plain = rows.clone();
+        Smoothing::in_order(&mesh, &adjacency, rounds, h, false).smooth(&mut plain);
+        let mut ordered = rows.clone();
+        let by_position = Smoothing::in_order(&mesh, &adjacency, rounds, h, true);
+        assert!(by_position.order.is_some());
+        by_position.smooth(&mut ordered);
+        assert_ne!(plain, rows, "the rounds changed nothing");
+        assert_eq!(plain, ordered);
     }
 }
