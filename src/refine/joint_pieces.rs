@@ -125,9 +125,9 @@ fn sphere_fit(points: &[DVec3], origin: DVec3) -> Option<(DVec3, f64)> {
 /// the centre of a joint ball that belongs to it, and records it in `found`; returns the keys
 /// placed. A ball belongs to joint J when its centre lies nearer J than any other estimate in
 /// `joints`, within half of J's limb bone of it, and its radius is a plausible limb thickness
-/// for that bone ([`BALL_RADIUS_PER_BONE`]). J's limb bone is the distance to its chain
-/// neighbour for the shoulder, wrist, hip and ankle (upper arm, forearm, thigh, shin) and half
-/// the span between its neighbours for the elbow and knee. Of several such balls the roundest
+/// for that bone ([`BALL_RADIUS_PER_BONE`]). J's limb bone is the distance from its chain
+/// neighbour to J or to the ball, the longer, for the shoulder, wrist, hip and ankle (upper
+/// arm, forearm, thigh, shin) and half the span between its neighbours for the elbow and knee. Of several such balls the roundest
 /// is taken (the piece the limb turns about is modelled as a sphere; a pad or socket beside it
 /// is only roughly round), the nearest among equally round ones.
 ///
@@ -179,12 +179,14 @@ fn ball_of<'a>(
     let at = |i: usize| joints.get(&keys[i]).copied();
     let key = keys[i];
     let p = at(i)?;
-    let bone = match i {
-        1 => at(0).zip(at(2)).map(|(a, b)| 0.5 * a.distance(b)),
-        0 => at(1).map(|q| p.distance(q)),
-        _ => at(i - 1).map(|q| p.distance(q)),
-    }
-    .filter(|b| *b > 0.0)?;
+    // The limb bone by the estimates, and, for a chain end, by the ball itself: a joint
+    // estimate that fell short along the limb shortens its bone as much as it misses the ball.
+    let (neighbour, estimated) = match i {
+        1 => (None, at(0).zip(at(2)).map(|(a, b)| 0.5 * a.distance(b))?),
+        0 => (at(1), p.distance(at(1)?)),
+        _ => (at(i - 1), p.distance(at(i - 1)?)),
+    };
+    let bone = |b: &JointBall| neighbour.map_or(estimated, |q| estimated.max(b.centre.distance(q)));
     let nearest_is_key = |c: DVec3| {
         let d = c.distance(p);
         joints.iter().all(|(k, q)| *k == key || q.distance(c) > d)
@@ -192,7 +194,9 @@ fn ball_of<'a>(
     let candidates: Vec<&JointBall> = balls
         .iter()
         .filter(|b| {
-            b.centre.distance(p) <= 0.5 * bone
+            let bone = bone(b);
+            bone > 0.0
+                && b.centre.distance(p) <= 0.5 * bone
                 && (BALL_RADIUS_PER_BONE.0 * bone..=BALL_RADIUS_PER_BONE.1 * bone)
                     .contains(&b.radius)
                 && nearest_is_key(b.centre)
