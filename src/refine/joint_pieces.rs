@@ -42,9 +42,12 @@ const BALL_MIN_ASPECT: f64 = 0.5;
 /// and knuckles are far smaller, a torso far larger.
 const BALL_RADIUS_PER_BONE: (f64, f64) = (0.08, 0.35);
 
+/// A limb joint's canonical key for a side.
+type JointOfSide = fn(Side) -> Canonical;
+
 /// The limb joints this phase places, each with the joint whose distance gives its limb bone
 /// (for the middle joints, half the span between their neighbours is used instead).
-const LIMB_CHAINS: [[fn(Side) -> Canonical; 3]; 2] = [
+const LIMB_CHAINS: [[JointOfSide; 3]; 2] = [
     [Canonical::Shoulder, Canonical::Elbow, Canonical::Wrist],
     [Canonical::Hip, Canonical::Knee, Canonical::Ankle],
 ];
@@ -85,7 +88,8 @@ fn ball(points: &[DVec3]) -> Option<JointBall> {
     let lo = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
     let hi = points.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
     let extent = hi - lo;
-    if !(extent.min_element() >= BALL_MIN_ASPECT * extent.max_element()) {
+    let flat = extent.min_element() < BALL_MIN_ASPECT * extent.max_element();
+    if flat || !extent.is_finite() {
         return None;
     }
     let (centre, radius) = sphere_fit(points, 0.5 * (lo + hi))?;
