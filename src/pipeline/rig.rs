@@ -371,7 +371,15 @@ fn refine_stage(
         .then(|| refine_surface(mesh, solid, options))
         .flatten();
     let surface = joined.as_ref().unwrap_or(mesh);
-    let Some(refined) = refine_fit(surface, fit, template, input.up, input.forward, options) else {
+    let Some(refined) = refine_fit(
+        surface,
+        mesh,
+        fit,
+        template,
+        input.up,
+        input.forward,
+        options,
+    ) else {
         if options.spine == SpineDetail::Full {
             warnings.push(Warning::Refine(RefineWarning::CoarseSpineKept(
                 NoFullSpine::NotRefined,

@@ -6,6 +6,7 @@ use super::carry::carry;
 use super::frame::{frame_from_head, head_slices, BodyFrame};
 use super::full_spine::{with_full_spine, SpineDetail};
 use super::head::head_joint;
+use super::joint_pieces::{joint_balls, place_on_balls};
 use super::legs::leg;
 use super::limb_joints::centre_in_depth;
 use super::spine::{spine, Spine};
@@ -116,7 +117,10 @@ pub(super) struct Scene<'a> {
     pub(super) options: &'a RefineOptions,
 }
 
-/// Refines `fit` as its template declares ([`Template::refinement`]): for
+/// Refines `fit` as its template declares ([`Template::refinement`]): `mesh` is the surface
+/// to slice (one closed shell), `pieces` the figure as modelled, with its separate pieces,
+/// from which a jointed figure's joint balls are read ([`super::joint_balls`]; `mesh` again
+/// when that is the figure's own surface). For
 /// [`RefineKind::HumanSlicing`], [`refine`] of the fit's skeleton, with the canonical `spine`
 /// and `chest` then reassigned by the template's trunk rules ([`Refinement::canonical`]).
 /// `None` when the template declares no refinement. `up` and `forward` as for [`refine`].
@@ -127,6 +131,7 @@ pub(super) struct Scene<'a> {
 /// As [`refine`].
 pub fn refine_fit(
     mesh: &Mesh,
+    pieces: &Mesh,
     fit: &Fit,
     template: &Template,
     up: DVec3,
@@ -137,6 +142,7 @@ pub fn refine_fit(
         RefineKind::HumanSlicing => Some(
             refine_with(
                 mesh,
+                pieces,
                 &fit.skeleton,
                 &fit.canonical,
                 Some(&template.axial),
@@ -175,12 +181,14 @@ pub fn refine(
     forward: DVec3,
     options: &RefineOptions,
 ) -> Result<Refinement, RefineError> {
-    refine_with(mesh, skeleton, canonical, None, up, forward, options)
+    refine_with(mesh, mesh, skeleton, canonical, None, up, forward, options)
 }
 
 /// [`refine`], reassigning the canonical `spine` and `chest` by `trunk` when given.
+#[allow(clippy::too_many_arguments)]
 fn refine_with(
     mesh: &Mesh,
+    pieces: &Mesh,
     skeleton: &Skeleton,
     canonical: &BTreeMap<String, JointId>,
     trunk: Option<&AxialRules>,
@@ -259,6 +267,11 @@ fn refine_with(
         );
     }
 
+    // Jointed figures: a round piece at a limb joint is the joint.
+    if options.joint_pieces {
+        joints_on_balls(pieces, &scene, &rough, &mut found, &mut warnings);
+    }
+
     // 3.2 Spine and neck.
     let spine_result = spine_and_neck(&scene, torso.as_ref(), on_trunk, &mut found, &mut warnings);
 
@@ -284,6 +297,47 @@ fn refine_with(
         torso,
         warnings,
     })
+}
+
+/// Moves the limb joints of a jointed figure to the round pieces at them
+/// ([`super::joint_pieces`]), from the balls of `pieces` as modelled (not the subdivided or
+/// joined surface: midpoints of a sphere's edges lie inside it), and drops the warnings that
+/// said those joints were not found. The joints' estimates are the refined positions that
+/// [`accepted`] will take (within [`RefineOptions::max_shift`] of the rough ones), else the
+/// rough ones.
+fn joints_on_balls(
+    pieces: &Mesh,
+    scene: &Scene,
+    rough: &Rough,
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+) {
+    let balls = joint_balls(pieces);
+    if balls.is_empty() {
+        return;
+    }
+    let limit = scene.options.max_shift * scene.height;
+    let estimates: Found = REFINED
+        .iter()
+        .filter_map(|&key| {
+            let from = rough.at(key);
+            let refined = found.get(&key).copied().filter(|&to| {
+                to.is_finite()
+                    && from.is_none_or(|f| shift(rough, &scene.frame, key, f, to) <= limit)
+            });
+            Some((key, refined.or(from)?))
+        })
+        .collect();
+    let placed = place_on_balls(&balls, &estimates, found);
+    warnings.retain(|w| {
+        let keys = match *w {
+            // Placed by a fallback: they name no joint left rough, but say how it was placed.
+            RefineWarning::NoKnee { side, .. } => vec![Canonical::Knee(side)],
+            RefineWarning::NoAnkle { side, .. } => vec![Canonical::Ankle(side)],
+            _ => w.keys(),
+        };
+        keys.is_empty() || !keys.iter().all(|k| placed.contains(k))
+    });
 }
 
 /// Places the head joint, and turns `frame` to the head's axes when the head slices give them

@@ -31,6 +31,7 @@ mod frame;
 mod full_spine;
 mod geometry;
 mod head;
+mod joint_pieces;
 mod legs;
 mod limb;
 mod limb_joints;
@@ -49,6 +50,7 @@ pub use full_spine::{
     along_chain, full_spine, pull_inside, NoFullSpine, SpineDetail, GIRDLE_VERTEBRA,
 };
 pub use head::{head_joint, HeadJoint};
+pub use joint_pieces::{joint_balls, JointBall};
 pub use limb::{trace_limb, LimbProfile, LimbSlice};
 pub use limb_joints::{ankle, arc_near, bend, on_axis, wrist, BendRule};
 pub use options::{HeadLevel, RefineOptions};

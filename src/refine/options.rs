@@ -211,6 +211,10 @@ pub struct RefineOptions {
     /// rejected and the joint keeps its rough position with a warning. Default 0.09: the rough
     /// skeletons to refine are off by up to ~6 cm (issue 6), twice that is a failed analysis.
     pub max_shift: f64,
+    /// Whether a round separate piece at a limb joint (a jointed figure's ball between two
+    /// rigid limb pieces) places that joint at its centre ([`super::joint_balls`]). Default
+    /// true: a figure made of one surface has no such piece and is left alone.
+    pub joint_pieces: bool,
 }
 
 impl RefineOptions {
@@ -344,6 +348,7 @@ impl Default for RefineOptions {
             sacral_depth: 0.045,
             max_mean_edge: 0.01,
             max_shift: 0.09,
+            joint_pieces: true,
         }
     }
 }
