@@ -108,7 +108,55 @@ pub(crate) fn geodesic_weights(
     spread_to_unreached(&mut rows, &adjacency);
     let isolated = bind_isolated(mesh, skeleton, segments, &mut rows);
     smoothing.smooth(&mut rows);
-    (vertex_weights(&rows), isolated)
+    let mut weights = vertex_weights(&rows);
+    rigid_pieces(mesh, &mut weights);
+    (weights, isolated)
+}
+
+/// A separate piece of the mesh (a connected component over shared corners) whose every
+/// vertex already follows the same joint with at least this share of its weight lies wholly
+/// within that bone's part of the body.
+const RIGID_SHARE: f64 = 0.9;
+
+/// Binds each piece of `mesh` that lies within one bone's part ([`RIGID_SHARE`]: an armour
+/// plate, an eye, a buckle) wholly to that joint, so it moves as one rigid body: the traces of
+/// a neighbouring bone that diffusion leaves on it would only shear its small edges when that
+/// joint turns (a thigh plate's 2.5 mm edges stretched past 2× by a 3 % knee weight). A piece
+/// that spans a joint (its dominant joint changes, or a vertex shares its weight more evenly:
+/// a sleeve, a skirt, the body itself) keeps its blended weights, and no edge joins two
+/// pieces, so no edge can stretch more than before.
+fn rigid_pieces(mesh: &Mesh, weights: &mut [Vec<(JointId, f64)>]) {
+    let (component, count) = mesh.triangle_components();
+    if count < 2 {
+        return;
+    }
+    // Per piece: its one dominant joint while every vertex agrees, `None` once one does not.
+    let mut dominant: Vec<Option<Option<JointId>>> = vec![Some(None); count];
+    let mut vertex_piece = vec![u32::MAX; weights.len()];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for &v in tri {
+            vertex_piece[v as usize] = component[t];
+        }
+    }
+    for (v, w) in weights.iter().enumerate() {
+        let Some(state) = dominant.get_mut(vertex_piece[v] as usize) else {
+            continue; // a corner of no triangle
+        };
+        let Some(agreed) = *state else {
+            continue;
+        };
+        let top = w.iter().max_by(|a, b| a.1.total_cmp(&b.1));
+        *state = match (top, agreed) {
+            (Some(&(j, share)), None) if share >= RIGID_SHARE => Some(Some(j)),
+            (Some(&(j, share)), Some(k)) if share >= RIGID_SHARE && j == k => Some(Some(k)),
+            _ => None,
+        };
+    }
+    for (v, w) in weights.iter_mut().enumerate() {
+        if let Some(Some(Some(j))) = dominant.get(vertex_piece[v] as usize) {
+            *w = vec![(*j, 1.0)];
+        }
+    }
 }
 
 /// Per joint, the thickness of its bones' body part: the median inscribed radius (voxels) over
@@ -304,6 +352,32 @@ mod tests {
         )
         .unwrap();
         assert_eq!(check.total_over_2(), 0, "{check:?}");
+    }
+
+    /// A plate on the thigh just above the knee (its own piece, inside the thigh's part)
+    /// follows the hip's bone alone, rigidly; a sleeve over the knee (its own piece, spanning
+    /// the joint) keeps blended weights.
+    #[test]
+    fn a_piece_within_one_bone_is_bound_rigidly_and_one_across_a_joint_blends() {
+        let plate = Mesh::uv_sphere(DVec3::new(0.2, 1.45, 0.0), 0.06, 6, 8);
+        let sleeve_rings: Vec<(f64, f64)> =
+            (0..=16).map(|r| (0.23, 0.3 - r as f64 / 26.0)).collect();
+        let sleeve = Mesh::lathe(DVec3::new(0.0, 1.0, 0.0), 0.32, &sleeve_rings, -0.34, 16);
+        let (mesh, skeleton) = leg(&[plate.clone(), sleeve.clone()]);
+        let skin = skin_of(&mesh, &skeleton, 1.0 / 40.0);
+        let body = mesh.positions.len() - plate.positions.len() - sleeve.positions.len();
+        let plate_vertices = body..body + plate.positions.len();
+        let sleeve_vertices = body + plate.positions.len()..mesh.positions.len();
+        for v in plate_vertices {
+            assert_eq!(skin.weights[v], vec![(JointId(0), 1.0)], "plate vertex {v}");
+        }
+        let blended = sleeve_vertices
+            .filter(|&v| skin.weights[v].len() > 1)
+            .count();
+        assert!(
+            blended > 16,
+            "the sleeve blends across the knee ({blended} vertices)"
+        );
     }
 
     #[test]
