@@ -1120,3 +1120,22 @@ fn quadruped_spine_sinks_from_the_hips_to_the_shoulders() {
         );
     }
 }
+
+/// An animal-like hip pivots on the trunk's centre line (the acetabulum lies ventral to the
+/// sacrum), so it stays put when the template moves the spine dorsally; the spine does move.
+#[test]
+fn quadruped_hips_do_not_rise_with_the_dorsal_offset() {
+    let input = quadruped();
+    let dorsal = Template::builtin("quadruped").unwrap();
+    assert!(dorsal.axial.dorsal_offset > 0.0);
+    let mut centred = dorsal.clone();
+    centred.axial.dorsal_offset = 0.0;
+    let a = fit(&input, &dorsal, &FitOptions::default()).unwrap();
+    let b = fit(&input, &centred, &FitOptions::default()).unwrap();
+    let (pa, pb) = (pos(&a, "spine"), pos(&b, "spine"));
+    assert!(pa.y > pb.y + 0.01, "spine {pa} vs {pb}");
+    for hip in ["hip_L", "hip_R"] {
+        let (ha, hb) = (pos(&a, hip), pos(&b, hip));
+        assert!((ha - hb).length() < 1e-6, "{hip} {ha} vs {hb}");
+    }
+}
