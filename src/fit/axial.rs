@@ -76,9 +76,22 @@ fn vertebra_length(ratio: f64, head: f64, length: f64) -> f64 {
     }
 }
 
+/// The share of `dorsal_offset` at arc length `t` of the head-to-tail path: 1 everywhere,
+/// unless the template asks for the taper (`taper`, [`crate::template::Axial::dorsal_taper`])
+/// and both girdles are known with the pectoral one (`pectoral_t`) ahead of the root
+/// (`root_t`): then it rises linearly from 0 at the pectoral girdle (the thoracic column deep
+/// under the withers, mid-chest) to 1 at the pelvic one (the sacrum on top of the pelvis),
+/// staying 0 ahead of the shoulders and 1 behind the hips.
+fn dorsal_taper(taper: bool, t: f64, pectoral_t: Option<f64>, root_t: f64) -> f64 {
+    match pectoral_t {
+        Some(p) if taper && root_t > p => ((t - p) / (root_t - p)).clamp(0.0, 1.0),
+        _ => 1.0,
+    }
+}
+
 /// The axial path moved dorsally at `samples_t` (arc lengths on `original`): the trunk by
-/// `dorsal_offset` of the sphere radius, fading out over `offset_blend` segments (`seg` long)
-/// beyond it, and an S-shaped neck on animal-like figures.
+/// `dorsal_offset` of the sphere radius (times [`dorsal_taper`]), fading out over
+/// `offset_blend` segments (`seg` long) beyond it, and an S-shaped neck on animal-like figures.
 #[allow(clippy::too_many_arguments)]
 fn dorsal_path(
     original: &Polyline,
@@ -86,6 +99,7 @@ fn dorsal_path(
     samples_t: &[f64],
     bounds: Bounds,
     pectoral_t: Option<f64>,
+    root_t: f64,
     seg: f64,
     template: &Template,
     options: &FitOptions,
@@ -120,7 +134,8 @@ fn dorsal_path(
             } else {
                 0.0
             };
-            let mut offset = w * rules.dorsal_offset * r;
+            let taper = dorsal_taper(rules.dorsal_taper, t, pectoral_t, root_t);
+            let mut offset = w * taper * rules.dorsal_offset * r;
             // S-shaped neck: offset along a dorsal ray, peaking at the head/neck junction.
             if rules.cervical_s_curve && window > 0.0 {
                 let c = (1.0 - (t - bounds.head).abs() / window).max(0.0);
@@ -156,7 +171,8 @@ pub(crate) fn axial(
     let seg = vertebra_length(rules.vertebra_to_head, head_len, length);
     let samples_t: Vec<f64> = (0..n).map(|k| length * k as f64 / (n - 1) as f64).collect();
     let adjusted = dorsal_path(
-        original, radii, &samples_t, bounds, pectoral_t, seg, template, options, frame, probe,
+        original, radii, &samples_t, bounds, pectoral_t, root_t, seg, template, options, frame,
+        probe,
     );
     let half = if step > 0.0 {
         (options.axial_smoothing * seg / step).round() as usize

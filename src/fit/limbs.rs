@@ -115,7 +115,11 @@ pub(crate) fn limb(
     }
     if group.placement == Placement::Animal {
         if let Some(elbow) = chain.get(1).copied().flatten() {
-            let pivot = girdle.unwrap_or(sphere.spine);
+            // The pectoral root hangs from its scapula; a girdle without its own joint (the
+            // pelvis) pivots on the trunk's centre line, not the dorsally offset spine: the
+            // hip socket (acetabulum) lies ventral to the sacrum, level with the trunk's
+            // middle, so the hips do not rise with the template's dorsal offset.
+            let pivot = girdle.unwrap_or(sphere.centre);
             chain[0] = Some(interior_root(
                 pivot,
                 elbow,

@@ -55,6 +55,8 @@ struct RawAxial {
     dorsal_offset: Spanned<f64>,
     vertebra_to_head: Spanned<f64>,
     cervical_s_curve: bool,
+    #[serde(default)]
+    dorsal_taper: bool,
     spine_at: Spanned<f64>,
     chest_at: Spanned<f64>,
 }

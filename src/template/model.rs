@@ -110,6 +110,13 @@ pub struct AxialRules {
     pub vertebra_to_head: f64,
     /// Whether to build the S-shaped cervical replacement (8.1: animal-like figures).
     pub cervical_s_curve: bool,
+    /// Whether the trunk's dorsal offset tapers from the full `dorsal_offset` at the pelvic
+    /// girdle to none at the pectoral girdle ([`crate::fit`] axial stage). A horizontal
+    /// figure's sacrum is fused to the top of the pelvis, so its spine runs dorsally there,
+    /// while the thoracic vertebrae at the shoulders lie deep under the withers (tall spinous
+    /// processes and the scapulae above them), near the middle of the chest's cross-section.
+    /// Optional in the file (default `false`: the offset is the same along the trunk).
+    pub dorsal_taper: bool,
     /// Canonical `spine`: the trunk joint nearest this fraction of the joint chain's length
     /// pelvis → neck, where the joints end up ([`crate::fit::assign_trunk_keys`]).
     pub spine_at: f64,

@@ -387,14 +387,18 @@ fn quadruped_places_elbows_outside_and_shoulders_inside_the_girdle() {
     assert!(pos(&f, "tail_base").z < root.z && pos(&f, "tail_end").z < -0.9);
     assert!(pos(&f, "head").z > pos(&f, "neck").z);
     // The trunk spine sits dorsally: above the path (y 0.85) by the template's dorsal offset
-    // times the radius (0.2).
-    let expected = 0.85 + t.axial.dorsal_offset * 0.2;
-    assert!(t.axial.dorsal_offset > 0.0);
-    assert!(
-        (pos(&f, "chest").y - expected).abs() < 0.02,
-        "{}",
-        pos(&f, "chest")
-    );
+    // times the radius (0.2), tapering from full at the hips (z -0.35) to none at the
+    // shoulders (z 0.45).
+    assert!(t.axial.dorsal_offset > 0.0 && t.axial.dorsal_taper);
+    for name in ["chest", "spine"] {
+        let p = pos(&f, name);
+        let share = ((0.45 - p.z) / 0.8).clamp(0.0, 1.0);
+        let expected = 0.85 + share * t.axial.dorsal_offset * 0.2;
+        assert!(
+            (p.y - expected).abs() < 0.02,
+            "{name} {p} expected y {expected}"
+        );
+    }
     // Scapulae hang from the trunk vertebra nearest them.
     let scapula = f.skeleton.find("scapula_L").unwrap();
     let parent = f.skeleton.joint(scapula).parent.unwrap();
@@ -1075,4 +1079,63 @@ fn inner_limb_joints_snap_to_a_nearby_bend_of_the_path() {
     let d_plain = named(&plain, "knee_L").distance(corner);
     assert!(d_snapped < 0.02, "snapped knee {d_snapped} from the corner");
     assert!(d_plain > 0.05, "table knee {d_plain} from the corner");
+}
+
+/// The quadruped's trunk spine is dorsal at the hips and centred at the shoulders (the
+/// template's `dorsal_taper`); without the taper it is dorsal all along, and the templates of
+/// upright and winged figures keep the even offset.
+#[test]
+fn quadruped_spine_sinks_from_the_hips_to_the_shoulders() {
+    let input = quadruped();
+    let tapered = Template::builtin("quadruped").unwrap();
+    assert!(tapered.axial.dorsal_taper);
+    let mut even = tapered.clone();
+    even.axial.dorsal_taper = false;
+    let a = fit(&input, &tapered, &FitOptions::default()).unwrap();
+    let b = fit(&input, &even, &FitOptions::default()).unwrap();
+    let full = tapered.axial.dorsal_offset * 0.2;
+    // The trunk joint nearest the shoulders (z 0.45): near the path (y 0.85) when tapered,
+    // a full offset above it when not.
+    let front = |f: &Fit| {
+        f.skeleton
+            .joints
+            .iter()
+            .filter(|j| j.name.starts_with("spine_"))
+            .max_by(|p, q| p.position.z.total_cmp(&q.position.z))
+            .unwrap()
+            .position
+    };
+    let (pa, pb) = (front(&a), front(&b));
+    assert!((pb.y - (0.85 + full)).abs() < 0.02, "{pb}");
+    let share = ((0.45 - pa.z) / 0.8).clamp(0.0, 1.0);
+    assert!(share < 0.5, "{pa}");
+    assert!(pa.y < pb.y - 0.5 * full, "tapered {pa} even {pb}");
+    // At the hips the offset is the same either way.
+    let (ra, rb) = (pos(&a, "pelvis"), pos(&b, "pelvis"));
+    assert!((ra - rb).length() < 0.01, "{ra} {rb}");
+    for name in ["humanoid", "winged"] {
+        assert!(
+            !Template::builtin(name).unwrap().axial.dorsal_taper,
+            "{name}"
+        );
+    }
+}
+
+/// An animal-like hip pivots on the trunk's centre line (the acetabulum lies ventral to the
+/// sacrum), so it stays put when the template moves the spine dorsally; the spine does move.
+#[test]
+fn quadruped_hips_do_not_rise_with_the_dorsal_offset() {
+    let input = quadruped();
+    let dorsal = Template::builtin("quadruped").unwrap();
+    assert!(dorsal.axial.dorsal_offset > 0.0);
+    let mut centred = dorsal.clone();
+    centred.axial.dorsal_offset = 0.0;
+    let a = fit(&input, &dorsal, &FitOptions::default()).unwrap();
+    let b = fit(&input, &centred, &FitOptions::default()).unwrap();
+    let (pa, pb) = (pos(&a, "spine"), pos(&b, "spine"));
+    assert!(pa.y > pb.y + 0.01, "spine {pa} vs {pb}");
+    for hip in ["hip_L", "hip_R"] {
+        let (ha, hb) = (pos(&a, hip), pos(&b, hip));
+        assert!((ha - hb).length() < 1e-6, "{hip} {ha} vs {hb}");
+    }
 }

@@ -147,6 +147,7 @@ pub(super) fn axial(axial: RawAxial, p: &mut Problems) -> AxialRules {
         dorsal_offset,
         vertebra_to_head,
         cervical_s_curve: axial.cervical_s_curve,
+        dorsal_taper: axial.dorsal_taper,
         spine_at,
         chest_at,
     }
