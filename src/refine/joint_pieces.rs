@@ -53,8 +53,8 @@ const LIMB_CHAINS: [[JointOfSide; 3]; 2] = [
 ];
 
 /// The separate pieces of `mesh` (triangles connected through shared vertices) whose vertices
-/// lie on a sphere: at least 8 vertices within [`BALL_ROUNDNESS`] of the least-squares
-/// sphere, a bounding box at least [`BALL_MIN_ASPECT`] as deep as long, and the sphere's
+/// lie on a sphere: at least 8 vertices within `BALL_ROUNDNESS` of the least-squares
+/// sphere, a bounding box at least `BALL_MIN_ASPECT` as deep as long, and the sphere's
 /// centre inside that box: at least about half the sphere shows (a ball half hidden in the
 /// torso still does), where a shallow cap (a domed button, a shoulder pad's curve) is part of a
 /// much larger sphere centred beyond it. A short round cylinder counts too: its rims lie on
