@@ -622,7 +622,11 @@ fn bone_following_labels_on_refdata() {
         ("quadruped/quaternius_alpaca", 90.0),
         ("quadruped/quaternius_deer", 90.5),
         ("quadruped/quaternius_horse", 93.0),
-        ("quadruped/quaternius_triceratops", 92.5),
+        // 91.3 since the quadruped spine sinks from the hips to the middle of the chest
+        // (`axial.dorsal_taper`; CD-J2J 3.31 -> 3.29 %): the triceratops' reference legs run
+        // horizontally from the body's midline, so its nearest-bone rule counts the chest as
+        // legs, and a lower chest spine moves that boundary.
+        ("quadruped/quaternius_triceratops", 91.0),
         ("quadruped/quaternius_wolf", 90.5),
         ("robustness/mh_male_young_average_altdiag", 97.5),
         ("robustness/mh_male_young_average_dec12k", 97.5),
