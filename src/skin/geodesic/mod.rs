@@ -24,6 +24,9 @@
 //! ≤ 4 influences per vertex, normalised
 //!   │ Laplacian smoothing over the mesh edges, each edge's share scaled by (voxel / length)²;
 //!   ▼ weights under 1 % cut
+//! per vertex weights
+//!   │ a separate piece whose every vertex has its largest weight on one joint
+//!   ▼ (a plate, an eye) bound wholly to that joint: it moves rigidly
 //! weights
 //! ```
 //!
