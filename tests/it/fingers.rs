@@ -220,16 +220,11 @@ fn finger_bones_are_sized_on_the_surface() {
     }
 }
 
-/// The bundled body without its left index finger (the triangles of the vertices its joints
-/// move most removed, leaving an open hole at the knuckle): the left hand gets the four digits
-/// it shows with a warning naming that hand (issue 25, bad input), never a panic.
-#[test]
-fn a_missing_finger_is_named_in_a_warning() {
-    let mesh = bundled();
-    let r = rig(&mesh, &RigOptions::default()).unwrap();
+/// Per vertex of `r`'s mesh, whether its largest skin weight is on a joint of the left hand's
+/// digit `digit` (`index`, `pinky`...).
+fn left_digit_vertices(r: &Rig, digit: &str) -> Vec<bool> {
     let sk = &r.fit.skeleton;
-    let cut: Vec<bool> = r
-        .skin
+    r.skin
         .weights
         .iter()
         .map(|w| {
@@ -237,10 +232,43 @@ fn a_missing_finger_is_named_in_a_warning() {
                 .max_by(|a, b| a.1.total_cmp(&b.1))
                 .is_some_and(|&(j, _)| {
                     let name = &sk.joint(j).name;
-                    name.starts_with("index_") && name.ends_with("_L")
+                    name.starts_with(digit)
+                        && name[digit.len()..].starts_with('_')
+                        && name.ends_with("_L")
                 })
         })
-        .collect();
+        .collect()
+}
+
+/// Asserts that `warnings` name the left hand with `found` separated digits and that the rig
+/// `p` still has the left thumb.
+fn assert_left_hand_counted(p: &Rig, warnings: &[DigitWarning], found: usize) {
+    assert!(
+        warnings.iter().any(|w| matches!(
+            w,
+            DigitWarning::DigitCount {
+                side: Side::Left,
+                found: f
+            } if *f == found
+        )),
+        "{warnings:?}"
+    );
+    assert!(
+        p.fit
+            .canonical
+            .contains_key(Canonical::Digit(Side::Left, Finger::Thumb, 1).as_str()),
+        "the left thumb"
+    );
+}
+
+/// The bundled body without its left index finger (the triangles of the vertices its joints
+/// move most removed, leaving an open hole at the knuckle): the left hand gets the four digits
+/// it shows with a warning naming that hand (issue 25, bad input), never a panic.
+#[test]
+fn a_missing_finger_is_named_in_a_warning() {
+    let mesh = bundled();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let cut = left_digit_vertices(&r, "index");
     assert!(cut.iter().filter(|&&c| c).count() > 20, "no finger to cut");
     assert!(
         (0..cut.len()).all(|v| !cut[v] || mesh.positions[v].x > 0.0),
@@ -261,22 +289,7 @@ fn a_missing_finger_is_named_in_a_warning() {
             println!("missing {}", k.as_str());
         }
     }
-    assert!(
-        warnings.iter().any(|w| matches!(
-            w,
-            DigitWarning::DigitCount {
-                side: Side::Left,
-                found: 4
-            }
-        )),
-        "{warnings:?}"
-    );
-    assert!(
-        p.fit
-            .canonical
-            .contains_key(Canonical::Digit(Side::Left, Finger::Thumb, 1).as_str()),
-        "the left thumb"
-    );
+    assert_left_hand_counted(&p, &warnings, 4);
 }
 
 /// Hands hanging against the thighs (the arms turned down until the fingertips lie on the
@@ -313,19 +326,7 @@ fn a_sixth_finger_is_named_in_a_warning() {
     let r = rig(&mesh, &RigOptions::default()).unwrap();
     let sk = &r.fit.skeleton;
     let joint = |k: &str| sk.joint(r.fit.canonical[k]).position;
-    let pinky: Vec<bool> = r
-        .skin
-        .weights
-        .iter()
-        .map(|w| {
-            w.iter()
-                .max_by(|a, b| a.1.total_cmp(&b.1))
-                .is_some_and(|&(j, _)| {
-                    let name = &sk.joint(j).name;
-                    name.starts_with("pinky_") && name.ends_with("_L")
-                })
-        })
-        .collect();
+    let pinky = left_digit_vertices(&r, "pinky");
     assert!(
         pinky.iter().filter(|&&c| c).count() > 20,
         "no pinky to copy"
@@ -372,20 +373,5 @@ fn a_sixth_finger_is_named_in_a_warning() {
             .all(|w| !w.to_string().contains(Side::Right.as_str())),
         "{warnings:?}"
     );
-    assert!(
-        warnings.iter().any(|w| matches!(
-            w,
-            DigitWarning::DigitCount {
-                side: Side::Left,
-                found: 6
-            }
-        )),
-        "{warnings:?}"
-    );
-    assert!(
-        p.fit
-            .canonical
-            .contains_key(Canonical::Digit(Side::Left, Finger::Thumb, 1).as_str()),
-        "the left thumb"
-    );
+    assert_left_hand_counted(&p, &warnings, 6);
 }
