@@ -102,7 +102,7 @@ impl Mesh {
     }
 
     /// For every vertex, the first earlier kept vertex within `tolerance × diagonal`, or itself.
-    fn merge_within(&self, tolerance: f64) -> Vec<u32> {
+    pub(crate) fn merge_within(&self, tolerance: f64) -> Vec<u32> {
         let diagonal = self
             .bounding_box()
             .map_or(0.0, |(min, max)| (max - min).length());

@@ -3,6 +3,7 @@
 
 mod boundary;
 mod components;
+mod duplicates;
 mod error;
 mod figure;
 mod grid;

@@ -51,6 +51,9 @@ pub struct VoxelReport {
     /// The grid was refined by [`voxelize_figure`](super::voxelize_figure): the fraction of
     /// the longest side first tried and the interior voxels it held.
     pub refined_from: Option<(f64, usize)>,
+    /// Triangles left out of the inside/outside vote because they repeat another one (same
+    /// three vertices; see [`voxelize`](super::voxelize)).
+    pub duplicate_triangles: usize,
 }
 
 /// Dropped interior components are worth a warning from this share of the interior on (a
@@ -75,6 +78,11 @@ impl VoxelReport {
                 pieces: self.dropped_pieces.clone(),
                 dropped_voxels: self.dropped_voxels,
                 interior_voxels: all,
+            });
+        }
+        if self.duplicate_triangles > 0 {
+            out.push(VoxelWarning::DuplicateTriangles {
+                triangles: self.duplicate_triangles,
             });
         }
         out

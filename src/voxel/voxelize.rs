@@ -1,5 +1,6 @@
 //! The voxelization driver: grid sizing, classification, component filtering.
 
+use super::duplicates::redundant_triangles;
 use super::figure::{figure_mesh, LeftOut};
 use super::join::join_pieces;
 use super::outlier::far_outlier;
@@ -56,6 +57,9 @@ pub fn voxelize_figure(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, Vox
 /// largest piece's longest side; the rest is left out when the figure holds at least 60 % of
 /// the surface area; [`VoxelReport::left_out_pieces`]); size the grid
 /// around the bounding box (padded by `options.padding` outside voxels);
+/// leave repeated triangles out of the vote (the same three vertices twice with the same
+/// winding, or the reversed twins of a closed double-sided shell: see `voxel::duplicates`;
+/// [`VoxelReport::duplicate_triangles`]);
 /// classify every voxel centre by the six-direction winding-number vote (see the module docs of
 /// `voxel::winding`: exact for closed meshes, robust to holes, non-manifold edges and
 /// overlapping parts; the absolute winding is used, so inward-wound meshes work too); mark the
@@ -77,7 +81,9 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
     };
     let grid = grid_of(mesh, options)?;
     let h = grid.voxel_size;
+    let (redundant, duplicate_triangles) = redundant_triangles(mesh);
     let corners: Vec<[DVec3; 3]> = (0..mesh.triangles.len())
+        .filter(|&t| !redundant[t])
         .map(|t| mesh.corners(t).map(|p| (p - grid.origin) / h))
         .collect();
 
@@ -148,6 +154,7 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
         left_out_triangles: left_out.triangles,
         left_out_area_share: left_out.area_share,
         refined_from: None,
+        duplicate_triangles,
     };
     Ok(Solid {
         grid,

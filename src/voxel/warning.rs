@@ -34,6 +34,12 @@ pub enum VoxelWarning {
         /// Voxels whose votes disagreed.
         ambiguous_voxels: usize,
     },
+    /// Triangles repeating another one (the same three vertices) were counted once by the
+    /// inside/outside vote.
+    DuplicateTriangles {
+        /// How many were left out of the vote.
+        triangles: usize,
+    },
 }
 
 impl VoxelWarning {
@@ -41,7 +47,7 @@ impl VoxelWarning {
     pub fn severity(&self) -> Severity {
         match self {
             Self::LooseMeshPieces { .. } | Self::DroppedInterior { .. } => Severity::PartMissing,
-            Self::OpenMesh { .. } => Severity::Info,
+            Self::OpenMesh { .. } | Self::DuplicateTriangles { .. } => Severity::Info,
         }
     }
 
@@ -51,6 +57,7 @@ impl VoxelWarning {
             Self::LooseMeshPieces { .. } => "loose_mesh_pieces",
             Self::DroppedInterior { .. } => "dropped_interior",
             Self::OpenMesh { .. } => "open_mesh",
+            Self::DuplicateTriangles { .. } => "duplicate_triangles",
         }
     }
 }
@@ -128,6 +135,15 @@ impl fmt::Display for VoxelWarning {
             } => write!(
                 f,
                 "the mesh is not closed ({boundary_edges} boundary, {non_manifold_edges} non-manifold edges): inside/outside was decided by a six-direction winding-number vote ({ambiguous_voxels} voxels had disagreeing votes)"
+            ),
+            Self::DuplicateTriangles { triangles } => write!(
+                f,
+                "{} triangle{} repeat{} another one (the same three vertices): counted once for \
+                 inside/outside (a doubled face would count twice and carve the figure); the mesh \
+                 is skinned as given",
+                triangles,
+                number(*triangles, "", "s"),
+                number(*triangles, "s", "")
             ),
         }
     }

@@ -71,6 +71,47 @@ fn sphere_with_a_punched_hole_gives_nearly_the_closed_solid() {
 }
 
 #[test]
+fn doubled_faces_and_double_sided_shells_give_the_single_solid() {
+    let sphere = Mesh::uv_sphere(DVec3::ZERO, 1.0, 32, 64);
+    let single = voxelize(&sphere, &options(1.0 / 48.0)).unwrap();
+    assert_eq!(single.report.duplicate_triangles, 0);
+    // A band of faces around the equator written twice with the same winding (a modelling
+    // leftover): counted twice it makes every column through the band see winding 2 on one
+    // side and carves the solid.
+    let mut doubled = sphere.clone();
+    let band: Vec<[u32; 3]> = doubled
+        .triangles
+        .iter()
+        .filter(|t| {
+            t.iter()
+                .all(|&i| doubled.positions[i as usize].y.abs() < 0.3)
+        })
+        .copied()
+        .collect();
+    assert!(!band.is_empty());
+    doubled
+        .triangles
+        .extend(band.iter().map(|&[a, b, c]| [b, c, a]));
+    let solid = voxelize(&doubled, &options(1.0 / 48.0)).unwrap();
+    assert_eq!(solid.report.duplicate_triangles, band.len());
+    assert_eq!(solid.inside, single.inside);
+    // The whole sphere drawn from both sides (every face also reversed): the twins would
+    // cancel it to nothing.
+    let mut two_sided = sphere.clone();
+    two_sided
+        .triangles
+        .extend(sphere.triangles.iter().map(|&[a, b, c]| [a, c, b]));
+    let solid = voxelize(&two_sided, &options(1.0 / 48.0)).unwrap();
+    assert_eq!(solid.report.duplicate_triangles, sphere.triangles.len());
+    assert_eq!(solid.inside, single.inside);
+    assert!(solid
+        .report
+        .warnings()
+        .iter()
+        .any(|w| w.to_string().contains("repeat another one")));
+}
+
+#[test]
 fn overlapping_parts_are_one_solid() {
     // Two overlapping boxes as separate, intersecting closed parts (winding 2 in the overlap).
     let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::new(2.0, 1.0, 1.0));
