@@ -97,42 +97,30 @@ fn fit_hand(
             .partial_cmp(&(b.split_level, base_perimeter(b)))
             .unwrap_or(std::cmp::Ordering::Equal)
     });
-    let found = branches.len();
-    if found < 2 {
-        return Some(DigitWarning::FingersFused { side, thumb: false });
-    }
-    let thumb = branches.remove(0);
-    let thumb_base = thumb.base();
-    // Six or more: the four longest fingers; then in order of their bases from the thumb's.
-    branches.sort_by(|a, b| b.free_length().total_cmp(&a.free_length()));
-    branches.truncate(Finger::ALL.len() - 1);
-    branches.sort_by(|a, b| {
-        let da = a.base().distance(thumb_base);
-        let db = b.base().distance(thumb_base);
-        da.total_cmp(&db)
-    });
-    let mut digits = vec![(
-        Some(Finger::Thumb),
-        place_digit(
-            &thumb,
-            options.free_share[0],
-            options.thumb_from_tip,
-            Some(w),
-            axis,
-        ),
-    )];
-    let mitten = found == 2;
-    for (k, b) in branches.iter().enumerate() {
-        let (finger, share) = if mitten {
-            (None, options.free_share[2])
-        } else {
-            (Some(Finger::ALL[k + 1]), options.free_share[k + 1])
-        };
-        digits.push((
-            finger,
-            place_digit(b, share, options.finger_from_tip, None, axis),
-        ));
-    }
+    // A digit whose joints, extrapolated behind its web, leave the figure is not a digit of
+    // this hand (a held prop's grip or blade within reach of the wrist): it is left out and
+    // the hand read again without it.
+    let (found, digits) = loop {
+        let found = branches.len();
+        if found < 2 {
+            return Some(DigitWarning::FingersFused { side, thumb: false });
+        }
+        let digits = hand_digits(&branches, w, axis, options);
+        let points: Vec<DVec3> = digits
+            .iter()
+            .flat_map(|(_, d)| d.joints.joints.into_iter().chain([d.joints.tip]))
+            .collect();
+        let inside = windings(mesh, &points);
+        let outside = (0..digits.len()).find(|&i| (0..4).any(|k| inside[4 * i + k] == 0));
+        match outside {
+            None => break (found, digits),
+            Some(i) => {
+                branches.remove(digits[i].1.branch);
+            }
+        }
+    };
+    let digits: Vec<(Option<Finger>, DigitJoints)> =
+        digits.into_iter().map(|(f, d)| (f, d.joints)).collect();
     let palm = palm_normal(w, &digits, axis);
     replace_hand(fit, group, wrist, side, &digits, palm, true);
     match found {
@@ -140,6 +128,68 @@ fn fit_hand(
         5 => None,
         _ => Some(DigitWarning::DigitCount { side, found }),
     }
+}
+
+/// A digit placed from one of the branches it was chosen among.
+struct Placed {
+    /// Index of its branch in the candidates.
+    branch: usize,
+    joints: DigitJoints,
+}
+
+/// The digits of a hand from its candidate `branches` (thumb first): the thumb, then at most
+/// the four longest other branches in order of their bases from the thumb's; two branches are
+/// a thumb and a mitten. `Placed::branch` indexes `branches`.
+fn hand_digits(
+    branches: &[Branch],
+    w: DVec3,
+    axis: DVec3,
+    options: &DigitOptions,
+) -> Vec<(Option<Finger>, Placed)> {
+    let thumb = &branches[0];
+    let thumb_base = thumb.base();
+    // Six or more: the four longest fingers; then in order of their bases from the thumb's.
+    let mut others: Vec<usize> = (1..branches.len()).collect();
+    others.sort_by(|&a, &b| {
+        branches[b]
+            .free_length()
+            .total_cmp(&branches[a].free_length())
+    });
+    others.truncate(Finger::ALL.len() - 1);
+    others.sort_by(|&a, &b| {
+        let da = branches[a].base().distance(thumb_base);
+        let db = branches[b].base().distance(thumb_base);
+        da.total_cmp(&db)
+    });
+    let mut digits = vec![(
+        Some(Finger::Thumb),
+        Placed {
+            branch: 0,
+            joints: place_digit(
+                thumb,
+                options.free_share[0],
+                options.thumb_from_tip,
+                Some(w),
+                axis,
+            ),
+        },
+    )];
+    let mitten = branches.len() == 2;
+    for (k, &b) in others.iter().enumerate() {
+        let (finger, share) = if mitten {
+            (None, options.free_share[2])
+        } else {
+            (Some(Finger::ALL[k + 1]), options.free_share[k + 1])
+        };
+        digits.push((
+            finger,
+            Placed {
+                branch: b,
+                joints: place_digit(&branches[b], share, options.finger_from_tip, None, axis),
+            },
+        ));
+    }
+    digits
 }
 
 /// The contour length at a branch's web end.

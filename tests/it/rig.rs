@@ -176,6 +176,25 @@ fn every_humanoid_gets_every_canonical_joint_inside_and_sided() {
 }
 
 #[test]
+fn every_humanoid_source_glb_rigs_as_a_whole_humanoid() {
+    // Users hand over the artist's file, not refdata's cleaned mesh.obj: the glTF as exported,
+    // with its doubled faces, its node transforms and its many pieces.
+    for dir in models("humanoid") {
+        let path = dir.join("source.glb");
+        if !path.is_file() {
+            continue;
+        }
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        let mesh = load(&path).unwrap();
+        let r = rig(&mesh, &RigOptions::default()).unwrap();
+        assert_eq!(r.fit.template, "humanoid", "{name}: source.glb");
+        assert_keys(&name, &r, HUMANOID_KEYS);
+        assert_inside(&name, &mesh, &r);
+        assert_left_right(&name, &r);
+    }
+}
+
+#[test]
 fn every_quadruped_gets_every_canonical_joint_inside_and_sided() {
     for dir in models("quadruped") {
         if common::awaits_real_character_work(&dir, "every_quadruped_gets_every_canonical_joint") {
