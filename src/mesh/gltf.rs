@@ -62,7 +62,10 @@ pub struct GltfScene {
 /// primitives are returned in the bind pose `B · v` with `B = W_root(rest) · IBM_root`, where
 /// `root` is the first joint of the skin whose parent node is not a joint of the skin, `W` the
 /// rest-pose world transform and `IBM` the inverse bind matrix (the node transform of a
-/// skinned mesh is ignored, as the glTF spec requires). An unskinned mesh attached below a
+/// skinned mesh is ignored, as the glTF spec requires); when the file's rest pose is an
+/// animation frame far from the bind pose (the joints' `W · IBM` disagree), `B` is the world
+/// transform of the node above the root instead (the armature), so the figure keeps its
+/// modelled pose and axes rather than the posed pelvis's tilt. An unskinned mesh attached below a
 /// joint of the rig's skin follows that joint into the bind pose. Triangles of nodes with a
 /// mirroring transform (negative determinant) are reversed so they stay outward-wound.
 /// The result is welded and validated like every loader (see [`load`](super::load)).

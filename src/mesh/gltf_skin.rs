@@ -16,11 +16,62 @@ pub(super) struct SkinBind {
     pub joints: Vec<usize>,
     /// Inverse bind matrix of every joint (identity when the file gives none).
     pub inverse_bind: Vec<DMat4>,
-    /// `B = W_root(rest) · IBM_root`: maps bind-space vertices into the world, where `root` is
-    /// the first joint whose parent node is not a joint of the skin.
+    /// `B`: maps bind-space vertices into the world ([`bind_of`]): `W_root(rest) · IBM_root`,
+    /// where `root` is the first joint whose parent node is not a joint of the skin, unless the
+    /// rest pose is a posed frame.
     pub bind: DMat4,
     /// Joint index (into `joints`) of every node that is a joint of this skin.
     pub joint_of_node: HashMap<usize, usize>,
+}
+
+/// A rest pose whose joints lie, at the median, farther than this share of the skeleton's
+/// extent from where `W_root(rest) · IBM_root` puts their bind positions is a posed frame,
+/// not the bind pose. (Files whose rest pose is a frame close to the bind pose, as many game
+/// exports are, stay within a few hundredths; an animation frame stored as the rest pose moves
+/// the median joint by a fifth of the figure.)
+const POSED_REST: f64 = 0.1;
+
+/// The transform that places the skin's bind space in the world. When the file's rest pose is
+/// its bind pose (the usual case), every joint's `W_k(rest) · IBM_k` is one and the same
+/// matrix, the root's: it carries the armature's units and axes (a Mixamo export's 0.01 scale
+/// and Z-up turn) and any placement of the whole figure, and is returned. When the rest pose is
+/// an animation frame (the joints' matrices disagree: the median joint's rest position lies
+/// more than [`POSED_REST`] of the skeleton's extent from where the root's matrix puts its bind
+/// position), the root's matrix is only the pose of the pelvis in that frame (a figure tilted
+/// by 40 degrees); the modelled figure is then placed by the world transform of the node above
+/// the root (the armature), identity when the root has no parent.
+fn bind_of(joints: &[usize], inverse_bind: &[DMat4], tree: &NodeTree, root: usize) -> DMat4 {
+    let by_root = tree.world[joints[root]] * inverse_bind[root];
+    let rest: Vec<DVec3> = joints
+        .iter()
+        .map(|&node| tree.world[node].transform_point3(DVec3::ZERO))
+        .collect();
+    let (lo, hi) = rest.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    let extent = (hi - lo).length();
+    let mut deviations: Vec<f64> = joints
+        .iter()
+        .enumerate()
+        .filter_map(|(k, _)| {
+            let ibm = inverse_bind[k];
+            (ibm.determinant() != 0.0).then(|| {
+                let bind_position = ibm.inverse().transform_point3(DVec3::ZERO);
+                by_root.transform_point3(bind_position).distance(rest[k])
+            })
+        })
+        .filter(|d| d.is_finite())
+        .collect();
+    if deviations.len() < 3 || !(extent > 0.0 && extent.is_finite()) {
+        return by_root;
+    }
+    deviations.sort_by(f64::total_cmp);
+    let median = deviations[deviations.len() / 2];
+    if median <= POSED_REST * extent {
+        return by_root;
+    }
+    tree.parent[joints[root]].map_or(DMat4::IDENTITY, |parent| tree.world[parent])
 }
 
 impl SkinBind {
@@ -69,7 +120,7 @@ impl SkinBind {
                 tree.parent[node].is_none_or(|parent| !joint_of_node.contains_key(&parent))
             })
             .unwrap_or(0);
-        let bind = tree.world[joints[root]] * inverse_bind[root];
+        let bind = bind_of(&joints, &inverse_bind, tree, root);
         Ok(Self {
             skin: skin.index(),
             joints,
