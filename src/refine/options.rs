@@ -193,7 +193,9 @@ pub struct RefineOptions {
     pub silhouette_step: f64,
     /// Depth of the thoracic spine (T6/T7) in front of the back point, fraction of height: the
     /// seed's "heuristical value depending on the body's overall height" (3.2). Default 0.035
-    /// (6 cm on 1.75 m: skin, spinous process and lamina to the vertebral body's back).
+    /// (6 cm on 1.75 m: skin, spinous process and lamina to the vertebral body's back). A trunk
+    /// deep for its height (a stylised figure) takes a share of its depth there instead when
+    /// that is more (a quarter at T6, three tenths at L3 and the sacrum; `refine::spine`).
     pub thoracic_depth: f64,
     /// Depth of the lumbar spine (L3/L4) in front of the lumbar point, fraction of height.
     /// Default 0.04.

@@ -49,9 +49,18 @@ pub fn spine(
     let height = frame.height();
     let median = |p: DVec3| p - frame.left * (p - centre).dot(frame.left);
     let c7 = torso.neck.lerp(torso.throat, options.neck_depth);
-    let t6 = torso.back + frame.forward * (options.thoracic_depth * height);
-    let l3 = torso.lumbar + frame.forward * (options.lumbar_depth * height);
-    let sacrum = torso.sacroiliac + frame.forward * (options.sacral_depth * height);
+    let depth = |p: DVec3| trunk_depth(frame, &torso.silhouette, p);
+    // Fractions of the height, or of the trunk's depth there when that is more: a stylised
+    // figure's trunk is deep for its height (big ears or hats count in the height), and the
+    // spine stays inside the trunk in proportion, not at an adult's 6 cm from the back.
+    let inset = |p: DVec3, of_height: f64, share: f64| {
+        let d = depth(p);
+        let by_depth = if d.is_finite() { share * d } else { 0.0 };
+        p + frame.forward * (of_height * height).max(by_depth)
+    };
+    let t6 = inset(torso.back, options.thoracic_depth, THORACIC_SHARE);
+    let l3 = inset(torso.lumbar, options.lumbar_depth, LUMBAR_SHARE);
+    let sacrum = inset(torso.sacroiliac, options.sacral_depth, SACRAL_SHARE);
     let end = frame.at_height(sacrum, frame.h(torso.crotch));
     let control: Vec<DVec3> = [head, c7, t6, l3, sacrum, end]
         .into_iter()
@@ -73,6 +82,28 @@ pub fn spine(
         .map(|(name, &u)| (name.to_string(), curve.point(u)))
         .collect();
     Some(Spine { control, joints })
+}
+
+/// The least share of the trunk's front-to-back depth at the back point that T6/T7 lies in
+/// front of it: the thoracic vertebral body sits about a quarter to a third of the chest's
+/// depth in front of the back (MakeHuman bodies: the height-based default gives 0.24-0.34).
+const THORACIC_SHARE: f64 = 0.25;
+/// The same for L3/L4 at the lumbar point (MakeHuman: 0.28-0.46 of the abdomen's depth).
+const LUMBAR_SHARE: f64 = 0.3;
+/// The same for the sacrum at the sacroiliac point (MakeHuman: 0.31-0.43 of the pelvis's).
+const SACRAL_SHARE: f64 = 0.3;
+
+/// The trunk's depth (along `frame.forward`) in the median silhouette at the height of the
+/// back point `p`: from `p` to the silhouette's front within a hundredth of the height.
+fn trunk_depth(frame: &BodyFrame, silhouette: &[DVec3], p: DVec3) -> f64 {
+    let band = 0.01 * frame.height();
+    let h = frame.h(p);
+    let front = silhouette
+        .iter()
+        .filter(|q| (frame.h(**q) - h).abs() <= band)
+        .map(|q| q.dot(frame.forward))
+        .fold(f64::NEG_INFINITY, f64::max);
+    front - p.dot(frame.forward)
 }
 
 /// Chordal Catmull-Rom curve (Barry-Goldman pyramid) through points, ends extended by
@@ -233,6 +264,52 @@ mod tests {
     fn a_non_finite_joint_gives_no_spacing() {
         assert!(spacing(&[0.0, f64::NAN, 20.0, 29.0, 35.0]).is_none());
         assert!(spacing(&[0.0, 7.0, f64::INFINITY, 29.0, 35.0]).is_none());
+    }
+
+    /// A trunk as deep as a third of the figure's height (a cartoon body): the spine's back
+    /// control points move in by their share of that depth, more than the adult's fraction of
+    /// the height; a slim trunk keeps the height-based inset.
+    #[test]
+    fn a_deep_trunk_keeps_its_spine_in_proportion() {
+        let frame = BodyFrame {
+            up: DVec3::Y,
+            forward: DVec3::Z,
+            left: DVec3::X,
+            top: 2.0,
+            bottom: 0.0,
+        };
+        let torso = |depth: f64| {
+            // The median silhouette: a rectangle from the back (z = 0) to z = depth.
+            let mut silhouette = Vec::new();
+            for k in 0..=100 {
+                let y = 0.5 + k as f64 * 0.01;
+                silhouette.push(DVec3::new(0.0, y, 0.0));
+                silhouette.push(DVec3::new(0.0, y, depth));
+            }
+            TorsoPoints {
+                neck: DVec3::new(0.0, 1.45, 0.1 * depth),
+                back: DVec3::new(0.0, 1.3, 0.0),
+                lumbar: DVec3::new(0.0, 1.0, 0.0),
+                sacroiliac: DVec3::new(0.0, 0.8, 0.0),
+                throat: DVec3::new(0.0, 1.45, 0.9 * depth),
+                crotch: DVec3::new(0.0, 0.5, 0.5 * depth),
+                silhouette,
+            }
+        };
+        let options = RefineOptions::default();
+        let head = DVec3::new(0.0, 1.7, 0.1);
+        let deep = spine(&frame, DVec3::ZERO, head, &torso(0.66), &options).unwrap();
+        // control: head, c7, t6, l3, sacrum, end.
+        assert!(
+            (deep.control[2].z - THORACIC_SHARE * 0.66).abs() < 1e-9,
+            "{:?}",
+            deep.control
+        );
+        assert!((deep.control[3].z - LUMBAR_SHARE * 0.66).abs() < 1e-9);
+        assert!((deep.control[4].z - SACRAL_SHARE * 0.66).abs() < 1e-9);
+        let slim = spine(&frame, DVec3::ZERO, head, &torso(0.2), &options).unwrap();
+        assert!((slim.control[2].z - options.thoracic_depth * 2.0).abs() < 1e-9);
+        assert!((slim.control[3].z - options.lumbar_depth * 2.0).abs() < 1e-9);
     }
 
     #[test]
