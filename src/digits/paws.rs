@@ -10,7 +10,10 @@
 //! five all of them. They hang from the metapodial joint (`hand`, `foot`: the start of the
 //! cannon bone or the sole) in place of the template's single digit chain, which a foot with
 //! fewer than two separate digits (a horse's hoof, a low-poly paw) keeps, without a warning:
-//! that is the foot it is.
+//! that is the foot it is. A digit holds three phalanges: a branch standing free for less
+//! than half the length the template's ratios give them (a dewclaw high behind a hoof, a toe
+//! notched into a paw's rim) does not count, and a paw whose toes are all such notches bends
+//! as one: it gets a single digit from the root to the middle of the notches' tips.
 
 use super::hands::{replace_hand, separated_digits};
 use super::place::{place_digit, DigitJoints};
@@ -283,7 +286,25 @@ fn metapodial(
 
 #[cfg(test)]
 mod tests {
-    use super::reduced_digits;
+    use super::{paw_digit, reduced_digits};
+    use crate::template::Template;
+    use glam::DVec3;
+
+    #[test]
+    fn a_paw_digit_runs_from_the_root_to_the_toes_middle_by_the_digit_ratios() {
+        let template = Template::builtin("quadruped").unwrap();
+        let root = DVec3::new(0.0, 1.0, 0.0);
+        let tips = [DVec3::new(-0.1, 0.0, 1.0), DVec3::new(0.1, 0.0, 1.0)];
+        let d = paw_digit(&template, root, &tips).unwrap();
+        let tip = DVec3::new(0.0, 0.0, 1.0);
+        assert!(d.tip.distance(tip) < 1e-12);
+        // digit = [36, 25, 15, 10]: metapodial, proximal, middle, distal.
+        for (joint, share) in d.joints.iter().zip([36.0, 61.0, 76.0]) {
+            let expected = root.lerp(tip, share / 86.0);
+            assert!(joint.distance(expected) < 1e-12, "{joint:?} {expected:?}");
+        }
+        assert!(paw_digit(&template, root, &[root, root]).is_none());
+    }
 
     #[test]
     fn reduction_keeps_the_middle_digits_longest() {
