@@ -44,6 +44,11 @@ pub struct DigitOptions {
     /// share of the widest one wide. Default 0.95: the forefoot is about as wide across all
     /// five metatarsal heads.
     pub ball_plateau: f64,
+    /// A horizontal figure's toe must stand free of its hoof or paw for at least this share of
+    /// the length its three phalanges have by the template's ratios (Table 8.1, scaled by the
+    /// shank); a shorter branch is a scallop of the rim (a low-poly hoof's cleft, a paw's toe
+    /// notches) and the foot keeps one digit chain. Default 0.5: half the phalanges.
+    pub min_paw_digit: f64,
 }
 
 impl Default for DigitOptions {
@@ -61,6 +66,7 @@ impl Default for DigitOptions {
             foot_reach: 1.0,
             toe_cap: 0.03,
             ball_plateau: 0.95,
+            min_paw_digit: 0.5,
         }
     }
 }
@@ -79,6 +85,7 @@ impl DigitOptions {
         c.range("digits.foot_reach", self.foot_reach, 0.2, 3.0);
         c.range("digits.toe_cap", self.toe_cap, 0.0, 0.5);
         c.range("digits.ball_plateau", self.ball_plateau, 0.5, 1.0);
+        c.range("digits.min_paw_digit", self.min_paw_digit, 0.0, 1.0);
         for (k, v) in self.free_share.iter().enumerate() {
             c.range(&format!("digits.free_share[{k}]"), *v, 0.05, 1.0);
         }

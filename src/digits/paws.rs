@@ -10,7 +10,10 @@
 //! five all of them. They hang from the metapodial joint (`hand`, `foot`: the start of the
 //! cannon bone or the sole) in place of the template's single digit chain, which a foot with
 //! fewer than two separate digits (a horse's hoof, a low-poly paw) keeps, without a warning:
-//! that is the foot it is.
+//! that is the foot it is. A digit holds three phalanges: a branch standing free for less
+//! than half the length the template's ratios give them (a dewclaw high behind a hoof, a toe
+//! notched into a paw's rim) does not count, and a paw whose toes are all such notches bends
+//! as one: it gets a single digit from the root to the middle of the notches' tips.
 
 use super::hands::{replace_hand, separated_digits};
 use super::place::{place_digit, DigitJoints};
@@ -93,7 +96,12 @@ pub fn fit_paws(
             let Some(group) = limb_of(template, fit, r, side) else {
                 continue;
             };
-            if let Some(w) = fit_paw(mesh, group, fit, (p, r), side, fore, &body, options) {
+            let foot = Foot {
+                joints: (p, r),
+                side,
+                fore,
+            };
+            if let Some(w) = fit_paw(mesh, template, group, fit, &foot, &body, options) {
                 warnings.push(w);
             }
         }
@@ -125,19 +133,64 @@ fn limb_of<'t>(
         .find(|g| !g.digits.is_empty() && g.chain.iter().any(|c| c == stem))
 }
 
-/// One foot: `joints` are the joint above the foot's root (elbow, knee) and the root (wrist,
-/// ankle). Leaves the fit's chain when fewer than two digits separate.
-#[allow(clippy::too_many_arguments)]
-fn fit_paw(
-    mesh: &Mesh,
-    group: &LimbGroup,
-    fit: &mut Fit,
+/// One foot of the figure.
+struct Foot {
+    /// The joint above the foot's root (elbow, knee) and the root (wrist, ankle).
     joints: (JointId, JointId),
     side: Side,
+    /// A fore foot (else a hind one).
     fore: bool,
+}
+
+/// The length the template's ratios give a digit's three phalanges on a limb whose shank (the
+/// segment ending at the foot's `root`, elbow to wrist or knee to ankle) is `shank` long:
+/// `shank` times the phalanges' ratios over the shank's. `None` when the chain or its ratios
+/// do not say.
+fn phalanges_length(
+    template: &Template,
+    group: &LimbGroup,
+    fit: &Fit,
+    root: JointId,
+    side: Side,
+    shank: f64,
+) -> Option<f64> {
+    let ratios = template.ratios.get(&group.ratios)?;
+    let name = &fit.skeleton.joint(root).name;
+    let stem = name.strip_suffix(side.suffix())?;
+    let at = group.chain.iter().position(|c| c == stem)?;
+    let shank_ratio = *ratios.get(at.checked_sub(1)?)?;
+    let phalanges: f64 = ratios.get(group.digit_row + 1..)?.iter().sum();
+    (shank_ratio > 0.0 && phalanges > 0.0).then(|| shank * phalanges / shank_ratio)
+}
+
+/// One digit chain of a paw from its `root` (wrist, ankle) to the mean of its toes' `tips`,
+/// cut by the template's `digit` ratios (metapodial, proximal, middle, distal: 8.2); `None`
+/// without the ratios or when the tips are at the root.
+fn paw_digit(template: &Template, root: DVec3, tips: &[DVec3]) -> Option<DigitJoints> {
+    let ratios = template.ratios.get("digit").filter(|r| r.len() >= 4)?;
+    let total: f64 = ratios.iter().sum();
+    let tip = tips.iter().sum::<DVec3>() / tips.len() as f64;
+    if total <= 0.0 || tip.distance(root) <= 0.0 {
+        return None;
+    }
+    let at = |k: usize| root.lerp(tip, ratios[..k].iter().sum::<f64>() / total);
+    Some(DigitJoints {
+        joints: [at(1), at(2), at(3)],
+        tip,
+    })
+}
+
+/// One foot: leaves the fit's chain when fewer than two digits separate.
+fn fit_paw(
+    mesh: &Mesh,
+    template: &Template,
+    group: &LimbGroup,
+    fit: &mut Fit,
+    foot: &Foot,
     body: &Body,
     options: &DigitOptions,
 ) -> Option<DigitWarning> {
+    let Foot { joints, side, fore } = *foot;
     let (p, r) = (
         fit.skeleton.joint(joints.0).position,
         fit.skeleton.joint(joints.1).position,
@@ -155,6 +208,23 @@ fn fit_paw(
     // A foot's digits reach down to the ground the figure stands on: a branch whose tip is
     // higher than the root is another part within reach (a tail, the rump behind a hind foot).
     branches.retain(|b| b.path[0].dot(body.up) < r.dot(body.up));
+    // A digit holds its three phalanges: a branch standing free for less than
+    // `min_paw_digit` of the length the template's ratios give them (from the shank's length)
+    // is a scallop of the hoof's or paw's rim, not a toe that bends on its own.
+    let scallop_tips: Vec<DVec3> = branches.iter().map(|b| b.path[0]).collect();
+    if let Some(phalanges) = phalanges_length(template, group, fit, joints.1, side, length) {
+        branches.retain(|b| b.free_length() >= options.min_paw_digit * phalanges);
+    }
+    if branches.is_empty() && scallop_tips.len() >= 2 {
+        // Toes all scalloped: a paw that bends as one, one digit (the third, as a single
+        // digit is numbered) from the root to the middle of the toes' tips; the fit's chain
+        // follows the labelled foot, which need not reach the toes.
+        let digit = paw_digit(template, r, &scallop_tips)?;
+        let sole = -(body.up + body.forward);
+        let middle = [(Some(Finger::Middle), digit)];
+        replace_hand(fit, group, joints.1, side, &middle, sole, fore);
+        return None;
+    }
     let found = branches.len();
     let warning =
         (found > Finger::ALL.len()).then_some(DigitWarning::FootDigitCount { side, fore, found });
@@ -216,7 +286,25 @@ fn metapodial(
 
 #[cfg(test)]
 mod tests {
-    use super::reduced_digits;
+    use super::{paw_digit, reduced_digits};
+    use crate::template::Template;
+    use glam::DVec3;
+
+    #[test]
+    fn a_paw_digit_runs_from_the_root_to_the_toes_middle_by_the_digit_ratios() {
+        let template = Template::builtin("quadruped").unwrap();
+        let root = DVec3::new(0.0, 1.0, 0.0);
+        let tips = [DVec3::new(-0.1, 0.0, 1.0), DVec3::new(0.1, 0.0, 1.0)];
+        let d = paw_digit(&template, root, &tips).unwrap();
+        let tip = DVec3::new(0.0, 0.0, 1.0);
+        assert!(d.tip.distance(tip) < 1e-12);
+        // digit = [36, 25, 15, 10]: metapodial, proximal, middle, distal.
+        for (joint, share) in d.joints.iter().zip([36.0, 61.0, 76.0]) {
+            let expected = root.lerp(tip, share / 86.0);
+            assert!(joint.distance(expected) < 1e-12, "{joint:?} {expected:?}");
+        }
+        assert!(paw_digit(&template, root, &[root, root]).is_none());
+    }
 
     #[test]
     fn reduction_keeps_the_middle_digits_longest() {

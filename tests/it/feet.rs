@@ -216,17 +216,17 @@ fn animal_paws_keep_a_single_digit_chain() {
     }
 }
 
-/// Hooves and paws get the digits their surface shows (issue 25, item 5), numbered by the
-/// mammalian reduction pattern, never a thumb: the cow's and the deer's cloven fore hooves
-/// show two digits, the third and fourth, ordered from the median plane outwards and hanging
-/// from the metapodial joint (`hand`); a hoof that shows none (the horse's) keeps the fit's
-/// single digit chain; no animal's foot is reported as a hand with fused fingers.
+/// A hoof's dewclaw is not a digit (issue 21): the cow's and the deer's fore hooves show a
+/// second branch, a dewclaw high behind the hoof standing free for less than half the length
+/// the template gives a digit's phalanges, so they keep one digit chain per foot as the
+/// horse's hoof does (before, the dewclaw was taken for the fourth digit of a cloven hoof).
+/// Hooves never get a thumb or a hand warning.
 #[test]
-fn cloven_hooves_get_their_third_and_fourth_digits_and_no_hand_warnings() {
-    for (model, cloven) in [
-        ("quadruped/quaternius_cow", true),
-        ("quadruped/quaternius_deer", true),
-        ("quadruped/quaternius_horse", false),
+fn hooves_with_a_dewclaw_keep_one_digit_chain_and_no_hand_warnings() {
+    for model in [
+        "quadruped/quaternius_cow",
+        "quadruped/quaternius_deer",
+        "quadruped/quaternius_horse",
     ] {
         let Some(dir) = crate::common::model(model) else {
             return;
@@ -248,29 +248,57 @@ fn cloven_hooves_get_their_third_and_fourth_digits_and_no_hand_warnings() {
         for side in Side::BOTH {
             let s = side.suffix();
             let named = |n: &str| sk.joints.iter().position(|j| j.name == format!("{n}{s}"));
-            let (third, fourth) = (named("fore_digit_3_01"), named("fore_digit_4_01"));
-            if !cloven {
-                assert!(third.is_none() && fourth.is_none(), "{model}: {side:?}");
-                assert!(
-                    named("finger_01").is_some(),
-                    "{model}: {side:?} single chain"
-                );
-                continue;
-            }
-            let (Some(third), Some(fourth)) = (third, fourth) else {
-                panic!("{model}: {side:?} has no cloven hoof");
-            };
-            let parent = |j: usize| sk.joints[sk.joints[j].parent.unwrap().0].name.clone();
-            assert_eq!(parent(third), format!("hand{s}"), "{model}");
-            assert_eq!(parent(fourth), format!("hand{s}"), "{model}");
-            let lateral = |j: usize| sk.joints[j].position.x.abs();
-            assert!(lateral(third) < lateral(fourth), "{model}: {side:?} order");
             assert!(
-                r.fit.canonical.contains_key(
-                    Canonical::Digit(side, skelfit::skeleton::canonical::Finger::Middle, 1)
-                        .as_str()
-                ),
-                "{model}: the third digit's canonical key"
+                named("fore_digit_3_01").is_none() && named("fore_digit_4_01").is_none(),
+                "{model}: {side:?} a dewclaw taken for a digit"
+            );
+            let finger = named("finger_01").unwrap_or_else(|| panic!("{model}: {side:?}"));
+            let parent = sk.joints[finger].parent.map(|p| sk.joint(p).name.clone());
+            assert_eq!(
+                parent,
+                Some(format!("hand{s}")),
+                "{model}: {side:?} single chain"
+            );
+        }
+    }
+}
+
+/// A paw whose toes are only notches of its front rim (the rat's hind paws: four toes, each
+/// standing free for a few hundredths of the shank) bends as one: one digit chain from the
+/// ankle to the middle of the toes' tips, not four three-joint digits packed into the notches
+/// (rat CD-J2J 3.91 -> 3.35 %).
+#[test]
+fn a_paw_with_notched_toes_gets_one_digit_chain_to_the_toe_tips() {
+    let Some(dir) = crate::common::model("quadruped/quaternius_rat") else {
+        return;
+    };
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let sk = &r.fit.skeleton;
+    for side in Side::BOTH {
+        let s = side.suffix();
+        let ankle = r.fit.canonical[Canonical::Ankle(side).as_str()];
+        let children = sk.children(ankle);
+        let names: Vec<&str> = children
+            .iter()
+            .map(|&c| sk.joint(c).name.as_str())
+            .collect();
+        assert_eq!(names, [format!("hind_digit_3_01{s}")], "{side:?}");
+        // The chain runs forward and down from the ankle to the toes on the ground.
+        let (a, end) = (
+            sk.joint(ankle).position,
+            sk.joint(chain_end(&r, ankle)).position,
+        );
+        assert!(
+            end.z > a.z + 0.3 && end.y < 0.2,
+            "{side:?}: {a:?} -> {end:?}"
+        );
+        for k in ["01", "02", "03"] {
+            assert!(
+                sk.joints
+                    .iter()
+                    .all(|j| j.name != format!("hind_digit_2_{k}{s}")),
+                "{side:?}: a notch taken for a toe"
             );
         }
     }
