@@ -9,7 +9,8 @@
 //! at once when the figure is complete and standing, or stands on a pair of legs hanging
 //! within 45° of vertical, under it; otherwise every axis is scored and the best
 //! complete one wins, unless the opposite direction is complete too (a figure standing either way
-//! up, legs sprawling from a flat body, has no up to find). When no axis gives a complete
+//! up, legs sprawling from a flat body, has no up to find) or its legs hang less plumb than the
+//! legs labelled under +Y do (an insect standing under +Y on one leg the labels found). When no axis gives a complete
 //! standing figure, +Y stays, with a warning.
 
 use super::{label_graph, Draft, FigureClass, Frame, Label, LabelOptions};
@@ -32,6 +33,10 @@ const CANDIDATES: [(DVec3, &str); 6] = [
 /// Under +Y (the glTF convention) a figure whose legs hang at least this much (45° from
 /// vertical) stands, and +Y is kept even when its labels miss a part.
 const STANDING: f64 = 0.7;
+
+/// How much less plumb the legs under another up direction may hang than those under +Y for
+/// that direction to replace +Y (0.1: about 25 degrees from vertical when +Y's hang straight).
+const PLUMB_MARGIN: f64 = 0.1;
 
 /// Legs carry the body: a humanoid whose "arms" are this much thicker than its "legs" is read
 /// upside down (ears or a hat hanging from a head taken for legs).
@@ -206,8 +211,16 @@ pub fn find_up(
             .iter()
             .any(|s| s.complete && s.up.dot(best.up) < -0.5)
     };
+    // Leaving the glTF convention needs legs that hang at least as plumb under the new up as
+    // the labelled legs do under +Y (less PLUMB_MARGIN): an insect whose one labelled leg hangs
+    // straight down under +Y is upright, not a humanoid lying on its side whose "legs" are
+    // wings slanting 40 degrees from vertical.
+    let plumb_under_y = scores
+        .first()
+        .filter(|s| s.up == DVec3::Y)
+        .map_or(f64::NEG_INFINITY, |s| s.hanging);
     match order.first().map(|&b| &scores[b]) {
-        Some(best) if best.complete && !flips(best) => {
+        Some(best) if best.complete && !flips(best) && best.hanging + PLUMB_MARGIN >= plumb_under_y => {
             let runner = order.get(1).map(|&r| &scores[r]);
             let confidence = match runner {
                 Some(r) if r.complete => (1.0 - r.score / best.score).clamp(0.0, 1.0),

@@ -1064,6 +1064,23 @@ fn y_up_figures_keep_up_at_once() {
     assert_eq!((choice.up, choice.confidence), (DVec3::Y, 0.0));
 }
 
+/// The wasp as its artist shipped it (source.glb, Y-up, facing +X): under +Y its one labelled
+/// leg hangs straight down; under +X (lying on its side) the labels make a "complete" humanoid
+/// whose legs slant 40 degrees. +Y stays, and the insect gets the general skeleton as its
+/// mesh.obj does, not a humanoid rig lying on its side.
+#[test]
+fn plumb_legs_under_y_outweigh_a_complete_figure_with_slanting_legs() {
+    let Some(dir) = common::model("other/quaternius_wasp") else {
+        return;
+    };
+    let mesh = load(&dir.join("source.glb")).unwrap();
+    let labels = skelfit::anatomy::label(&mesh, &Default::default()).unwrap();
+    let choice = labels.up_found.unwrap();
+    assert_eq!(choice.up, DVec3::Y, "{choice:?}");
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    assert_ne!(r.fit.template, "humanoid");
+}
+
 /// A figure labelled with more limbs than the template places (the wasp: one leg and four
 /// arms for a quadruped's two leg pairs) is not forced into it: the general skeleton, with
 /// the reason.
