@@ -270,6 +270,7 @@ fn refine_with(
     // Jointed figures: a round piece at a limb joint is the joint.
     if options.joint_pieces {
         joints_on_balls(pieces, &scene, &rough, &mut found, &mut warnings);
+        shoulders_on_arm_pieces(pieces, &scene, &rough, &mut found, &mut warnings);
     }
 
     // 3.2 Spine and neck.
@@ -297,6 +298,50 @@ fn refine_with(
         torso,
         warnings,
     })
+}
+
+/// Moves each shoulder of a modular figure whose arm is a separate piece buried in the trunk
+/// to the centre of that piece's buried end ([`super::arm_pieces`]), and drops the warnings
+/// that said the shoulder was not found (no armpit: the arm piece is sunk into the trunk).
+fn shoulders_on_arm_pieces(
+    pieces: &Mesh,
+    scene: &Scene,
+    rough: &Rough,
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+) {
+    let (triangle_component, _) = pieces.triangle_components();
+    let mut component = vec![u32::MAX; pieces.positions.len()];
+    for (t, tri) in pieces.triangles.iter().enumerate() {
+        for &v in tri {
+            component[v as usize] = triangle_component[t];
+        }
+    }
+    let limit = scene.options.max_shift * scene.height;
+    for side in Side::BOTH {
+        let at = |key: Canonical| found.get(&key).copied().or_else(|| rough.at(key));
+        let (Some(elbow), Some(shoulder)) =
+            (at(Canonical::Elbow(side)), at(Canonical::Shoulder(side)))
+        else {
+            continue;
+        };
+        let Some(moved) = super::arm_pieces::shoulder_on_arm_piece(
+            pieces,
+            &component,
+            &scene.frame,
+            scene.centre,
+            elbow,
+            shoulder,
+        ) else {
+            continue;
+        };
+        if moved.distance(shoulder) > limit {
+            continue;
+        }
+        found.insert(Canonical::Shoulder(side), moved);
+        let key = Canonical::Shoulder(side);
+        warnings.retain(|w| !(w.keys().len() == 1 && w.keys()[0] == key));
+    }
 }
 
 /// Moves the limb joints of a jointed figure to the round pieces at them

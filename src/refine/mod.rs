@@ -23,6 +23,7 @@
 //!
 //! Anything that cannot be found keeps its rough position with a warning naming the joint.
 
+mod arm_pieces;
 mod arms;
 mod carry;
 mod driver;
