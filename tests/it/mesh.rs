@@ -620,18 +620,47 @@ fn gltf_bind_pose_matches_refdata() {
         let mut dirs: Vec<PathBuf> = entries.map(|e| e.unwrap().path()).collect();
         dirs.sort();
         for dir in dirs {
-            let source = dir.join("source.glb");
-            if !source.is_file()
-                || common::awaits_real_character_work(&dir, "gltf_bind_pose_matches_refdata")
-            {
+            if !dir.join("source.glb").is_file() {
                 continue;
             }
-            check_bind_pose(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+            // The real game characters' mesh.obj leaves out what the artist's file holds
+            // beyond the figure (a sword, doubled faces): their bind pose is held to the
+            // vertical extent only.
+            let check = if common::is_real_character(&dir) {
+                check_vertical_extent
+            } else {
+                check_bind_pose
+            };
+            check(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
             checked += 1;
         }
     }
     eprintln!("bind pose checked on {checked} refdata glTF models");
     assert!(checked >= 1, "no glTF models found in refdata");
+}
+
+/// `source.glb` loads in the bind pose its `mesh.obj` was made in (the skin's bind space
+/// placed by the armature): the same vertical extent, after the provenance's scale. The
+/// GDQuest mannequin's rest pose is an animation frame with the pelvis tilted by 40 degrees;
+/// placed by the pelvis's rest transform its bind pose came out tilted and 0.17 m shorter.
+fn check_vertical_extent(dir: &Path) -> Result<(), String> {
+    let provenance: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("provenance.json")).unwrap())
+            .unwrap();
+    let scale = provenance["scale_applied"].as_f64().unwrap_or(1.0);
+    let a = load(&dir.join("source.glb")).map_err(|e| e.to_string())?;
+    let b = load(&dir.join("mesh.obj")).map_err(|e| e.to_string())?;
+    let ((a0, a1), (b0, b1)) = (a.bounding_box().unwrap(), b.bounding_box().unwrap());
+    let (a0, a1) = (a0 * scale, a1 * scale);
+    let size = (b1 - b0).max_element();
+    if ((a1.y - a0.y) - (b1.y - b0.y)).abs() < 0.01 * size && (a0.y - b0.y).abs() < 0.01 * size {
+        Ok(())
+    } else {
+        Err(format!(
+            "source.glb spans y {:.3}..{:.3}, mesh.obj {:.3}..{:.3}",
+            a0.y, a1.y, b0.y, b1.y
+        ))
+    }
 }
 
 fn check_bind_pose(dir: &Path) -> Result<(), String> {
@@ -976,49 +1005,4 @@ fn gltf_weights_come_from_every_skin_over_the_rigs_joints() {
             .unwrap_or_else(|| panic!("no joint {name}"));
         assert!(skeleton.joint(joint).deform, "{name}");
     }
-}
-
-/// Every refdata model's `source.glb` loads in the bind pose its `mesh.obj` was made in (the
-/// skin's bind space placed by the armature): the same vertical extent. The GDQuest mannequin's
-/// rest pose is an animation frame with the pelvis tilted by 40 degrees; placed by the pelvis's
-/// rest transform its bind pose came out tilted and 0.17 m shorter.
-#[test]
-fn every_source_glb_loads_in_the_bind_pose_of_its_mesh_obj() {
-    let Some(root) = common::refdata() else {
-        return;
-    };
-    let mut checked = 0;
-    for kind in ["humanoid", "quadruped", "other"] {
-        let Ok(entries) = std::fs::read_dir(root.join(kind)) else {
-            continue;
-        };
-        for dir in entries.map(|e| e.unwrap().path()) {
-            let (source, obj) = (dir.join("source.glb"), dir.join("mesh.obj"));
-            if !source.is_file() || !obj.is_file() {
-                continue;
-            }
-            // mesh.obj is the bind pose times the provenance's `scale_applied`.
-            let scale = std::fs::read_to_string(dir.join("provenance.json"))
-                .ok()
-                .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-                .and_then(|p| p.get("scale_applied").and_then(|s| s.as_f64()))
-                .unwrap_or(1.0);
-            let a = load(&source).unwrap().bounding_box().unwrap();
-            let a = (a.0 * scale, a.1 * scale);
-            let b = load(&obj).unwrap().bounding_box().unwrap();
-            let size = (b.1 - b.0).max_element();
-            let (ha, hb) = (a.1.y - a.0.y, b.1.y - b.0.y);
-            assert!(
-                (ha - hb).abs() < 0.01 * size && (a.0.y - b.0.y).abs() < 0.01 * size,
-                "{}: source.glb spans y {:.3}..{:.3}, mesh.obj {:.3}..{:.3}",
-                dir.display(),
-                a.0.y,
-                a.1.y,
-                b.0.y,
-                b.1.y
-            );
-            checked += 1;
-        }
-    }
-    assert!(checked > 0, "no refdata model has a source.glb");
 }
