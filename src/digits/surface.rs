@@ -1,6 +1,6 @@
 //! The hand's surface beyond the wrist and the geodesic distance over it.
 
-use crate::mesh::Mesh;
+use crate::mesh::{vertex_pieces, Mesh};
 use crate::paths::Search;
 use glam::DVec3;
 
@@ -114,7 +114,7 @@ fn sources(
     band: f64,
 ) -> Vec<bool> {
     let along = |p: DVec3| (p - wrist).dot(axis);
-    let piece = mesh_pieces(mesh.positions.len(), &mesh.triangles);
+    let piece = vertex_pieces(mesh.positions.len(), &mesh.triangles);
     let mut source = wrist_band(mesh, local, positions, wrist, axis);
     // Per piece: wholly inside, nearest corner along the axis.
     let count = piece.iter().map(|&c| c as usize + 1).max().unwrap_or(0);
@@ -161,7 +161,7 @@ fn wrist_band(
         })
         .copied()
         .collect();
-    let piece = mesh_pieces(mesh.positions.len(), &band);
+    let piece = vertex_pieces(mesh.positions.len(), &band);
     let radial = |p: DVec3| {
         let d = p - wrist;
         d - axis * d.dot(axis)
@@ -191,40 +191,6 @@ fn wrist_band(
         }
     }
     source
-}
-
-/// The piece (connected component over shared corners of `triangles`) of each of the `n`
-/// mesh corners, numbered from 0. Corners of no triangle are pieces of their own.
-fn mesh_pieces(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            let up = parent[parent[x as usize] as usize];
-            parent[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-    for t in triangles {
-        for k in 1..3 {
-            let (a, b) = (find(&mut parent, t[0]), find(&mut parent, t[k]));
-            if a != b {
-                parent[a.max(b) as usize] = a.min(b);
-            }
-        }
-    }
-    let mut number = vec![u32::MAX; n];
-    let mut next = 0;
-    (0..n as u32)
-        .map(|i| {
-            let root = find(&mut parent, i) as usize;
-            if number[root] == u32::MAX {
-                number[root] = next;
-                next += 1;
-            }
-            number[root]
-        })
-        .collect()
 }
 
 /// Shortest distance along the triangles' edges from the `sources` (distance 0) over the

@@ -53,6 +53,7 @@ pub use slice_sphere::slice_sphere;
 pub use stats::MeshStats;
 pub use stl::load_stl;
 pub use topology::DEGENERATE_AREA_FRACTION;
+pub(crate) use topology::{vertex_pieces, DisjointSets};
 pub use winding::winding_number;
 
 use glam::DVec3;

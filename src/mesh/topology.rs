@@ -139,8 +139,31 @@ impl Mesh {
 }
 
 /// Union-find over `0..n` with path halving and union by lower index (deterministic roots).
-pub(super) struct DisjointSets {
+pub(crate) struct DisjointSets {
     parent: Vec<u32>,
+}
+
+/// The piece (connected component over shared corners of `triangles`) of each of the `n`
+/// mesh corners, numbered from 0 in corner order. Corners of no triangle are pieces of their
+/// own.
+pub(crate) fn vertex_pieces(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
+    let mut sets = DisjointSets::new(n);
+    for &[a, b, c] in triangles {
+        sets.union(a, b);
+        sets.union(a, c);
+    }
+    let mut number = vec![u32::MAX; n];
+    let mut next = 0;
+    (0..n as u32)
+        .map(|i| {
+            let root = sets.find(i) as usize;
+            if number[root] == u32::MAX {
+                number[root] = next;
+                next += 1;
+            }
+            number[root]
+        })
+        .collect()
 }
 
 impl DisjointSets {

@@ -13,7 +13,8 @@ use super::frame::BodyFrame;
 use crate::mesh::Mesh;
 use glam::DVec3;
 
-/// The shoulder of one arm: `elbow` and `shoulder` as placed so far, `centre` a point of the
+/// The shoulder of one arm: `component` the piece of every vertex of `pieces`
+/// ([`crate::mesh::vertex_pieces`]), `elbow` and `shoulder` as placed so far, `centre` a point of the
 /// median plane, `frame.left` its normal. The new shoulder, or `None` when the arm is not a
 /// separate piece buried in the trunk.
 pub(super) fn shoulder_on_arm_piece(
@@ -95,14 +96,8 @@ mod tests {
         );
         mesh.triangles
             .extend(arm.triangles.iter().map(|t| t.map(|i| i + offset)));
-        let (component, _) = mesh.triangle_components();
-        let mut per_vertex = vec![0u32; mesh.positions.len()];
-        for (t, tri) in mesh.triangles.iter().enumerate() {
-            for &v in tri {
-                per_vertex[v as usize] = component[t];
-            }
-        }
-        (mesh, per_vertex)
+        let pieces = crate::mesh::vertex_pieces(mesh.positions.len(), &mesh.triangles);
+        (mesh, pieces)
     }
 
     #[test]

@@ -310,13 +310,7 @@ fn shoulders_on_arm_pieces(
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
 ) {
-    let (triangle_component, _) = pieces.triangle_components();
-    let mut component = vec![u32::MAX; pieces.positions.len()];
-    for (t, tri) in pieces.triangles.iter().enumerate() {
-        for &v in tri {
-            component[v as usize] = triangle_component[t];
-        }
-    }
+    let component = crate::mesh::vertex_pieces(pieces.positions.len(), &pieces.triangles);
     let limit = scene.options.max_shift * scene.height;
     for side in Side::BOTH {
         let at = |key: Canonical| found.get(&key).copied().or_else(|| rough.at(key));

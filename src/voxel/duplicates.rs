@@ -16,7 +16,7 @@
 //!   winding of its first copies (the vote uses the absolute winding, so either orientation
 //!   counts as inside).
 
-use crate::mesh::Mesh;
+use crate::mesh::{DisjointSets, Mesh};
 use std::collections::HashMap;
 
 /// Vertices this close (fraction of the bounding-box diagonal) count as one when comparing
@@ -97,31 +97,21 @@ fn closed_patches(triangles: &[[u32; 3]], pairs: &[(usize, usize)]) -> Vec<(bool
             edges.entry((a.min(b), a.max(b))).or_default().push(p);
         }
     }
-    let mut parent: Vec<usize> = (0..m).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
+    let mut sets = DisjointSets::new(m);
     for users in edges.values() {
         for w in users.windows(2) {
-            let (a, b) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
-            if a != b {
-                parent[a] = b;
-            }
+            sets.union(w[0] as u32, w[1] as u32);
         }
     }
-    let mut closed: HashMap<usize, bool> = HashMap::new();
+    let mut closed: HashMap<u32, bool> = HashMap::new();
     for users in edges.values() {
-        let root = find(&mut parent, users[0]);
+        let root = sets.find(users[0] as u32);
         let ok = closed.entry(root).or_insert(true);
         *ok &= users.len() == 2;
     }
-    let mut patches: HashMap<usize, Vec<usize>> = HashMap::new();
+    let mut patches: HashMap<u32, Vec<usize>> = HashMap::new();
     for (p, &(_, twin)) in pairs.iter().enumerate() {
-        patches.entry(find(&mut parent, p)).or_default().push(twin);
+        patches.entry(sets.find(p as u32)).or_default().push(twin);
     }
     patches
         .into_iter()
