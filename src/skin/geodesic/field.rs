@@ -82,7 +82,21 @@ struct Labelled {
 /// decrease-key; entries of one bucket leave last in, first out, so a later entry of the same
 /// bucket is still queued). Leaves the result exactly as without the check. A joint that
 /// finds every slot taken is queued without it.
-const TENTATIVE: usize = 8;
+const TENTATIVE: usize = 4;
+
+/// What the Dijkstra reads and writes of one interior voxel each time a neighbour is relaxed,
+/// in one cache line: its labels so far, their count, the cost of a step into it and its
+/// [`TENTATIVE`] queued joints (joint ids fit in `u16`: skeletons are checked to have fewer
+/// than `u16::MAX` joints before skinning; `u16::MAX` marks a free slot).
+#[derive(Clone, Copy)]
+#[repr(C, align(64))]
+struct Node {
+    step_cost: f64,
+    labels: [u32; LABELS],
+    count: u8,
+    queued_joints: [u16; TENTATIVE],
+    queued_buckets: [u32; TENTATIVE],
+}
 
 /// The multi-label Dijkstra: every joint's bone voxels start at distance 0; a step into a
 /// voxel at depth `d` (voxels from the outside) costs its length times `d^-depth_exponent`,
@@ -96,16 +110,18 @@ fn nearest_joints(
     options: &SkinOptions,
 ) -> Labelled {
     let n = interior.len();
-    let step_cost: Vec<f64> = interior
+    let mut nodes: Vec<Node> = interior
         .iter()
-        .map(|&i| distance.distance(i).max(1.0).powf(-options.depth_exponent))
+        .map(|&i| Node {
+            step_cost: distance.distance(i).max(1.0).powf(-options.depth_exponent),
+            labels: [NONE; LABELS],
+            count: 0,
+            queued_joints: [u16::MAX; TENTATIVE],
+            queued_buckets: [u32::MAX; TENTATIVE],
+        })
         .collect();
-    let mut labels = vec![NONE; n * LABELS];
     let mut distances = vec![f32::INFINITY; n * LABELS];
     let mut lengths = vec![f32::INFINITY; n * LABELS];
-    let mut count = vec![0u8; n];
-    // (joint, bucket); buckets past `u32::MAX` are kept as `u32::MAX` (queued again).
-    let mut queued = vec![(NONE, u32::MAX); n * TENTATIVE];
     // A bucket queue (Dial's algorithm) over distances rounded down to `BUCKET`: entries
     // leave in distance order up to one bucket's width, each in O(1); within a bucket, in
     // the order pushed, so the result does not depend on timing or threads.
@@ -121,37 +137,51 @@ fn nearest_joints(
     }
     let around = Neighbourhood::new(*grid, options.connectivity.neighbours());
     while let Some((d, length, c, joint)) = queue.pop() {
-        let slot = c as usize * LABELS;
-        let k = usize::from(count[c as usize]);
-        if k == LABELS || labels[slot..slot + k].contains(&joint) {
+        let node = &mut nodes[c as usize];
+        let k = usize::from(node.count);
+        if k == LABELS || node.labels[..k].contains(&joint) {
             continue;
         }
-        labels[slot + k] = joint;
+        node.labels[k] = joint;
+        node.count += 1;
+        let slot = c as usize * LABELS;
         distances[slot + k] = d as f32;
         lengths[slot + k] = length as f32;
-        count[c as usize] += 1;
+        // Joint ids are below `u16::MAX` (checked before skinning).
+        let short = joint as u16;
         around.for_each_step(interior[c as usize], |next, step| {
             let m = compact[next];
             if m == NONE {
                 return;
             }
-            let m = m as usize;
-            let ms = m * LABELS;
-            let mk = usize::from(count[m]);
-            if mk == LABELS || labels[ms..ms + mk].contains(&joint) {
+            let node = &mut nodes[m as usize];
+            let mk = usize::from(node.count);
+            if mk == LABELS || node.labels[..mk].contains(&joint) {
                 return;
             }
-            let d = d + step.distance * step_cost[m];
+            let d = d + step.distance * node.step_cost;
             let bucket = u32::try_from(queue.bucket(d)).unwrap_or(u32::MAX);
-            let tentative = &mut queued[m * TENTATIVE..(m + 1) * TENTATIVE];
-            match tentative.iter_mut().find(|e| e.0 == joint || e.0 == NONE) {
+            match node
+                .queued_joints
+                .iter()
+                .position(|&e| e == short || e == u16::MAX)
+            {
                 // Leaves in an earlier bucket: this entry would only be turned away.
-                Some(e) if e.0 == joint && e.1 < bucket => return,
-                Some(e) => *e = (joint, bucket),
+                Some(e) if node.queued_joints[e] == short && node.queued_buckets[e] < bucket => {
+                    return
+                }
+                Some(e) => {
+                    node.queued_joints[e] = short;
+                    node.queued_buckets[e] = bucket;
+                }
                 None => {}
             }
-            queue.push(d, length + step.distance, m as u32, joint);
+            queue.push(d, length + step.distance, m, joint);
         });
+    }
+    let mut labels = vec![NONE; n * LABELS];
+    for (out, node) in labels.chunks_exact_mut(LABELS).zip(&nodes) {
+        out.copy_from_slice(&node.labels);
     }
     Labelled {
         labels,

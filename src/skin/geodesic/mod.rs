@@ -37,6 +37,7 @@
 //! under linear blend skinning, whatever the mesh's tessellation or its number of pieces;
 //! measured with [`check`](super::check): `reports/deformation/`.
 
+mod cell;
 mod diffusion;
 mod field;
 mod rows;
