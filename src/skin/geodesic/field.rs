@@ -8,6 +8,7 @@ use crate::distance::DistanceMap;
 use crate::skin::neighbourhood::Neighbourhood;
 use crate::skin::{SegmentVoxels, SkinOptions};
 use crate::voxel::{Connectivity, Grid, Solid};
+use rayon::prelude::*;
 use std::collections::VecDeque;
 
 /// The K nearest joints of every interior voxel by geodesic distance through the interior.
@@ -135,7 +136,23 @@ fn nearest_joints(
             }
         }
     }
-    let around = Neighbourhood::new(*grid, options.connectivity.neighbours());
+    // Each interior voxel's neighbours as compact indices (`NONE` outside), found once in
+    // parallel: the search then reads them in order instead of the whole grid's index.
+    let steps = options.connectivity.neighbours();
+    let around = Neighbourhood::new(*grid, steps);
+    let stride = steps.len();
+    let mut adjacent = vec![NONE; n * stride];
+    adjacent
+        .par_chunks_mut(stride)
+        .zip(interior.par_iter())
+        .with_min_len(512)
+        .for_each(|(out, &i)| {
+            let mut k = 0;
+            around.for_each(i, |next| {
+                out[k] = compact[next];
+                k += 1;
+            });
+        });
     while let Some((d, length, c, joint)) = queue.pop() {
         let node = &mut nodes[c as usize];
         let k = usize::from(node.count);
@@ -149,15 +166,15 @@ fn nearest_joints(
         lengths[slot + k] = length as f32;
         // Joint ids are below `u16::MAX` (checked before skinning).
         let short = joint as u16;
-        around.for_each_step(interior[c as usize], |next, step| {
-            let m = compact[next];
+        let start = c as usize * stride;
+        for (&m, step) in adjacent[start..start + stride].iter().zip(steps) {
             if m == NONE {
-                return;
+                continue;
             }
             let node = &mut nodes[m as usize];
             let mk = usize::from(node.count);
             if mk == LABELS || node.labels[..mk].contains(&joint) {
-                return;
+                continue;
             }
             let d = d + step.distance * node.step_cost;
             let bucket = u32::try_from(queue.bucket(d)).unwrap_or(u32::MAX);
@@ -168,7 +185,7 @@ fn nearest_joints(
             {
                 // Leaves in an earlier bucket: this entry would only be turned away.
                 Some(e) if node.queued_joints[e] == short && node.queued_buckets[e] < bucket => {
-                    return
+                    continue
                 }
                 Some(e) => {
                     node.queued_joints[e] = short;
@@ -177,7 +194,7 @@ fn nearest_joints(
                 None => {}
             }
             queue.push(d, length + step.distance, m, joint);
-        });
+        }
     }
     let mut labels = vec![NONE; n * LABELS];
     for (out, node) in labels.chunks_exact_mut(LABELS).zip(&nodes) {
