@@ -5,6 +5,7 @@ use super::model::{image_file, ModelWarning, SourceInstance, SourceModel, Source
 use super::mtl::{read_libraries, MtlMaterial};
 use super::obj::{read_obj_parsed, ParsedObj};
 use super::{Mesh, MeshError};
+use crate::math::{fast_map, FastMap};
 use glam::DMat4;
 use serde_json::{json, Value};
 use std::collections::HashMap;
@@ -183,7 +184,7 @@ fn primitive(
     views: &mut Vec<Value>,
     accessors: &mut Vec<Value>,
 ) -> (Value, Vec<Option<u32>>) {
-    let mut corner_vertex: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut corner_vertex: FastMap<[u32; 3], u32> = fast_map(parsed.corners.len());
     let mut keys: Vec<[u32; 3]> = Vec::new();
     let mut indices: Vec<u32> = Vec::new();
     for (t, _) in parsed
