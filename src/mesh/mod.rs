@@ -49,7 +49,7 @@ pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION, FLAT_VOLUME_FRACTIO
 pub use ply::load_ply;
 pub use slice::{PrincipalAxes, SliceLoop};
 pub use slice_plane::{slice_plane, slice_plane_outer};
-pub use slice_sphere::slice_sphere;
+pub use slice_sphere::{slice_sphere, SphereSlicer};
 pub use stats::MeshStats;
 pub use stl::load_stl;
 pub use topology::DEGENERATE_AREA_FRACTION;

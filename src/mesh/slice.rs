@@ -132,14 +132,28 @@ pub(crate) fn cut_and_link(
     side: &[f64],
     crossing: impl Fn(u32, u32) -> DVec3,
 ) -> Vec<SliceLoop> {
-    let above = |v: u32| side[v as usize] >= 0.0;
+    cut_and_link_among(
+        triangles.iter(),
+        |v| side[v as usize] >= 0.0,
+        crossing,
+    )
+}
+
+/// [`cut_and_link`] over the `candidates` (in mesh order: the loops come out as when every
+/// triangle is cut, provided the candidates hold every triangle with corners on both sides),
+/// with `above(v)` saying whether vertex `v` counts as above.
+pub(crate) fn cut_and_link_among<'a>(
+    candidates: impl Iterator<Item = &'a [u32; 3]>,
+    above: impl Fn(u32) -> bool,
+    crossing: impl Fn(u32, u32) -> DVec3,
+) -> Vec<SliceLoop> {
     let mut cuts = Vec::new();
     // The two triangles of an edge get the same point: `crossing` of the same ordered pair.
     let point = |a: u32, b: u32| {
         let (lo, hi) = if above(a) { (b, a) } else { (a, b) };
         crossing(lo, hi)
     };
-    for &[a, b, c] in triangles {
+    for &[a, b, c] in candidates {
         let (sa, sb, sc) = (above(a), above(b), above(c));
         if sa == sb && sb == sc {
             continue;
