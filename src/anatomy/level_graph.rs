@@ -654,6 +654,7 @@ impl UnionFind {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::Mesh;
     use crate::paths::testing::surface;
 
     /// A "T": a stem along y and a bar along x, one voxel thick.
@@ -702,6 +703,86 @@ mod tests {
                 let b = ((g.heart_values[p] * 20.0) as usize).min(19);
                 assert_eq!(b, v.bin);
             }
+        }
+    }
+
+    /// A plus-shaped figure of three boxes (trunk, arms, legs), voxelized with its medial
+    /// surface.
+    fn plus_figure() -> (Solid, MedialSurface) {
+        let boxes = [
+            Mesh::cuboid(DVec3::new(-0.3, 0.0, -0.2), DVec3::new(0.3, 2.0, 0.2)),
+            Mesh::cuboid(DVec3::new(-1.2, 1.4, -0.1), DVec3::new(1.2, 1.6, 0.1)),
+            Mesh::cuboid(DVec3::new(-0.6, -1.0, -0.1), DVec3::new(-0.3, 0.4, 0.1)),
+        ];
+        let mut mesh = Mesh {
+            positions: Vec::new(),
+            triangles: Vec::new(),
+        };
+        for b in boxes {
+            let base = mesh.positions.len() as u32;
+            mesh.positions.extend(b.positions);
+            mesh.triangles
+                .extend(b.triangles.iter().map(|t| t.map(|i| i + base)));
+        }
+        let solid = crate::voxel::voxelize_figure(&mesh, &Default::default()).unwrap();
+        let surface =
+            crate::medial::dms(&crate::distance::edt(&solid), &Default::default()).unwrap();
+        (solid, surface)
+    }
+
+    #[test]
+    fn a_level_tree_marked_in_several_frames_gives_each_its_own_level_graph() {
+        let (solid, s) = plus_figure();
+        let (paths, options) = (PathOptions::default(), LevelOptions::default());
+        let tree = LevelTree::new(&s, Some(&solid), &paths, &options);
+        for (up, forward, extent_up, extent_forward) in [
+            (DVec3::Y, DVec3::Z, (-1.0, 2.0), (-0.2, 0.2)),
+            (DVec3::Z, DVec3::Y, (-0.2, 0.2), (-1.0, 2.0)),
+            (DVec3::NEG_X, DVec3::Z, (-1.2, 1.2), (-0.2, 0.2)),
+        ] {
+            let frame = Frame::new(up, forward).unwrap();
+            let marked = tree.in_frame(&s, &frame, extent_up, extent_forward);
+            let built = level_graph(
+                &s,
+                Some(&solid),
+                &paths,
+                &options,
+                &frame,
+                extent_up,
+                extent_forward,
+            );
+            assert_eq!(
+                serde_json::to_value(&marked).unwrap(),
+                serde_json::to_value(&built).unwrap(),
+                "up {up}"
+            );
+        }
+    }
+
+    #[test]
+    fn interior_parts_from_the_tree_match_a_search_of_their_own_or_are_refused() {
+        use crate::anatomy::project::interior_parts;
+        let (solid, s) = plus_figure();
+        let options = LevelOptions::default();
+        let tree = LevelTree::new(&s, Some(&solid), &PathOptions::default(), &options);
+        let vertex_of = tree.graph.vertex_of.clone();
+        assert!(vertex_of.iter().filter(|&&v| v != NO_VERTEX).count() > 10);
+        // Any parts of the same seeds: the tree's sources give the search's answer.
+        let parts: Vec<u32> = vertex_of
+            .iter()
+            .map(|&v| if v == NO_VERTEX { NO_VERTEX } else { v % 3 })
+            .collect();
+        let own = interior_parts(&solid, &s, &parts, options.radius_weight);
+        assert_eq!(tree.interior_parts(&s, &solid, &parts), Some(own));
+        // One seed fewer: not the tree's search.
+        let mut fewer = parts.clone();
+        let p = fewer
+            .iter()
+            .position(|&v| v != NO_VERTEX)
+            .expect("a seeded DMS voxel");
+        fewer[p] = NO_VERTEX;
+        if solid.inside[s.voxels[p]] {
+            assert_eq!(tree.interior_parts(&s, &solid, &fewer), None);
         }
     }
 }
