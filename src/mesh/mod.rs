@@ -48,7 +48,7 @@ pub use obj::load_obj;
 pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION, FLAT_VOLUME_FRACTION};
 pub use ply::load_ply;
 pub use slice::{PrincipalAxes, SliceLoop};
-pub use slice_plane::{slice_plane, slice_plane_outer};
+pub use slice_plane::{slice_plane, slice_plane_outer, PlaneSlicer};
 pub use slice_sphere::{slice_sphere, SphereSlicer};
 pub use stats::MeshStats;
 pub use stl::load_stl;

@@ -1,6 +1,6 @@
 //! Mesh ∩ sphere (seed 004, 3.3: Plumber-style slicing of the limbs, Mortara et al. 2004).
 
-use super::slice::{cut_and_link_among, SliceLoop};
+use super::slice::{cut_and_link, SliceLoop};
 use super::Mesh;
 use glam::DVec3;
 
@@ -22,7 +22,7 @@ pub fn slice_sphere(mesh: &Mesh, centre: DVec3, radius: f64) -> Vec<SliceLoop> {
         .iter()
         .map(|p| inside_by(*p, centre, radius))
         .collect();
-    cut_and_link_among(
+    cut_and_link(
         mesh.triangles.iter(),
         |v| side[v as usize] >= 0.0,
         |a, b| crossing(mesh, centre, radius, a, b),
@@ -194,7 +194,7 @@ impl<'a> SphereSlicer<'a> {
         }
         triangles.sort_unstable();
         triangles.dedup();
-        cut_and_link_among(
+        cut_and_link(
             triangles.iter().map(|&t| &mesh.triangles[t as usize]),
             |v| !inside(v),
             |a, b| crossing(mesh, centre, radius, a, b),
