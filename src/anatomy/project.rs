@@ -4,6 +4,7 @@ use crate::medial::MedialSurface;
 use crate::mesh::Mesh;
 use crate::paths::Search;
 use crate::voxel::{Solid, NEIGHBOURS_26};
+use rayon::prelude::*;
 
 /// Marks "no part".
 pub const NO_PART: u32 = u32::MAX;
@@ -87,12 +88,14 @@ pub fn parts_from_sources(sources: &[u32], voxel_parts: &[u32]) -> Vec<u32> {
 
 /// Part of every mesh vertex: the part of the labelled voxel whose centre is nearest, searched
 /// in growing cubes around the vertex's voxel (vertices lie on the surface, often in exterior
-/// voxels). [`NO_PART`] only when no voxel of the grid is labelled.
+/// voxels). [`NO_PART`] only when no voxel of the grid is labelled. The vertices are looked
+/// at in parallel (each on its own).
 pub fn mesh_parts(mesh: &Mesh, solid: &Solid, parts: &[u32]) -> Vec<u32> {
     let grid = solid.grid;
     let max_radius = grid.dims.iter().copied().max().unwrap_or(0) as i64;
     mesh.positions
-        .iter()
+        .par_iter()
+        .with_min_len(1024)
         .map(|&x| {
             let v = grid.to_voxel(x) - glam::DVec3::splat(0.5);
             let c = [v.x.round() as i64, v.y.round() as i64, v.z.round() as i64];

@@ -31,13 +31,11 @@ pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
 
 /// [`load_obj`] with the source map of [`load_with_source_map`](super::load_with_source_map).
 pub(super) fn read_obj(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
-    read_obj_parsed(path).map(|(_, mesh, source)| (mesh, source))
+    welded(path, &parse_obj(path)?)
 }
 
-/// [`read_obj`], also returning what the parser read (UVs, normals, materials per corner).
-pub(super) fn read_obj_parsed(
-    path: &Path,
-) -> Result<(ParsedObj, Mesh, Vec<Option<u32>>), MeshError> {
+/// What the OBJ file at `path` says, not yet welded ([`welded`]).
+pub(super) fn parse_obj(path: &Path) -> Result<ParsedObj, MeshError> {
     let bytes = read_bytes(path)?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         let line = bytes[..e.valid_up_to()]
@@ -51,14 +49,12 @@ pub(super) fn read_obj_parsed(
             format!("line {line}: not OBJ text (invalid UTF-8)"),
         )
     })?;
-    let parsed = parse(text)
-        .map_err(|(line, message)| parse_error(path, FORMAT, format!("line {line}: {message}")))?;
-    let (mesh, source) = welded(path, &parsed)?;
-    Ok((parsed, mesh, source))
+    parse(text)
+        .map_err(|(line, message)| parse_error(path, FORMAT, format!("line {line}: {message}")))
 }
 
 /// The welded mesh of the parsed file and the map of its `v` statements onto it.
-fn welded(path: &Path, parsed: &ParsedObj) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
+pub(super) fn welded(path: &Path, parsed: &ParsedObj) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
     let coordinates = &parsed.coordinates;
     let corners = &parsed.corners;
     if let Some(MeshError::IndexOutOfRange {
