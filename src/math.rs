@@ -1,11 +1,13 @@
 //! Numeric and geometric helpers shared by several stages: one moving average, one principal
-//! component analysis, one Douglas-Peucker simplification. Stage modules call these instead of
+//! component analysis, one Douglas-Peucker simplification, one fast hasher for integer keys. Stage modules call these instead of
 //! keeping their own copies, so the same input gives the same bits everywhere.
 
 mod douglas_peucker;
+mod fast_hash;
 mod pca;
 mod smoothing;
 
+pub(crate) use fast_hash::{fast_map, FastMap};
 pub use douglas_peucker::{
     closest_on_segment, douglas_peucker, douglas_peucker_closed, point_segment_distance,
 };

@@ -193,71 +193,158 @@ pub fn level_graph(
     extent_up: (f64, f64),
     extent_forward: (f64, f64),
 ) -> LevelGraph {
-    let graph = DmsGraph::new(surface);
-    let n = graph.len();
-    let component = graph.largest_component().unwrap_or(0);
-    let h = heart(&graph, component, paths);
-    let heart_values = normalised(&h.sums);
-    let bins = options.bins;
-    let bin_of = |p: usize| -> Option<usize> {
-        let v = heart_values[p];
-        (!v.is_nan()).then(|| ((v * bins as f64) as usize).min(bins - 1))
-    };
-    let mut by_bin: Vec<Vec<usize>> = vec![Vec::new(); bins];
-    for p in 0..n {
-        if let Some(b) = bin_of(p) {
-            by_bin[b].push(p);
-        }
-    }
-    let mut merging = Merging::new(n);
-    let mut piece_of = vec![u32::MAX; n];
-    for b in (0..bins).rev() {
-        let pieces = bin_pieces(
-            &graph,
-            &by_bin[b],
-            |q| bin_of(q) == Some(b),
-            &mut piece_of,
-            h.position,
-        );
-        for piece in pieces {
-            merging.add(&graph, surface, piece, b);
-        }
-    }
-    let Merging {
-        vertex_of,
-        mut vertices,
-        ..
-    } = merging;
-    let total = vertices
-        .iter()
-        .map(|v| v.voxels.len())
-        .sum::<usize>()
-        .max(1);
-    let voxel = surface.grid.voxel_size;
-    let extents = Extents {
-        up: extent_up,
-        forward: extent_forward,
-        fraction: options.extreme_fraction,
-    };
-    mark_vertices(&mut vertices, surface, total, frame, &extents, options);
-    add_reaches(
-        &mut vertices,
+    LevelTree::new(surface, solid, paths, options).in_frame(
         surface,
-        solid,
-        &vertex_of,
         frame,
-        &extents,
-        options,
-    );
-    let root = vertices.len().saturating_sub(1);
-    LevelGraph {
-        heart: h.position,
-        heart_radius: h.radius * voxel,
-        heart_values,
-        vertex_of,
-        vertices,
-        root,
-        voxels: total,
+        extent_up,
+        extent_forward,
+    )
+}
+
+/// The part of [`level_graph`] that does not depend on the body frame, built once and marked
+/// under as many frames as the labelling tries (the up direction's candidates, the first and
+/// the guessed forward): the heart, the strata and their merge tree, and each vertex's region
+/// (its DMS voxel centres and, with a solid, the centres of the interior voxels nearest to
+/// them through the interior). Building it is most of the level graph's cost (the heart's
+/// Dijkstra and the interior's); marking it under a frame is a pass over its voxels.
+#[derive(Debug, Clone)]
+pub struct LevelTree {
+    /// The graph with every vertex unmarked (weights, marks, radii and reaches are set by
+    /// [`LevelTree::in_frame`]).
+    graph: LevelGraph,
+    /// Per vertex: the centres (mesh units) of its region's voxels.
+    regions: Vec<Vec<DVec3>>,
+    /// With a solid: per grid voxel, the DMS position whose vertex it joins through the
+    /// interior ([`super::project::interior_sources`] seeded by the graph's DMS voxels).
+    sources: Option<Vec<u32>>,
+    /// The options it was built with; [`LevelTree::in_frame`] marks with them.
+    options: LevelOptions,
+}
+
+impl LevelTree {
+    /// The frame-independent phases of [`level_graph`] over `surface` (and `solid`'s interior).
+    pub fn new(
+        surface: &MedialSurface,
+        solid: Option<&Solid>,
+        paths: &PathOptions,
+        options: &LevelOptions,
+    ) -> Self {
+        let graph = DmsGraph::new(surface);
+        let n = graph.len();
+        let component = graph.largest_component().unwrap_or(0);
+        let h = heart(&graph, component, paths);
+        let heart_values = normalised(&h.sums);
+        let bins = options.bins;
+        let bin_of = |p: usize| -> Option<usize> {
+            let v = heart_values[p];
+            (!v.is_nan()).then(|| ((v * bins as f64) as usize).min(bins - 1))
+        };
+        let mut by_bin: Vec<Vec<usize>> = vec![Vec::new(); bins];
+        for p in 0..n {
+            if let Some(b) = bin_of(p) {
+                by_bin[b].push(p);
+            }
+        }
+        let mut merging = Merging::new(n);
+        let mut piece_of = vec![u32::MAX; n];
+        for b in (0..bins).rev() {
+            let pieces = bin_pieces(
+                &graph,
+                &by_bin[b],
+                |q| bin_of(q) == Some(b),
+                &mut piece_of,
+                h.position,
+            );
+            for piece in pieces {
+                merging.add(&graph, surface, piece, b);
+            }
+        }
+        let Merging {
+            vertex_of,
+            vertices,
+            ..
+        } = merging;
+        let total = vertices
+            .iter()
+            .map(|v| v.voxels.len())
+            .sum::<usize>()
+            .max(1);
+        let sources = solid.map(|solid| {
+            super::project::interior_sources(
+                solid,
+                surface,
+                |p| vertex_of[p] != NO_VERTEX,
+                options.radius_weight,
+            )
+        });
+        let regions = regions(&vertices, surface, solid, sources.as_deref(), &vertex_of);
+        let voxel = surface.grid.voxel_size;
+        let root = vertices.len().saturating_sub(1);
+        LevelTree {
+            graph: LevelGraph {
+                heart: h.position,
+                heart_radius: h.radius * voxel,
+                heart_values,
+                vertex_of,
+                vertices,
+                root,
+                voxels: total,
+            },
+            regions,
+            sources,
+            options: *options,
+        }
+    }
+
+    /// [`super::project::interior_parts`] of `voxel_parts` (per DMS position) over `solid`
+    /// (the tree's), from the tree's interior search when `voxel_parts` seeds the same DMS
+    /// voxels as the tree's vertices (a part exactly for the inside DMS voxels that have a
+    /// vertex): the search's sources do not depend on the parts. `None` when the seeds differ
+    /// or the tree was built without a solid.
+    pub fn interior_parts(
+        &self,
+        surface: &MedialSurface,
+        solid: &Solid,
+        voxel_parts: &[u32],
+    ) -> Option<Vec<u32>> {
+        let sources = self.sources.as_ref()?;
+        let vertex_of = &self.graph.vertex_of;
+        let same_seeds = sources.len() == solid.grid.len()
+            && voxel_parts.len() == vertex_of.len()
+            && surface.voxels.iter().enumerate().all(|(p, &index)| {
+                !solid.inside[index]
+                    || (vertex_of[p] != NO_VERTEX) == (voxel_parts[p] != super::NO_PART)
+            });
+        same_seeds.then(|| super::project::parts_from_sources(sources, voxel_parts))
+    }
+
+    /// The level graph marked under `frame` (ch.7.3.2), with the direction marks measured
+    /// against `extent_up` and `extent_forward` (the figure's `(min, max)` projections on
+    /// `frame.up` / `frame.forward`). `surface` must be the one the tree was built over.
+    pub fn in_frame(
+        &self,
+        surface: &MedialSurface,
+        frame: &Frame,
+        extent_up: (f64, f64),
+        extent_forward: (f64, f64),
+    ) -> LevelGraph {
+        let mut graph = self.graph.clone();
+        let extents = Extents {
+            up: extent_up,
+            forward: extent_forward,
+            fraction: self.options.extreme_fraction,
+        };
+        let total = graph.voxels;
+        mark_vertices(
+            &mut graph.vertices,
+            surface,
+            total,
+            frame,
+            &extents,
+            &self.options,
+        );
+        add_reaches(&mut graph.vertices, &self.regions, frame, &extents);
+        graph
     }
 }
 
@@ -340,31 +427,40 @@ impl Merging {
     }
 }
 
-/// Each vertex's reach (highest, lowest, foremost, hindmost projection of its DMS voxels and,
-/// with a `solid`, the interior voxels nearest to them) and the direction marks it adds.
-fn add_reaches(
-    vertices: &mut [LevelVertex],
+/// Each vertex's region: the centres of its DMS voxels and, with a `solid`, of the interior
+/// voxels nearest to them (through the interior: `sources`, the DMS position each interior
+/// voxel joins, [`super::project::interior_sources`]).
+fn regions(
+    vertices: &[LevelVertex],
     surface: &MedialSurface,
     solid: Option<&Solid>,
+    sources: Option<&[u32]>,
     vertex_of: &[u32],
-    frame: &Frame,
-    extents: &Extents,
-    options: &LevelOptions,
-) {
+) -> Vec<Vec<DVec3>> {
     let mut regions: Vec<Vec<DVec3>> = vertices
         .iter()
         .map(|v| v.voxels.iter().map(|&p| surface.centre(p)).collect())
         .collect();
-    if let Some(solid) = solid {
-        let interior =
-            super::project::interior_parts(solid, surface, vertex_of, options.radius_weight);
+    if let (Some(solid), Some(sources)) = (solid, sources) {
+        let interior = super::project::parts_from_sources(sources, vertex_of);
         for (index, &v) in interior.iter().enumerate() {
             if v != NO_VERTEX && surface.position(index).is_none() {
                 regions[v as usize].push(solid.grid.centre(solid.grid.coords(index)));
             }
         }
     }
-    for (v, region) in vertices.iter_mut().zip(&regions) {
+    regions
+}
+
+/// Each vertex's reach (highest, lowest, foremost, hindmost projection of its region, see
+/// [`regions`]) and the direction marks it adds.
+fn add_reaches(
+    vertices: &mut [LevelVertex],
+    regions: &[Vec<DVec3>],
+    frame: &Frame,
+    extents: &Extents,
+) {
+    for (v, region) in vertices.iter_mut().zip(regions) {
         let mut reach = Reach::EMPTY;
         for c in region {
             reach = reach.with(c.dot(frame.up), c.dot(frame.forward));
@@ -558,6 +654,7 @@ impl UnionFind {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::Mesh;
     use crate::paths::testing::surface;
 
     /// A "T": a stem along y and a bar along x, one voxel thick.
@@ -606,6 +703,86 @@ mod tests {
                 let b = ((g.heart_values[p] * 20.0) as usize).min(19);
                 assert_eq!(b, v.bin);
             }
+        }
+    }
+
+    /// A plus-shaped figure of three boxes (trunk, arms, legs), voxelized with its medial
+    /// surface.
+    fn plus_figure() -> (Solid, MedialSurface) {
+        let boxes = [
+            Mesh::cuboid(DVec3::new(-0.3, 0.0, -0.2), DVec3::new(0.3, 2.0, 0.2)),
+            Mesh::cuboid(DVec3::new(-1.2, 1.4, -0.1), DVec3::new(1.2, 1.6, 0.1)),
+            Mesh::cuboid(DVec3::new(-0.6, -1.0, -0.1), DVec3::new(-0.3, 0.4, 0.1)),
+        ];
+        let mut mesh = Mesh {
+            positions: Vec::new(),
+            triangles: Vec::new(),
+        };
+        for b in boxes {
+            let base = mesh.positions.len() as u32;
+            mesh.positions.extend(b.positions);
+            mesh.triangles
+                .extend(b.triangles.iter().map(|t| t.map(|i| i + base)));
+        }
+        let solid = crate::voxel::voxelize_figure(&mesh, &Default::default()).unwrap();
+        let surface =
+            crate::medial::dms(&crate::distance::edt(&solid), &Default::default()).unwrap();
+        (solid, surface)
+    }
+
+    #[test]
+    fn a_level_tree_marked_in_several_frames_gives_each_its_own_level_graph() {
+        let (solid, s) = plus_figure();
+        let (paths, options) = (PathOptions::default(), LevelOptions::default());
+        let tree = LevelTree::new(&s, Some(&solid), &paths, &options);
+        for (up, forward, extent_up, extent_forward) in [
+            (DVec3::Y, DVec3::Z, (-1.0, 2.0), (-0.2, 0.2)),
+            (DVec3::Z, DVec3::Y, (-0.2, 0.2), (-1.0, 2.0)),
+            (DVec3::NEG_X, DVec3::Z, (-1.2, 1.2), (-0.2, 0.2)),
+        ] {
+            let frame = Frame::new(up, forward).unwrap();
+            let marked = tree.in_frame(&s, &frame, extent_up, extent_forward);
+            let built = level_graph(
+                &s,
+                Some(&solid),
+                &paths,
+                &options,
+                &frame,
+                extent_up,
+                extent_forward,
+            );
+            assert_eq!(
+                serde_json::to_value(&marked).unwrap(),
+                serde_json::to_value(&built).unwrap(),
+                "up {up}"
+            );
+        }
+    }
+
+    #[test]
+    fn interior_parts_from_the_tree_match_a_search_of_their_own_or_are_refused() {
+        use crate::anatomy::project::interior_parts;
+        let (solid, s) = plus_figure();
+        let options = LevelOptions::default();
+        let tree = LevelTree::new(&s, Some(&solid), &PathOptions::default(), &options);
+        let vertex_of = tree.graph.vertex_of.clone();
+        assert!(vertex_of.iter().filter(|&&v| v != NO_VERTEX).count() > 10);
+        // Any parts of the same seeds: the tree's sources give the search's answer.
+        let parts: Vec<u32> = vertex_of
+            .iter()
+            .map(|&v| if v == NO_VERTEX { NO_VERTEX } else { v % 3 })
+            .collect();
+        let own = interior_parts(&solid, &s, &parts, options.radius_weight);
+        assert_eq!(tree.interior_parts(&s, &solid, &parts), Some(own));
+        // One seed fewer: not the tree's search.
+        let mut fewer = parts.clone();
+        let p = fewer
+            .iter()
+            .position(|&v| v != NO_VERTEX)
+            .expect("a seeded DMS voxel");
+        fewer[p] = NO_VERTEX;
+        if solid.inside[s.voxels[p]] {
+            assert_eq!(tree.interior_parts(&s, &solid, &fewer), None);
         }
     }
 }

@@ -57,7 +57,7 @@ mod warning;
 pub use bone_labels::label_vertices_by_bones;
 pub use error::AnatomyError;
 pub use frame::{parse_direction, Frame};
-pub use level_graph::{level_graph, LevelGraph, LevelVertex, Marks, Reach, NO_VERTEX};
+pub use level_graph::{level_graph, LevelGraph, LevelTree, LevelVertex, Marks, Reach, NO_VERTEX};
 pub use options::{Forward, LabelOptions, LabelPipelineOptions, LevelOptions, RuleOptions, Up};
 pub use orient::{find_up, UpChoice, UpScore};
 pub use output::{labels_json, labels_ply, labels_svg, part_colour};
@@ -135,9 +135,11 @@ pub fn label_pieces(
     if surface.is_empty() {
         return Err(AnatomyError::EmptySurface);
     }
+    // The level graph's frame-independent part, once for every frame tried below.
+    let tree = LevelTree::new(surface, Some(solid), paths, &options.level);
     let up_found = match options.up {
         Up::Direction(_) => None,
-        Up::Auto => Some(find_up(solid, surface, paths, options)),
+        Up::Auto => Some(orient::find_up_in(&tree, solid, surface, options)),
     };
     let up = up_found.as_ref().map_or(options.up.or_default(), |c| c.up);
     // A figure found lying in the file (Z-up from Blender, CAD tools, scanners) faces where the
@@ -153,7 +155,7 @@ pub fn label_pieces(
         Forward::Direction(f) if f.cross(up).length_squared() > 1e-6 * f.length_squared() => {
             let frame = Frame::new(up, f)?;
             label_in_frame(
-                mesh, solid, surface, paths, options, overrides, frame, false,
+                mesh, solid, surface, &tree, options, overrides, frame, false,
             )?
         }
         Forward::Direction(_) | Forward::Auto => {
@@ -164,11 +166,11 @@ pub fn label_pieces(
             };
             let frame = Frame::new(up, first_guess)?;
             let first =
-                label_in_frame(mesh, solid, surface, paths, options, overrides, frame, true)?;
+                label_in_frame(mesh, solid, surface, &tree, options, overrides, frame, true)?;
             let (guess, note) = guess_forward(&first);
             let frame = Frame::new(up, guess).unwrap_or(first.frame);
             let mut second =
-                label_in_frame(mesh, solid, surface, paths, options, overrides, frame, true)?;
+                label_in_frame(mesh, solid, surface, &tree, options, overrides, frame, true)?;
             let f = second.frame.forward;
             second.warnings.push(
                 AnatomyWarning::ForwardGuessed {
@@ -245,8 +247,7 @@ fn guess_forward(l: &Labelling) -> (DVec3, &'static str) {
 fn graph_in_frame(
     solid: &Solid,
     surface: &MedialSurface,
-    paths: &PathOptions,
-    options: &LabelOptions,
+    tree: &LevelTree,
     frame: &Frame,
 ) -> LevelGraph {
     let (mut up, mut fw) = (
@@ -261,7 +262,7 @@ fn graph_in_frame(
             fw = (fw.0.min(f), fw.1.max(f));
         }
     }
-    level_graph(surface, Some(solid), paths, &options.level, frame, up, fw)
+    tree.in_frame(surface, frame, up, fw)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -269,13 +270,13 @@ fn label_in_frame(
     mesh: &Mesh,
     solid: &Solid,
     surface: &MedialSurface,
-    paths: &PathOptions,
+    tree: &LevelTree,
     options: &LabelOptions,
     overrides: Option<&Overrides>,
     frame: Frame,
     forward_guessed: bool,
 ) -> Result<Labelling, AnatomyError> {
-    let graph = graph_in_frame(solid, surface, paths, options, &frame);
+    let graph = graph_in_frame(solid, surface, tree, &frame);
     let mut draft = label_graph(&graph, surface, &frame, &options.rules);
     if let Some(o) = overrides {
         let centroids: Vec<DVec3> = graph.vertices.iter().map(|v| v.centroid).collect();
@@ -330,8 +331,11 @@ fn label_in_frame(
             region_parts[p] = 0;
         }
     }
-    let interior =
-        project::interior_parts(solid, surface, &region_parts, options.level.radius_weight);
+    let interior = tree
+        .interior_parts(surface, solid, &region_parts)
+        .unwrap_or_else(|| {
+            project::interior_parts(solid, surface, &region_parts, options.level.radius_weight)
+        });
     let mut mesh_parts = project::mesh_parts(mesh, solid, &interior);
     for p in &mut mesh_parts {
         if *p == NO_PART {

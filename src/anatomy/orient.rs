@@ -13,7 +13,7 @@
 //! legs labelled under +Y do (an insect standing under +Y on one leg the labels found). When no axis gives a complete
 //! standing figure, +Y stays, with a warning.
 
-use super::{label_graph, Draft, FigureClass, Frame, Label, LabelOptions};
+use super::{label_graph, Draft, FigureClass, Frame, Label, LabelOptions, LevelTree};
 use crate::medial::MedialSurface;
 use crate::paths::PathOptions;
 use crate::voxel::Solid;
@@ -152,9 +152,9 @@ fn score(draft: &Draft, up: DVec3, name: &'static str) -> UpScore {
 
 /// The draft labels of the level graph under `up` (any forward across it).
 fn draft_under(
+    tree: &LevelTree,
     solid: &Solid,
     surface: &MedialSurface,
-    paths: &PathOptions,
     options: &LabelOptions,
     up: DVec3,
 ) -> Option<Draft> {
@@ -164,7 +164,7 @@ fn draft_under(
         DVec3::Y
     };
     let frame = Frame::new(up, across).ok()?;
-    let graph = super::graph_in_frame(solid, surface, paths, options, &frame);
+    let graph = super::graph_in_frame(solid, surface, tree, &frame);
     Some(label_graph(&graph, surface, &frame, &options.rules))
 }
 
@@ -176,9 +176,22 @@ pub fn find_up(
     paths: &PathOptions,
     options: &LabelOptions,
 ) -> UpChoice {
+    let tree = LevelTree::new(surface, Some(solid), paths, &options.level);
+    find_up_in(&tree, solid, surface, options)
+}
+
+/// [`find_up`] with the level graph's frame-independent part already built (`tree`, over
+/// `surface` and `solid` with `options.level`), as the labelling shares it with the frames it
+/// labels in.
+pub(super) fn find_up_in(
+    tree: &LevelTree,
+    solid: &Solid,
+    surface: &MedialSurface,
+    options: &LabelOptions,
+) -> UpChoice {
     let mut scores = Vec::new();
     for &(up, name) in &CANDIDATES {
-        let Some(draft) = draft_under(solid, surface, paths, options, up) else {
+        let Some(draft) = draft_under(tree, solid, surface, options, up) else {
             continue;
         };
         let s = score(&draft, up, name);

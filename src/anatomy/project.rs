@@ -4,6 +4,7 @@ use crate::medial::MedialSurface;
 use crate::mesh::Mesh;
 use crate::paths::Search;
 use crate::voxel::{Solid, NEIGHBOURS_26};
+use rayon::prelude::*;
 
 /// Marks "no part".
 pub const NO_PART: u32 = u32::MAX;
@@ -21,8 +22,28 @@ pub fn interior_parts(
     voxel_parts: &[u32],
     radius_weight: f64,
 ) -> Vec<u32> {
+    let sources = interior_sources(
+        solid,
+        surface,
+        |p| voxel_parts[p] != NO_PART,
+        radius_weight,
+    );
+    parts_from_sources(&sources, voxel_parts)
+}
+
+/// The search of [`interior_parts`] with the DMS voxels for which `seeded` holds as its
+/// sources: per grid voxel, the DMS position (index into the surface's voxels) whose part
+/// [`interior_parts`] gives it, [`NO_PART`] for exterior and unreached voxels. The sources
+/// depend only on which DMS voxels are seeded, not on their parts, so one search serves every
+/// labelling of the same seeds ([`parts_from_sources`]).
+pub fn interior_sources(
+    solid: &Solid,
+    surface: &MedialSurface,
+    seeded: impl Fn(usize) -> bool,
+    radius_weight: f64,
+) -> Vec<u32> {
     let grid = solid.grid;
-    let mut part = vec![NO_PART; grid.len()];
+    let mut source = vec![NO_PART; grid.len()];
     let mut search = Search::costs_only(grid.len());
     // Costs are offset by the largest radius so that they stay non-negative (the heap orders
     // non-negative floats by their bits).
@@ -30,10 +51,10 @@ pub fn interior_parts(
         .map(|p| radius_weight * surface.distance(p))
         .fold(0.0, f64::max);
     for (p, &index) in surface.voxels.iter().enumerate() {
-        if voxel_parts[p] != NO_PART && solid.inside[index] {
+        if seeded(p) && solid.inside[index] {
             let c = largest - radius_weight * surface.distance(p);
             if search.seed(index, c) {
-                part[index] = voxel_parts[p];
+                source[index] = p as u32;
             }
         }
     }
@@ -45,19 +66,36 @@ pub fn interior_parts(
                 solid.inside[q].then_some((q, n.distance))
             })
         },
-        |from, to| part[to] = part[from],
+        |from, to| source[to] = source[from],
     );
-    part
+    source
+}
+
+/// Per grid voxel, the part of its source ([`interior_sources`]) in `voxel_parts` (per DMS
+/// position); [`NO_PART`] where it has none.
+pub fn parts_from_sources(sources: &[u32], voxel_parts: &[u32]) -> Vec<u32> {
+    sources
+        .iter()
+        .map(|&p| {
+            if p == NO_PART {
+                NO_PART
+            } else {
+                voxel_parts[p as usize]
+            }
+        })
+        .collect()
 }
 
 /// Part of every mesh vertex: the part of the labelled voxel whose centre is nearest, searched
 /// in growing cubes around the vertex's voxel (vertices lie on the surface, often in exterior
-/// voxels). [`NO_PART`] only when no voxel of the grid is labelled.
+/// voxels). [`NO_PART`] only when no voxel of the grid is labelled. The vertices are looked
+/// at in parallel (each on its own).
 pub fn mesh_parts(mesh: &Mesh, solid: &Solid, parts: &[u32]) -> Vec<u32> {
     let grid = solid.grid;
     let max_radius = grid.dims.iter().copied().max().unwrap_or(0) as i64;
     mesh.positions
-        .iter()
+        .par_iter()
+        .with_min_len(1024)
         .map(|&x| {
             let v = grid.to_voxel(x) - glam::DVec3::splat(0.5);
             let c = [v.x.round() as i64, v.y.round() as i64, v.z.round() as i64];

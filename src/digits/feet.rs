@@ -39,6 +39,78 @@ pub fn fit_feet(
     up: DVec3,
     options: &DigitOptions,
 ) -> Vec<DigitWarning> {
+    let readings = read_feet(mesh, template, fit, up, options);
+    place_feet(mesh, template, fit, up, options, readings)
+}
+
+/// One foot read before any foot is placed: the knee and ankle positions it was read from and
+/// where its joints go (`None`: its surface could not be read).
+pub(super) struct FootReading {
+    side: Side,
+    from: (DVec3, DVec3),
+    foot: Option<FootJoints>,
+}
+
+/// The knee and ankle positions of `side`'s foot chain, when the fit has its knee, ankle and
+/// toe and the toe hangs below the ankle, with the chain.
+fn leg_end(fit: &Fit, side: Side) -> Option<((DVec3, DVec3), (Vec<JointId>, usize))> {
+    let key = |k: fn(Side) -> Canonical| fit.canonical.joint_of(k(side));
+    let (Some(knee), Some(ankle), Some(toe)) = (
+        key(Canonical::Knee),
+        key(Canonical::Ankle),
+        key(Canonical::Toe),
+    ) else {
+        return None;
+    };
+    let chain = foot_chain(&fit.skeleton, ankle, toe)?;
+    let from = (
+        fit.skeleton.joint(knee).position,
+        fit.skeleton.joint(ankle).position,
+    );
+    Some((from, chain))
+}
+
+/// The feet of [`fit_feet`] read from the fit as it stands, both at once (on two threads):
+/// reading a foot only looks at the mesh and at its leg's knee and ankle. Empty when the
+/// stage does not apply.
+pub(super) fn read_feet(
+    mesh: &Mesh,
+    template: &Template,
+    fit: &Fit,
+    up: DVec3,
+    options: &DigitOptions,
+) -> Vec<FootReading> {
+    if !options.feet || template.posture != Posture::Upright {
+        return Vec::new();
+    }
+    let Some(up) = up.try_normalize() else {
+        return Vec::new();
+    };
+    let read = |side: Side| {
+        let (from, _) = leg_end(fit, side)?;
+        Some(FootReading {
+            side,
+            from,
+            foot: find_foot(mesh, from.0, from.1, up, options),
+        })
+    };
+    let (left, right) = rayon::join(|| read(Side::Left), || read(Side::Right));
+    left.into_iter().chain(right).collect()
+}
+
+/// Places each foot of [`fit_feet`] from its reading, left then right; a foot whose knee or
+/// ankle stands elsewhere than where it was read (not the case when the readings come from
+/// [`read_feet`] on this fit, also after the hands were rebuilt: placing a foot or a hand
+/// moves no knee or ankle) is read again here. Returns a warning per foot whose surface could
+/// not be read.
+pub(super) fn place_feet(
+    mesh: &Mesh,
+    template: &Template,
+    fit: &mut Fit,
+    up: DVec3,
+    options: &DigitOptions,
+    readings: Vec<FootReading>,
+) -> Vec<DigitWarning> {
     let mut warnings = Vec::new();
     if !options.feet || template.posture != Posture::Upright {
         return warnings;
@@ -46,23 +118,16 @@ pub fn fit_feet(
     let Some(up) = up.try_normalize() else {
         return warnings;
     };
+    let mut readings = readings.into_iter().peekable();
     for side in Side::BOTH {
-        let key = |k: fn(Side) -> Canonical| fit.canonical.joint_of(k(side));
-        let (Some(knee), Some(ankle), Some(toe)) = (
-            key(Canonical::Knee),
-            key(Canonical::Ankle),
-            key(Canonical::Toe),
-        ) else {
+        let Some((from, chain)) = leg_end(fit, side) else {
             continue;
         };
-        let Some(chain) = foot_chain(&fit.skeleton, ankle, toe) else {
-            continue;
+        let foot = match readings.next_if(|r| r.side == side) {
+            Some(r) if r.from == from => r.foot,
+            _ => find_foot(mesh, from.0, from.1, up, options),
         };
-        let (k, a) = (
-            fit.skeleton.joint(knee).position,
-            fit.skeleton.joint(ankle).position,
-        );
-        match find_foot(mesh, k, a, up, options) {
+        match foot {
             Some(foot) => place_foot(&mut fit.skeleton, &chain, foot),
             None => warnings.push(DigitWarning::NoFoot { side }),
         }

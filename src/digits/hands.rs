@@ -27,6 +27,59 @@ pub fn fit_hands(
     fit: &mut Fit,
     options: &DigitOptions,
 ) -> Vec<DigitWarning> {
+    let readings = read_hands(mesh, template, fit, options);
+    place_hands(mesh, template, fit, options, readings)
+}
+
+/// What one hand's surface shows: the digits (thumb first, or a mitten's), the palm normal and
+/// how many digit branches were found; or why the hand keeps the fit's chain.
+type HandOutcome = Result<(Vec<(Option<Finger>, DigitJoints)>, DVec3, usize), DigitWarning>;
+
+/// One hand read before any hand is rebuilt: the wrist and elbow positions it was read from
+/// and what it showed.
+pub(super) struct HandReading {
+    side: Side,
+    from: (DVec3, Option<DVec3>),
+    outcome: HandOutcome,
+}
+
+/// The hands of [`fit_hands`] read from the fit as it stands, both at once (on two threads):
+/// reading a hand only looks at the mesh and at its arm's wrist and elbow. Empty when the
+/// stage does not apply (see [`fit_hands`]).
+pub(super) fn read_hands(
+    mesh: &Mesh,
+    template: &Template,
+    fit: &Fit,
+    options: &DigitOptions,
+) -> Vec<HandReading> {
+    if template.posture != Posture::Upright || !options.enabled || hand_group(template).is_none()
+    {
+        return Vec::new();
+    }
+    let read = |side: Side| {
+        let wrist = fit.canonical.joint_of(Canonical::Wrist(side))?;
+        let from = arm_end(fit, wrist, side);
+        Some(HandReading {
+            side,
+            from,
+            outcome: read_hand(mesh, from, side, options),
+        })
+    };
+    let (left, right) = rayon::join(|| read(Side::Left), || read(Side::Right));
+    left.into_iter().chain(right).collect()
+}
+
+/// Rebuilds each hand of [`fit_hands`] from its reading, left then right; a hand whose wrist or
+/// elbow stands elsewhere than where it was read (not the case when the readings come from
+/// [`read_hands`] on this fit: rebuilding a hand moves no other joint) is read again here.
+/// Returns a warning per hand that is not a five-digit hand.
+pub(super) fn place_hands(
+    mesh: &Mesh,
+    template: &Template,
+    fit: &mut Fit,
+    options: &DigitOptions,
+    readings: Vec<HandReading>,
+) -> Vec<DigitWarning> {
     let mut warnings = Vec::new();
     if template.posture != Posture::Upright {
         return warnings; // an animal's feet: `fit_paws`
@@ -37,11 +90,17 @@ pub fn fit_hands(
     if !options.enabled {
         return warnings;
     }
+    let mut readings = readings.into_iter().peekable();
     for side in Side::BOTH {
         let Some(wrist) = fit.canonical.joint_of(Canonical::Wrist(side)) else {
             continue;
         };
-        if let Some(w) = fit_hand(mesh, group, fit, wrist, side, options) {
+        let from = arm_end(fit, wrist, side);
+        let outcome = match readings.next_if(|r| r.side == side) {
+            Some(r) if r.from == from => r.outcome,
+            _ => read_hand(mesh, from, side, options),
+        };
+        if let Some(w) = place_hand(fit, group, wrist, side, outcome) {
             warnings.push(w);
         }
     }
@@ -60,26 +119,30 @@ fn hand_group(template: &Template) -> Option<&LimbGroup> {
         .find(|g| g.chain.contains(&wrist.name) && g.digits.len() >= Finger::ALL.len())
 }
 
-/// One hand; the warning when it is not a five-digit hand.
-fn fit_hand(
-    mesh: &Mesh,
-    group: &LimbGroup,
-    fit: &mut Fit,
-    wrist: JointId,
-    side: Side,
-    options: &DigitOptions,
-) -> Option<DigitWarning> {
+/// The positions of the `wrist` of `side` and of its elbow (when the fit has one).
+fn arm_end(fit: &Fit, wrist: JointId, side: Side) -> (DVec3, Option<DVec3>) {
     let w = fit.skeleton.joint(wrist).position;
     let elbow = fit
         .canonical
         .joint_of(Canonical::Elbow(side))
         .map(|e| fit.skeleton.joint(e).position);
+    (w, elbow)
+}
+
+/// One hand read from its wrist `w` and `elbow`: its digits, palm normal and branch count, or
+/// the warning when no hand or only fused fingers are found.
+fn read_hand(
+    mesh: &Mesh,
+    (w, elbow): (DVec3, Option<DVec3>),
+    side: Side,
+    options: &DigitOptions,
+) -> HandOutcome {
     let Some((forearm, axis)) = elbow.and_then(|e| {
         let d = w - e;
         let len = d.length();
         (len > 0.0).then(|| (len, d / len))
     }) else {
-        return Some(DigitWarning::NoHand { side });
+        return Err(DigitWarning::NoHand { side });
     };
     let Some(surface) = hand_surface(
         mesh,
@@ -88,7 +151,7 @@ fn fit_hand(
         options.reach * forearm,
         options.wrist_band * forearm,
     ) else {
-        return Some(DigitWarning::NoHand { side });
+        return Err(DigitWarning::NoHand { side });
     };
     let mut branches = separated_digits(mesh, &surface, options.level_step * forearm, options);
     // Thumb first: the deepest web, at equal webs the thinner digit.
@@ -103,7 +166,7 @@ fn fit_hand(
     let (found, digits) = loop {
         let found = branches.len();
         if found < 2 {
-            return Some(DigitWarning::FingersFused { side, thumb: false });
+            return Err(DigitWarning::FingersFused { side, thumb: false });
         }
         let digits = hand_digits(&branches, w, axis, options);
         let points: Vec<DVec3> = digits
@@ -122,6 +185,21 @@ fn fit_hand(
     let digits: Vec<(Option<Finger>, DigitJoints)> =
         digits.into_iter().map(|(f, d)| (f, d.joints)).collect();
     let palm = palm_normal(w, &digits, axis);
+    Ok((digits, palm, found))
+}
+
+/// One hand rebuilt from what was read; the warning when it is not a five-digit hand.
+fn place_hand(
+    fit: &mut Fit,
+    group: &LimbGroup,
+    wrist: JointId,
+    side: Side,
+    outcome: HandOutcome,
+) -> Option<DigitWarning> {
+    let (digits, palm, found) = match outcome {
+        Ok(read) => read,
+        Err(warning) => return Some(warning),
+    };
     replace_hand(fit, group, wrist, side, &digits, palm, true);
     match found {
         2 => Some(DigitWarning::FingersFused { side, thumb: true }),

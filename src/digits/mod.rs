@@ -72,8 +72,14 @@ pub fn fit_digits(
     if template.posture != Posture::Upright {
         return fit_paws(mesh, template, fit, up, options);
     }
-    let mut warnings = fit_hands(mesh, template, fit, options);
-    warnings.extend(fit_feet(mesh, template, fit, up, options));
+    // Every hand and foot is read at once (each looks only at the mesh and its own limb's
+    // joints); then the hands are rebuilt and the feet placed in order, as one after another.
+    let (hands, feet) = rayon::join(
+        || hands::read_hands(mesh, template, fit, options),
+        || feet::read_feet(mesh, template, fit, up, options),
+    );
+    let mut warnings = hands::place_hands(mesh, template, fit, options, hands);
+    warnings.extend(feet::place_feet(mesh, template, fit, up, options, feet));
     warnings
 }
 pub use warning::DigitWarning;

@@ -2,8 +2,8 @@
 
 use super::load::{finish, parse_error, read_bytes};
 use super::{Mesh, MeshError};
+use crate::math::{fast_map, FastMap};
 use glam::DVec3;
-use std::collections::HashMap;
 use std::path::Path;
 
 const FORMAT: &str = "obj";
@@ -31,13 +31,11 @@ pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
 
 /// [`load_obj`] with the source map of [`load_with_source_map`](super::load_with_source_map).
 pub(super) fn read_obj(path: &Path) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
-    read_obj_parsed(path).map(|(_, mesh, source)| (mesh, source))
+    welded(path, &parse_obj(path)?)
 }
 
-/// [`read_obj`], also returning what the parser read (UVs, normals, materials per corner).
-pub(super) fn read_obj_parsed(
-    path: &Path,
-) -> Result<(ParsedObj, Mesh, Vec<Option<u32>>), MeshError> {
+/// What the OBJ file at `path` says, not yet welded ([`welded`]).
+pub(super) fn parse_obj(path: &Path) -> Result<ParsedObj, MeshError> {
     let bytes = read_bytes(path)?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         let line = bytes[..e.valid_up_to()]
@@ -51,14 +49,12 @@ pub(super) fn read_obj_parsed(
             format!("line {line}: not OBJ text (invalid UTF-8)"),
         )
     })?;
-    let parsed = parse(text)
-        .map_err(|(line, message)| parse_error(path, FORMAT, format!("line {line}: {message}")))?;
-    let (mesh, source) = welded(path, &parsed)?;
-    Ok((parsed, mesh, source))
+    parse(text)
+        .map_err(|(line, message)| parse_error(path, FORMAT, format!("line {line}: {message}")))
 }
 
 /// The welded mesh of the parsed file and the map of its `v` statements onto it.
-fn welded(path: &Path, parsed: &ParsedObj) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
+pub(super) fn welded(path: &Path, parsed: &ParsedObj) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
     let coordinates = &parsed.coordinates;
     let corners = &parsed.corners;
     if let Some(MeshError::IndexOutOfRange {
@@ -110,12 +106,13 @@ fn welded(path: &Path, parsed: &ParsedObj) -> Result<(Mesh, Vec<Option<u32>>), M
         Err(e) => return Err(e),
     };
     // A file vertex no face uses maps to the mesh vertex at exactly its position, if any.
-    let at_position: HashMap<[u64; 3], u32> = mesh
-        .positions
-        .iter()
-        .enumerate()
-        .map(|(i, p)| (exact_key(*p), i as u32))
-        .collect();
+    let mut at_position: FastMap<[u64; 3], u32> = fast_map(mesh.positions.len());
+    at_position.extend(
+        mesh.positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (exact_key(*p), i as u32)),
+    );
     let source = (0..used.len())
         .map(|i| match raw_of_file[i] {
             u32::MAX => at_position.get(&exact_key(coordinates[i])).copied(),
@@ -170,6 +167,8 @@ fn parse(text: &str) -> Result<ParsedObj, (usize, String)> {
     let mut counts = [0usize; 3]; // v, vt, vn
     let mut pending = String::new();
     let mut pending_line = 0;
+    // The corners of the face being read, reused from face to face.
+    let mut face = Vec::new();
     for (k, raw_line) in text.lines().enumerate() {
         let line_number = k + 1;
         let content = raw_line.split('#').next().unwrap_or("");
@@ -187,34 +186,47 @@ fn parse(text: &str) -> Result<ParsedObj, (usize, String)> {
             pending.push_str(content);
             (pending.as_str(), pending_line)
         };
-        statement(line, &mut counts, &mut parsed).map_err(|m| (line_number, m))?;
+        statement(line, &mut counts, &mut parsed, &mut face).map_err(|m| (line_number, m))?;
         pending.clear();
     }
     if !pending.is_empty() {
         let line = std::mem::take(&mut pending);
-        statement(&line, &mut counts, &mut parsed).map_err(|m| (pending_line, m))?;
+        statement(&line, &mut counts, &mut parsed, &mut face).map_err(|m| (pending_line, m))?;
     }
     Ok(parsed)
 }
 
-/// Reads one (comment-free, joined) statement into `parsed`.
-fn statement(line: &str, counts: &mut [usize; 3], parsed: &mut ParsedObj) -> Result<(), String> {
+/// Reads one (comment-free, joined) statement into `parsed`; `face` is scratch space for the
+/// corners of an `f` statement.
+fn statement(
+    line: &str,
+    counts: &mut [usize; 3],
+    parsed: &mut ParsedObj,
+    face: &mut Vec<[u32; 3]>,
+) -> Result<(), String> {
     let mut words = line.split_whitespace();
     match words.next() {
         Some("v") => {
-            let values: Vec<&str> = words.collect();
+            // x y z, then w or r g b: at most six values are read, the rest only counted.
+            let mut values = [""; 6];
+            let mut count = 0;
+            for word in words {
+                if let Some(slot) = values.get_mut(count) {
+                    *slot = word;
+                }
+                count += 1;
+            }
             let number = |word: &str| {
                 word.parse::<f64>()
                     .map_err(|_| format!("vertex coordinate {word:?} is not a number"))
             };
-            if values.len() < 3 {
+            if count < 3 {
                 return Err(format!(
-                    "a vertex needs x, y and z, found {} values",
-                    values.len()
+                    "a vertex needs x, y and z, found {count} values"
                 ));
             }
             let mut p = DVec3::new(number(values[0])?, number(values[1])?, number(values[2])?);
-            match values.len() {
+            match count {
                 3 | 6 => {} // plain, or with an RGB colour (ignored)
                 4 => {
                     let w = number(values[3])?;
@@ -264,7 +276,7 @@ fn statement(line: &str, counts: &mut [usize; 3], parsed: &mut ParsedObj) -> Res
             parsed.libraries.push(words.collect::<Vec<_>>().join(" "));
         }
         Some("f") => {
-            let mut face = Vec::new();
+            face.clear();
             for corner in words {
                 face.push(corner_vertex(corner, counts, parsed)?);
             }
@@ -296,11 +308,16 @@ fn corner_vertex(
 ) -> Result<[u32; 3], String> {
     const WHAT: [&str; 3] = ["vertex", "texture coordinate", "normal"];
     let mut vertex = [0u32, u32::MAX, u32::MAX];
-    let fields: Vec<&str> = corner.split('/').collect();
-    if fields.len() > 3 {
-        return Err(format!("face corner {corner:?} has more than v/vt/vn"));
+    let mut fields = [""; 3];
+    let mut count = 0;
+    for field in corner.split('/') {
+        let Some(slot) = fields.get_mut(count) else {
+            return Err(format!("face corner {corner:?} has more than v/vt/vn"));
+        };
+        *slot = field;
+        count += 1;
     }
-    for (slot, field) in fields.iter().enumerate() {
+    for (slot, field) in fields[..count].iter().enumerate() {
         if field.is_empty() && slot > 0 {
             continue; // v//vn or v/vt/
         }

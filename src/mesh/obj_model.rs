@@ -3,8 +3,9 @@
 
 use super::model::{image_file, ModelWarning, SourceInstance, SourceModel, SourcePrimitive};
 use super::mtl::{read_libraries, MtlMaterial};
-use super::obj::{read_obj_parsed, ParsedObj};
+use super::obj::{parse_obj, welded, ParsedObj};
 use super::{Mesh, MeshError};
+use crate::math::{fast_map, FastMap};
 use glam::DMat4;
 use serde_json::{json, Value};
 use std::collections::HashMap;
@@ -27,7 +28,22 @@ const NONE: u32 = u32::MAX;
 /// # Errors
 /// As [`load_obj`](super::load_obj).
 pub(super) fn load_obj_model(path: &Path) -> Result<(Mesh, SourceModel), MeshError> {
-    let (parsed, mesh, source) = read_obj_parsed(path)?;
+    let parsed = parse_obj(path)?;
+    // The mesh is welded on one core while the model is built on the other: only the
+    // primitives' map onto the welded vertices needs both.
+    let (mesh, model) = rayon::join(|| welded(path, &parsed), || model_of(&parsed, path));
+    let (mesh, source) = mesh?;
+    let (mut model, corner_keys) = model;
+    for (primitive, keys) in model.instances[0].primitives.iter_mut().zip(corner_keys) {
+        primitive.vertices = keys.iter().map(|k| source[k[0] as usize]).collect();
+    }
+    Ok((mesh, model))
+}
+
+/// The glTF model of the parsed OBJ file at `path` (see [`load_obj_model`]) with every
+/// primitive's `vertices` still empty, and each primitive's distinct `v/vt/vn` corners (file
+/// indices) in vertex order.
+fn model_of(parsed: &ParsedObj, path: &Path) -> (SourceModel, Vec<Vec<[u32; 3]>>) {
     let mut warnings = Vec::new();
     let library = read_libraries(&parsed.libraries, path, &mut warnings);
     let mut bin: Vec<u8> = Vec::new();
@@ -62,17 +78,15 @@ pub(super) fn load_obj_model(path: &Path) -> Result<(Mesh, SourceModel), MeshErr
     }
     let mut primitives_json = Vec::new();
     let mut primitives = Vec::new();
+    let mut corner_keys = Vec::new();
     for (index, &group) in groups.iter().enumerate() {
-        let (json, vertices) = primitive(
-            &parsed,
-            &source,
-            group,
-            &mut bin,
-            &mut views,
-            &mut accessors,
-        );
+        let (json, keys) = primitive(parsed, group, &mut bin, &mut views, &mut accessors);
         primitives_json.push(json);
-        primitives.push(SourcePrimitive { index, vertices });
+        primitives.push(SourcePrimitive {
+            index,
+            vertices: Vec::new(),
+        });
+        corner_keys.push(keys);
     }
     let name = path
         .file_stem()
@@ -92,8 +106,7 @@ pub(super) fn load_obj_model(path: &Path) -> Result<(Mesh, SourceModel), MeshErr
         document["images"] = Value::Array(images.list);
         document["textures"] = Value::Array(images.textures);
     }
-    Ok((
-        mesh,
+    (
         SourceModel {
             document,
             buffers: vec![bin],
@@ -105,7 +118,8 @@ pub(super) fn load_obj_model(path: &Path) -> Result<(Mesh, SourceModel), MeshErr
             }],
             warnings,
         },
-    ))
+        corner_keys,
+    )
 }
 
 /// Images embedded so far (one per file name) and a texture for each.
@@ -174,16 +188,20 @@ fn material(
 }
 
 /// The primitive of the triangles with material `group`: its JSON (accessors appended) and the
-/// welded vertex of each of its vertices.
+/// `v/vt/vn` corner (file indices) of each of its vertices.
 fn primitive(
     parsed: &ParsedObj,
-    source: &[Option<u32>],
     group: u32,
     bin: &mut Vec<u8>,
     views: &mut Vec<Value>,
     accessors: &mut Vec<Value>,
-) -> (Value, Vec<Option<u32>>) {
-    let mut corner_vertex: HashMap<[u32; 3], u32> = HashMap::new();
+) -> (Value, Vec<[u32; 3]>) {
+    let corners = 3 * parsed
+        .triangle_materials
+        .iter()
+        .filter(|&&m| m == group)
+        .count();
+    let mut corner_vertex: FastMap<[u32; 3], u32> = fast_map(corners);
     let mut keys: Vec<[u32; 3]> = Vec::new();
     let mut indices: Vec<u32> = Vec::new();
     for (t, _) in parsed
@@ -274,8 +292,7 @@ fn primitive(
     if group != NONE {
         json["material"] = json!(group);
     }
-    let vertices = keys.iter().map(|k| source[k[0] as usize]).collect();
-    (json, vertices)
+    (json, keys)
 }
 
 /// Little-endian bytes of `f32` values.

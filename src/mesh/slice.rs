@@ -123,23 +123,24 @@ pub(crate) struct Cut {
     pub points: [DVec3; 2],
 }
 
-/// Cuts every triangle by the zero level of the per-vertex values `side` (a vertex with
-/// `side >= 0` counts as above, so vertices exactly on the surface are handled by a consistent
-/// symbolic rule) and links the pieces into curves. `crossing(a, b)` gives the point on edge
-/// `a`→`b` (`side[a] < 0 <= side[b]`).
-pub(crate) fn cut_and_link(
-    triangles: &[[u32; 3]],
-    side: &[f64],
+/// Cuts the `candidates` triangles (in mesh order; every triangle of the mesh, or a subset
+/// holding every triangle with corners on both sides, which gives the same loops) by the
+/// zero level of a per-vertex side: `above(v)` says whether vertex `v` counts as above (a side
+/// `>= 0`, so vertices exactly on the surface are handled by a consistent symbolic rule), and
+/// links the pieces into curves. `crossing(a, b)` gives the point on edge `a`→`b` (`a` below,
+/// `b` above).
+pub(crate) fn cut_and_link<'a>(
+    candidates: impl Iterator<Item = &'a [u32; 3]>,
+    above: impl Fn(u32) -> bool,
     crossing: impl Fn(u32, u32) -> DVec3,
 ) -> Vec<SliceLoop> {
-    let above = |v: u32| side[v as usize] >= 0.0;
     let mut cuts = Vec::new();
     // The two triangles of an edge get the same point: `crossing` of the same ordered pair.
     let point = |a: u32, b: u32| {
         let (lo, hi) = if above(a) { (b, a) } else { (a, b) };
         crossing(lo, hi)
     };
-    for &[a, b, c] in triangles {
+    for &[a, b, c] in candidates {
         let (sa, sb, sc) = (above(a), above(b), above(c));
         if sa == sb && sb == sc {
             continue;
@@ -172,21 +173,34 @@ fn link(cuts: &[Cut]) -> Vec<SliceLoop> {
         .flat_map(|(i, cut)| cut.edges.map(|e| (e, i)))
         .collect();
     by_edge.sort_unstable();
-    let on_edge = |edge: (u32, u32)| {
-        let from = by_edge.partition_point(|&(e, _)| e < edge);
-        let to = from + by_edge[from..].partition_point(|&(e, _)| e == edge);
-        by_edge[from..to].iter().map(|&(_, i)| i)
-    };
+    // For every cut, the run of `by_edge` holding each of its two edges.
+    let mut runs = vec![[(0usize, 0usize); 2]; cuts.len()];
+    let mut from = 0;
+    for run in by_edge.chunk_by(|a, b| a.0 == b.0) {
+        let to = from + run.len();
+        for &(edge, i) in run {
+            for (slot, e) in cuts[i].edges.iter().enumerate() {
+                if *e == edge {
+                    runs[i][slot] = (from, to);
+                }
+            }
+        }
+        from = to;
+    }
     let mut used = vec![false; cuts.len()];
-    let other = |edge: (u32, u32), from: usize, used: &[bool]| {
-        on_edge(edge).find(|&j| j != from && !used[j])
+    // The first unused cut other than `from` on the run `(start, end)` of one edge.
+    let other = |(start, end): (usize, usize), from: usize, used: &[bool]| {
+        by_edge[start..end]
+            .iter()
+            .map(|&(_, i)| i)
+            .find(|&j| j != from && !used[j])
     };
     let mut loops = Vec::new();
     // Open chains first: start at cuts with an unshared edge, so they come out whole.
     let mut starts: Vec<(usize, usize)> = Vec::new();
-    for (i, cut) in cuts.iter().enumerate() {
-        for (k, e) in cut.edges.iter().enumerate() {
-            if on_edge(*e).len() == 1 {
+    for (i, run) in runs.iter().enumerate() {
+        for (k, &(start, end)) in run.iter().enumerate() {
+            if end - start == 1 {
                 starts.push((i, k));
             }
         }
@@ -200,14 +214,16 @@ fn link(cuts: &[Cut]) -> Vec<SliceLoop> {
         let exit = 1 - entry;
         let mut points = vec![cuts[start].points[entry], cuts[start].points[exit]];
         let mut edge = cuts[start].edges[exit];
+        let mut run = runs[start][exit];
         let first_edge = cuts[start].edges[entry];
         let mut current = start;
         let mut closed = false;
-        while let Some(j) = other(edge, current, &used) {
+        while let Some(j) = other(run, current, &used) {
             used[j] = true;
             let k = usize::from(cuts[j].edges[0] != edge);
             let out = 1 - k;
             edge = cuts[j].edges[out];
+            run = runs[j][out];
             current = j;
             if edge == first_edge {
                 closed = true;

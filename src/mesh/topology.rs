@@ -23,22 +23,59 @@ pub(super) struct HalfEdge {
 impl Mesh {
     /// Every triangle edge (skipping edges between equal indices), sorted so that the uses of
     /// one undirected edge are adjacent, in triangle order.
+    ///
+    /// A counting sort on the lower vertex (linear in the edges), then a sort of each vertex's
+    /// few edges: the same order as sorting them all, several times faster on large meshes.
     pub(super) fn half_edges(&self) -> Vec<HalfEdge> {
-        let mut edges = Vec::with_capacity(self.triangles.len() * 3);
-        for (t, tri) in self.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                if a != b {
-                    edges.push(HalfEdge {
+        let each = || {
+            self.triangles.iter().enumerate().flat_map(|(t, tri)| {
+                (0..3).filter_map(move |k| {
+                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                    (a != b).then(|| HalfEdge {
                         low: a.min(b),
                         high: a.max(b),
                         triangle: t as u32,
                         forward: a < b,
-                    });
-                }
-            }
+                    })
+                })
+            })
+        };
+        // start[v]..start[v + 1]: the edges whose lower vertex is v.
+        let vertices = self.positions.len().max(
+            self.triangles
+                .iter()
+                .flatten()
+                .map(|&v| v as usize + 1)
+                .max()
+                .unwrap_or(0),
+        );
+        let mut start = vec![0usize; vertices + 1];
+        let mut count = 0;
+        for e in each() {
+            start[e.low as usize + 1] += 1;
+            count += 1;
         }
-        edges.sort_unstable();
+        for v in 0..vertices {
+            start[v + 1] += start[v];
+        }
+        let mut next = start.clone();
+        let mut edges = vec![
+            HalfEdge {
+                low: 0,
+                high: 0,
+                triangle: 0,
+                forward: false,
+            };
+            count
+        ];
+        for e in each() {
+            let slot = &mut next[e.low as usize];
+            edges[*slot] = e;
+            *slot += 1;
+        }
+        for v in 0..vertices {
+            edges[start[v]..start[v + 1]].sort_unstable();
+        }
         edges
     }
 
@@ -196,6 +233,42 @@ impl DisjointSets {
 mod tests {
     use super::*;
     use glam::DVec3;
+
+    #[test]
+    fn half_edges_come_in_the_order_of_a_full_sort() {
+        // A scrambled soup: repeated, reversed and degenerate triangles, vertices in any order.
+        let positions = vec![DVec3::ZERO; 9];
+        let mut triangles = Vec::new();
+        let mut x = 7u32;
+        for _ in 0..60 {
+            let mut tri = [0u32; 3];
+            for v in &mut tri {
+                x = x.wrapping_mul(1_103_515_245).wrapping_add(12_345);
+                *v = (x >> 16) % 9;
+            }
+            triangles.push(tri);
+        }
+        let mesh = Mesh {
+            positions,
+            triangles,
+        };
+        let mut sorted: Vec<HalfEdge> = Vec::new();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if a != b {
+                    sorted.push(HalfEdge {
+                        low: a.min(b),
+                        high: a.max(b),
+                        triangle: t as u32,
+                        forward: a < b,
+                    });
+                }
+            }
+        }
+        sorted.sort();
+        assert_eq!(mesh.half_edges(), sorted);
+    }
 
     #[test]
     fn cube_edges_are_each_used_twice_in_opposite_directions() {

@@ -1,8 +1,8 @@
 //! Welding: merging coincident vertices.
 
 use super::Mesh;
+use crate::math::{fast_map, FastMap};
 use glam::DVec3;
-use std::collections::HashMap;
 
 impl Mesh {
     /// A copy with coincident vertices merged.
@@ -93,7 +93,7 @@ impl Mesh {
 
     /// For every vertex, the lowest-index vertex with exactly the same coordinates.
     fn merge_exact(&self) -> Vec<u32> {
-        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(self.positions.len());
+        let mut first: FastMap<[u64; 3], u32> = fast_map(self.positions.len());
         self.positions
             .iter()
             .enumerate()
@@ -111,23 +111,30 @@ impl Mesh {
             return self.merge_exact();
         }
         let cell_of = |p: DVec3| (p / radius).floor().as_i64vec3().to_array();
-        let mut cells: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
-        let mut representative = Vec::with_capacity(self.positions.len());
+        // The kept vertices of each cell as a linked list: the cell's last kept vertex, and
+        // for each kept vertex the one kept before it in its cell (`NONE` ends the list).
+        const NONE: u32 = u32::MAX;
+        let n = self.positions.len();
+        let mut last_in_cell: FastMap<[i64; 3], u32> = fast_map(n);
+        let mut earlier_in_cell = vec![NONE; n];
+        let mut representative = Vec::with_capacity(n);
         for (i, &p) in self.positions.iter().enumerate() {
             let [cx, cy, cz] = cell_of(p);
             let mut found = None;
             for dx in -1..=1 {
                 for dy in -1..=1 {
                     for dz in -1..=1 {
-                        let Some(kept) = cells.get(&[cx + dx, cy + dy, cz + dz]) else {
+                        let Some(&last) = last_in_cell.get(&[cx + dx, cy + dy, cz + dz]) else {
                             continue;
                         };
-                        for &k in kept {
+                        let mut k = last;
+                        while k != NONE {
                             if self.positions[k as usize].distance(p) <= radius
                                 && found.is_none_or(|f: u32| k < f)
                             {
                                 found = Some(k);
                             }
+                            k = earlier_in_cell[k as usize];
                         }
                     }
                 }
@@ -135,7 +142,9 @@ impl Mesh {
             match found {
                 Some(k) => representative.push(k),
                 None => {
-                    cells.entry([cx, cy, cz]).or_default().push(i as u32);
+                    let last = last_in_cell.entry([cx, cy, cz]).or_insert(NONE);
+                    earlier_in_cell[i] = *last;
+                    *last = i as u32;
                     representative.push(i as u32);
                 }
             }

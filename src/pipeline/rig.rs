@@ -253,7 +253,13 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut timings = Vec::new();
     let mut lap = Laps::start();
 
-    let solid = voxelize_figure(mesh, &options.voxel)?;
+    // Whether the mesh is one closed shell (which surface the refinement slices,
+    // [`refine_surface`]) is asked on the other core while the mesh voxelizes.
+    let (solid, one_shell) = rayon::join(
+        || voxelize_figure(mesh, &options.voxel),
+        || options.refine.in_rig && mesh.is_one_closed_shell(),
+    );
+    let solid = solid?;
     lap.lap("voxelize", &mut timings);
     let distance = edt(&solid);
     lap.lap("distance", &mut timings);
@@ -303,6 +309,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     lap.lap("fit", &mut timings);
     if refine_stage(
         mesh,
+        one_shell,
         &solid,
         &template,
         &input,
@@ -353,8 +360,10 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
 /// The refinement the template declares ([`refine_fit`]; `options.in_rig: false` skips it):
 /// `fit` takes the refined skeleton and canonical map, `warnings` the refinement's warnings
 /// (or its failure). Returns whether it ran.
+#[allow(clippy::too_many_arguments)]
 fn refine_stage(
     mesh: &Mesh,
+    one_shell: bool,
     solid: &Solid,
     template: &Template,
     input: &FitInput,
@@ -368,7 +377,7 @@ fn refine_stage(
     let joined = template
         .refinement
         .is_some()
-        .then(|| refine_surface(mesh, solid, options))
+        .then(|| refine_surface(one_shell, solid, options))
         .flatten();
     let surface = joined.as_ref().unwrap_or(mesh);
     let Some(refined) = refine_fit(
@@ -410,13 +419,13 @@ fn refine_stage(
     true
 }
 
-/// The surface the slicing refinement cuts: the input itself when it is one closed shell, else
-/// the smoothed boundary of the joined voxel solid ([`boundary_mesh`]). Slices through a figure
-/// of many shells (head, hands, eyes, clothes over a body) are many loops per plane, and the
-/// refinement's loop for a body part would be one piece of clothing; the joined solid has one
-/// loop per part.
-fn refine_surface(mesh: &Mesh, solid: &Solid, options: &RefineOptions) -> Option<Mesh> {
-    (!mesh.is_one_closed_shell()).then(|| boundary_mesh(solid, options.joined_smoothing))
+/// The surface the slicing refinement cuts: the input itself when it is one closed shell
+/// (`one_shell`, [`Mesh::is_one_closed_shell`]), else the smoothed boundary of the joined voxel
+/// solid ([`boundary_mesh`]). Slices through a figure of many shells (head, hands, eyes,
+/// clothes over a body) are many loops per plane, and the refinement's loop for a body part
+/// would be one piece of clothing; the joined solid has one loop per part.
+fn refine_surface(one_shell: bool, solid: &Solid, options: &RefineOptions) -> Option<Mesh> {
+    (!one_shell).then(|| boundary_mesh(solid, options.joined_smoothing))
 }
 
 /// The body parts `template` expects ([`Template::expects`], the `expects` list of its

@@ -236,9 +236,9 @@ fn refine_with(
         (Some(h), Some(s)) => Some((h + s) * 0.5),
         _ => None,
     };
-    for side in Side::BOTH {
-        arm(&scene, &rough, side, waist, &mut found, &mut warnings);
-    }
+    each_side(&mut found, &mut warnings, |side, found, warnings| {
+        arm(&scene, &rough, side, waist, found, warnings);
+    });
 
     let torso = torso(&scene, head_point, shoulders_h, hips_h, &found);
     if torso.is_none() {
@@ -256,16 +256,9 @@ fn refine_with(
     );
 
     // 3.3 Legs.
-    for side in Side::BOTH {
-        leg(
-            &scene,
-            &rough,
-            side,
-            crotch_hidden,
-            &mut found,
-            &mut warnings,
-        );
-    }
+    each_side(&mut found, &mut warnings, |side, found, warnings| {
+        leg(&scene, &rough, side, crotch_hidden, found, warnings);
+    });
 
     // Jointed figures: a round piece at a limb joint is the joint.
     if options.joint_pieces {
@@ -298,6 +291,38 @@ fn refine_with(
         torso,
         warnings,
     })
+}
+
+/// Runs a limb phase for the left and then the right side, the two sides on two threads:
+/// each side reads and writes only its own joints in `found` (an arm its shoulder, elbow and
+/// wrist; a leg its hip, knee and ankle), so each runs on its own copy of `found` and the
+/// results merge as if left had run before right: the joints each side placed or moved, then
+/// left's warnings before right's. The same result as the loop over [`Side::BOTH`], in about
+/// half the time on two cores.
+fn each_side(
+    found: &mut Found,
+    warnings: &mut Vec<RefineWarning>,
+    phase: impl Fn(Side, &mut Found, &mut Vec<RefineWarning>) + Sync,
+) {
+    let before: &Found = found;
+    let run = |side: Side| {
+        let mut own = before.clone();
+        let mut said = Vec::new();
+        phase(side, &mut own, &mut said);
+        let placed: Vec<(Canonical, DVec3)> = own
+            .into_iter()
+            .filter(|(key, p)| before.get(key) != Some(p))
+            .collect();
+        debug_assert!(
+            placed.iter().all(|(key, _)| key.side() == Some(side)),
+            "a limb phase placed a joint of the other side"
+        );
+        (placed, said)
+    };
+    let ((left, left_said), (right, right_said)) =
+        rayon::join(|| run(Side::Left), || run(Side::Right));
+    found.extend(left.into_iter().chain(right));
+    warnings.extend(left_said.into_iter().chain(right_said));
 }
 
 /// Moves each shoulder of a modular figure whose arm is a separate piece buried in the trunk

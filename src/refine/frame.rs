@@ -3,7 +3,7 @@
 
 use super::geometry::{enclosing_loop, pca_2d_curve, Segment2};
 use super::RefineOptions;
-use crate::mesh::{slice_plane, Mesh, SliceLoop};
+use crate::mesh::{Mesh, PlaneSlicer, SliceLoop};
 use glam::DVec3;
 
 /// The body's orthonormal directions (seed 004, 3: transverse, frontal and sagittal plane
@@ -100,6 +100,7 @@ pub fn head_slices(
         });
         lo <= median && median <= hi
     };
+    let slicer = PlaneSlicer::new(mesh, frame.up);
     let mut slices: Vec<SliceLoop> = Vec::new();
     let mut largest: Option<(usize, f64, DVec3, f64)> = None; // index, diameter, axis, elongation
     let mut previous = near;
@@ -110,7 +111,8 @@ pub fn head_slices(
         if h < frame.bottom || (depth > options.head_max_depth * frame.height() && h < lowest) {
             break;
         }
-        let loops: Vec<SliceLoop> = slice_plane(mesh, frame.up * h, frame.up)
+        let loops: Vec<SliceLoop> = slicer
+            .slice(frame.up * h)
             .into_iter()
             .filter(crosses)
             .collect();

@@ -3,7 +3,7 @@
 //! diameters per slice, interpolated by cubic B-splines.
 
 use super::RefineOptions;
-use crate::mesh::{slice_plane_outer, slice_sphere, Mesh, SliceLoop};
+use crate::mesh::{slice_plane_outer, Mesh, SliceLoop, SphereSlicer};
 use bspline::BSpline;
 use glam::DVec3;
 use std::f64::consts::TAU;
@@ -121,9 +121,10 @@ pub fn trace_limb(
     let chain_length: f64 = chain.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>()
         + options.distal_overshoot * chain[last].distance(chain[last - 1]);
     let seed_to_end = chain_length - chain[0].distance(chain[1]) * 0.5;
-    let outward = march(mesh, seed, axis, radius, step, seed_to_end, false, options);
+    let slicer = SphereSlicer::new(mesh);
+    let outward = march(&slicer, seed, axis, radius, step, seed_to_end, false, options);
     let inward = march(
-        mesh,
+        &slicer,
         seed,
         -axis,
         radius,
@@ -163,7 +164,7 @@ const MAX_SKIPS: usize = 2;
 /// (barycentre, perimeter, major, minor) per slice.
 #[allow(clippy::too_many_arguments)]
 fn march(
-    mesh: &Mesh,
+    slicer: &SphereSlicer,
     start: DVec3,
     direction: DVec3,
     radius: f64,
@@ -182,7 +183,7 @@ fn march(
         let rho = (options.sphere_radius_factor * radius).max(step);
         let ahead = (rho * rho - radius * radius).max(0.0).sqrt();
         let expected = centre + dir * ahead;
-        let loops = slice_sphere(mesh, centre, rho);
+        let loops = slicer.slice(centre, rho);
         let Some(slice) = forward_loop(&loops, centre, dir, expected) else {
             break;
         };

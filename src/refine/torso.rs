@@ -4,7 +4,7 @@
 use super::frame::BodyFrame;
 use super::geometry::resample;
 use super::RefineOptions;
-use crate::mesh::{slice_plane_outer, Mesh, SliceLoop};
+use crate::mesh::{slice_plane_outer, Mesh, PlaneSlicer, SliceLoop};
 use bspline::BSpline;
 use glam::DVec3;
 
@@ -156,7 +156,8 @@ pub fn hips(
     reach: f64,
 ) -> Option<(DVec3, DVec3)> {
     let origin = frame.at_height(centre, height);
-    let segments: Vec<(DVec3, f64)> = loops_near(mesh, frame, origin, reach)
+    let slicer = PlaneSlicer::once(mesh, frame.up);
+    let segments: Vec<(DVec3, f64)> = loops_near(&slicer, frame, origin, reach)
         .iter()
         .flat_map(|l| l.segments())
         .map(|(a, b)| ((a + b) * 0.5, a.distance(b)))
@@ -182,8 +183,14 @@ pub fn hips(
 /// whose centroid lies within `reach` of `centre` across the body, the second longest is at
 /// least half as long as the longest (two thighs; above the crotch one pelvis loop dwarfs any
 /// hand or arm beside it).
-fn legs_apart(mesh: &Mesh, frame: &BodyFrame, centre: DVec3, h: f64, reach: f64) -> bool {
-    let mut perimeters: Vec<f64> = loops_near(mesh, frame, frame.at_height(centre, h), reach)
+fn legs_apart(
+    slicer: &PlaneSlicer,
+    frame: &BodyFrame,
+    centre: DVec3,
+    h: f64,
+    reach: f64,
+) -> bool {
+    let mut perimeters: Vec<f64> = loops_near(slicer, frame, frame.at_height(centre, h), reach)
         .iter()
         .filter(|l| l.closed)
         .map(|l| l.perimeter())
@@ -211,9 +218,10 @@ pub fn legs_apart_below(
     if bottom.is_nan() || bottom >= top {
         return false;
     }
+    let slicer = PlaneSlicer::new(mesh, frame.up);
     (1..=8).any(|i| {
         let h = bottom + (top - bottom) * f64::from(i) / 9.0;
-        legs_apart(mesh, frame, centre, h, reach)
+        legs_apart(&slicer, frame, centre, h, reach)
     })
 }
 
@@ -237,7 +245,11 @@ pub fn leg_split_height(
     reach: f64,
 ) -> Option<f64> {
     let ordered = step > 0.0 && to > from;
-    if !ordered || !legs_apart(mesh, frame, centre, from, reach) {
+    if !ordered {
+        return None;
+    }
+    let slicer = PlaneSlicer::new(mesh, frame.up);
+    if !legs_apart(&slicer, frame, centre, from, reach) {
         return None;
     }
     let mut below = from;
@@ -246,7 +258,7 @@ pub fn leg_split_height(
         if h > to {
             return None;
         }
-        if !legs_apart(mesh, frame, centre, h, reach) {
+        if !legs_apart(&slicer, frame, centre, h, reach) {
             break h;
         }
         below = h;
@@ -254,7 +266,7 @@ pub fn leg_split_height(
     let (mut lo, mut hi) = (below, above);
     for _ in 0..4 {
         let mid = 0.5 * (lo + hi);
-        if legs_apart(mesh, frame, centre, mid, reach) {
+        if legs_apart(&slicer, frame, centre, mid, reach) {
             lo = mid;
         } else {
             hi = mid;
@@ -282,8 +294,9 @@ pub fn split_flare(
     gap: f64,
     reach: f64,
 ) -> Option<f64> {
+    let slicer = PlaneSlicer::once(mesh, frame.up);
     let extents = |h: f64, pieces: usize| -> Option<(f64, f64)> {
-        let mut loops: Vec<SliceLoop> = loops_near(mesh, frame, frame.at_height(centre, h), reach)
+        let mut loops: Vec<SliceLoop> = loops_near(&slicer, frame, frame.at_height(centre, h), reach)
             .into_iter()
             .filter(|l| l.closed)
             .collect();
@@ -308,8 +321,14 @@ pub fn split_flare(
 
 /// The pieces of the transverse slice through `origin` whose centroid lies within `reach` of
 /// it across the body (the torso and legs, not hands hanging beside them).
-fn loops_near(mesh: &Mesh, frame: &BodyFrame, origin: DVec3, reach: f64) -> Vec<SliceLoop> {
-    slice_plane_outer(mesh, origin, frame.up)
+fn loops_near(
+    slicer: &PlaneSlicer,
+    frame: &BodyFrame,
+    origin: DVec3,
+    reach: f64,
+) -> Vec<SliceLoop> {
+    slicer
+        .slice_outer(origin)
         .into_iter()
         .filter(|l| {
             l.centroid().is_some_and(|g| {

@@ -16,8 +16,8 @@
 //!   winding of its first copies (the vote uses the absolute winding, so either orientation
 //!   counts as inside).
 
+use crate::math::{fast_map, FastMap};
 use crate::mesh::{DisjointSets, Mesh};
-use std::collections::HashMap;
 
 /// Vertices this close (fraction of the bounding-box diagonal) count as one when comparing
 /// triangles: exporters write copies whose coordinates differ in the last bits.
@@ -49,7 +49,7 @@ pub(super) fn redundant_triangles(mesh: &Mesh) -> (Vec<bool>, usize) {
         .map(|t| t.map(|i| representative[i as usize]))
         .collect();
     // First triangle of each orientation per vertex set.
-    let mut first: HashMap<[u32; 3], [Option<usize>; 2]> = HashMap::with_capacity(n);
+    let mut first: FastMap<[u32; 3], [Option<usize>; 2]> = fast_map(n);
     for (t, &tri) in triangles.iter().enumerate() {
         if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
             continue;
@@ -89,7 +89,7 @@ pub(super) fn redundant_triangles(mesh: &Mesh) -> (Vec<bool>, usize) {
 fn closed_patches(triangles: &[[u32; 3]], pairs: &[(usize, usize)]) -> Vec<(bool, Vec<usize>)> {
     let m = pairs.len();
     // Undirected edge -> patch triangles (indices into `pairs`) using it.
-    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::with_capacity(3 * m);
+    let mut edges: FastMap<(u32, u32), Vec<usize>> = fast_map(3 * m);
     for (p, &(kept, _)) in pairs.iter().enumerate() {
         let t = triangles[kept];
         for k in 0..3 {
@@ -103,13 +103,13 @@ fn closed_patches(triangles: &[[u32; 3]], pairs: &[(usize, usize)]) -> Vec<(bool
             sets.union(w[0] as u32, w[1] as u32);
         }
     }
-    let mut closed: HashMap<u32, bool> = HashMap::new();
+    let mut closed: FastMap<u32, bool> = fast_map(0);
     for users in edges.values() {
         let root = sets.find(users[0] as u32);
         let ok = closed.entry(root).or_insert(true);
         *ok &= users.len() == 2;
     }
-    let mut patches: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut patches: FastMap<u32, Vec<usize>> = fast_map(0);
     for (p, &(_, twin)) in pairs.iter().enumerate() {
         patches.entry(sets.find(p as u32)).or_default().push(twin);
     }

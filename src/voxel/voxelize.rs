@@ -82,10 +82,13 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
     let grid = grid_of(mesh, options)?;
     let h = grid.voxel_size;
     let (redundant, duplicate_triangles) = redundant_triangles(mesh);
-    let corners: Vec<[DVec3; 3]> = (0..mesh.triangles.len())
-        .filter(|&t| !redundant[t])
-        .map(|t| mesh.corners(t).map(|p| (p - grid.origin) / h))
-        .collect();
+    let mut corners: Vec<[DVec3; 3]> =
+        Vec::with_capacity(mesh.triangles.len().saturating_sub(duplicate_triangles));
+    corners.extend(
+        (0..mesh.triangles.len())
+            .filter(|&t| !redundant[t])
+            .map(|t| mesh.corners(t).map(|p| (p - grid.origin) / h)),
+    );
 
     let votes = winding_votes(&grid, &corners);
     let threshold = 6.0 * options.inside_threshold;
