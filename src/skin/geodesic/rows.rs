@@ -43,7 +43,10 @@ impl Row {
     /// `keep` times this row plus `share` times each of `others`, normalised, when every
     /// one of `others` has this row's joints and every sum is positive; `None` otherwise.
     /// The same as [`Mixer::pruned`] of the same sum (up to rounding: fewer than five joints
-    /// have nothing to subtract), without the search and sort.
+    /// have nothing to subtract), without the search and sort. The plain statement of the
+    /// rule that the mesh smoothing's one-pass round (`surface.rs`) is tested against to the
+    /// bit; the rounds themselves fold it into their single read of the neighbours.
+    #[cfg_attr(not(test), allow(dead_code))]
     #[inline]
     pub fn blend_same_joints<'a>(
         &self,
