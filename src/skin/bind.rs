@@ -1,5 +1,6 @@
 //! The skinning stage driver and its result.
 
+use super::coarse::{coarse_segments, coarse_solid, coarsening};
 use super::geodesic::geodesic_weights;
 use super::weights::{nearest_segment, segment_distance};
 use super::{
@@ -85,7 +86,17 @@ pub fn skin(
             if segments.iter().all(|s| s.voxels.is_empty()) {
                 return Err(SkinError::NoInfluence);
             }
-            geodesic_weights(mesh, skeleton, solid, distance, segments, options)
+            // A rig on a grid finer than the default: the weights at the default resolution
+            // (`coarse.rs`), the segments carried over to it.
+            match coarsening(solid) {
+                Some(factor) => {
+                    let coarse = coarse_solid(solid, factor);
+                    let distance = crate::distance::edt(&coarse);
+                    let segments = coarse_segments(segments, &solid.grid, &coarse.grid);
+                    geodesic_weights(mesh, skeleton, &coarse, &distance, &segments, options)
+                }
+                None => geodesic_weights(mesh, skeleton, solid, distance, segments, options),
+            }
         }
         SkinMethod::Anchor => anchor_skin(
             mesh,
@@ -207,6 +218,16 @@ pub fn skin_from_bones(
     options.validate()?;
     if distance.grid != solid.grid {
         return Err(SkinError::GridMismatch);
+    }
+    // The geodesic weights of a rig on a grid finer than the default are computed at the
+    // default resolution (`coarse.rs`): the bones' segments are found on that grid directly.
+    if options.method == SkinMethod::Geodesic {
+        if let Some(factor) = coarsening(solid) {
+            let coarse = coarse_solid(solid, factor);
+            let distance = crate::distance::edt(&coarse);
+            let segments = bone_segments(skeleton, &coarse, &distance, options);
+            return skin(mesh, skeleton, &coarse, &distance, &segments, options);
+        }
     }
     let segments = bone_segments(skeleton, solid, distance, options);
     skin(mesh, skeleton, solid, distance, &segments, options)

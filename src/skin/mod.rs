@@ -43,6 +43,7 @@
 
 mod bind;
 pub mod check;
+mod coarse;
 pub mod compare;
 mod deform;
 mod digits;
