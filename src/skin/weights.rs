@@ -76,22 +76,15 @@ pub struct EngineWeights {
 /// returns, per vertex, the total anchor weight that was dropped (zero with four or fewer
 /// influences). Joint ids must fit in `u16`.
 pub fn engine_weights(anchor: &[Vec<(JointId, f64)>]) -> (EngineWeights, Vec<f64>) {
-    let per_vertex: Vec<_> = anchor
+    let (joints, (weights, dropped)) = anchor
         .par_iter()
         .with_min_len(1024)
-        .map(|v| engine_row(v))
-        .collect();
-    let mut out = EngineWeights {
-        joints: Vec::with_capacity(anchor.len()),
-        weights: Vec::with_capacity(anchor.len()),
-    };
-    let mut dropped = Vec::with_capacity(anchor.len());
-    for (joints, weights, d) in per_vertex {
-        out.joints.push(joints);
-        out.weights.push(weights);
-        dropped.push(d);
-    }
-    (out, dropped)
+        .map(|v| {
+            let (joints, weights, dropped) = engine_row(v);
+            (joints, (weights, dropped))
+        })
+        .unzip();
+    (EngineWeights { joints, weights }, dropped)
 }
 
 /// One vertex of [`engine_weights`]: its joints, weights and the weight dropped.

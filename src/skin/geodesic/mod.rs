@@ -52,7 +52,7 @@ use crate::voxel::Solid;
 use diffusion::smoothed_voxel_weights;
 use field::field;
 use rayon::prelude::*;
-use rows::{Mixer, Row};
+use rows::{prune, Row};
 use surface::{corners, spread_to_unreached, vertex_rows, Adjacency, Smoothing};
 
 /// Nearest joints kept per interior voxel: the four influences a vertex may keep, and one
@@ -221,13 +221,11 @@ fn bind_isolated(
 /// The rows as `(joint, weight)` lists, each pruned with weights under [`NEGLIGIBLE`] cut.
 fn vertex_weights(rows: &[Row]) -> Vec<Vec<(JointId, f64)>> {
     rows.par_iter()
-        .map_init(Mixer::default, |mixer, row| {
-            mixer.clear();
-            for (j, w) in row.entries() {
-                mixer.add(j, w);
-            }
-            mixer
-                .pruned(NEGLIGIBLE)
+        .with_min_len(1024)
+        .map(|row| {
+            // The row's joints are distinct: what `Mixer::pruned` gives of the same entries.
+            let used = row.entries().count();
+            prune(&row.joints[..used], &row.weights[..used], NEGLIGIBLE)
                 .entries()
                 .map(|(j, w)| (JointId(j as usize), w))
                 .collect()

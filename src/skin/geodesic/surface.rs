@@ -79,9 +79,12 @@ pub(super) fn vertex_rows(voxels: &VoxelWeights, grid: &Grid, mesh: &Mesh) -> Ve
         .collect()
 }
 
-/// The mesh's vertex adjacency (compressed rows, each vertex's neighbours ascending).
+/// The mesh's vertex adjacency: each vertex's neighbours ascending, vertex `v`'s in
+/// `adjacent[start[v]..start[v] + len[v]]` (rows with room for every corner's two edges,
+/// left uncompacted: the rounds of [`Smoothing`] copy them in their own order anyway).
 pub(super) struct Adjacency {
     start: Vec<usize>,
+    len: Vec<u32>,
     adjacent: Vec<u32>,
 }
 
@@ -121,7 +124,7 @@ impl Adjacency {
             lists.push(head);
             rest = tail;
         }
-        let lengths: Vec<usize> = lists
+        let len: Vec<u32> = lists
             .into_par_iter()
             .with_min_len(4096)
             .map(|list| {
@@ -133,25 +136,33 @@ impl Adjacency {
                         kept += 1;
                     }
                 }
-                kept
+                kept as u32
             })
             .collect();
-        let mut adjacent = Vec::with_capacity(lengths.iter().sum());
-        let mut compact_start = Vec::with_capacity(n + 1);
-        compact_start.push(0);
-        for (v, &kept) in lengths.iter().enumerate() {
-            adjacent.extend_from_slice(&listed[start[v]..start[v] + kept]);
-            compact_start.push(adjacent.len());
-        }
         Self {
-            start: compact_start,
-            adjacent,
+            start,
+            len,
+            adjacent: listed,
         }
+    }
+
+    /// The neighbours of every vertex as compressed rows: `(start, adjacent)` with vertex
+    /// `v`'s neighbours ascending in `adjacent[start[v]..start[v + 1]]`.
+    fn compressed(&self) -> (Vec<usize>, Vec<u32>) {
+        let n = self.len.len();
+        let mut adjacent = Vec::with_capacity(self.len.iter().map(|&l| l as usize).sum());
+        let mut start = Vec::with_capacity(n + 1);
+        start.push(0);
+        for v in 0..n {
+            adjacent.extend_from_slice(self.around(v));
+            start.push(adjacent.len());
+        }
+        (start, adjacent)
     }
 
     /// The neighbours of vertex `v`, ascending.
     pub fn around(&self, v: usize) -> &[u32] {
-        &self.adjacent[self.start[v]..self.start[v + 1]]
+        &self.adjacent[self.start[v]..self.start[v] + self.len[v] as usize]
     }
 }
 
@@ -204,9 +215,11 @@ pub(super) struct Smoothing {
     /// The neighbours in the rounds' order, compressed rows (vertex numbers in that order).
     start: Vec<usize>,
     adjacent: Vec<u32>,
-    /// Each edge's share and what each vertex keeps of its own ([`Graph`]).
+    /// Each edge's share, what each vertex keeps of its own and its edges' one share where
+    /// they all have the same ([`Graph`]).
     shares: Vec<f64>,
     keep: Vec<f64>,
+    uniform: Vec<f64>,
     /// The rounds to run ([`rounds_for_fineness`]).
     rounds: usize,
 }
@@ -234,18 +247,21 @@ impl Smoothing {
                 adjacent: Vec::new(),
                 shares: Vec::new(),
                 keep: Vec::new(),
+                uniform: Vec::new(),
                 rounds: 0,
             };
         }
         if !by_position {
-            let graph = Graph::new(&mesh.positions, &adjacency.start, &adjacency.adjacent, h);
-            let rounds = rounds_for_fineness(&graph.fine, adjacency.adjacent.len(), iterations, h);
+            let (start, adjacent) = adjacency.compressed();
+            let graph = Graph::new(&mesh.positions, &start, &adjacent, h);
+            let rounds = rounds_for_fineness(&graph.fine, adjacent.len(), iterations, h);
             return Self {
                 order: None,
-                start: adjacency.start.clone(),
-                adjacent: adjacency.adjacent.clone(),
+                start,
+                adjacent,
                 shares: graph.shares,
                 keep: graph.keep,
+                uniform: graph.uniform,
                 rounds,
             };
         }
@@ -280,13 +296,14 @@ impl Smoothing {
             .collect();
         let graph = Graph::new(&positions, &start, &adjacent, h);
         let rounds = rounds_for_fineness(&graph.fine, adjacent.len(), iterations, h);
-        let (shares, keep) = (graph.shares, graph.keep);
+        let (shares, keep, uniform) = (graph.shares, graph.keep, graph.uniform);
         Self {
             order: Some((order, new_index)),
             start,
             adjacent,
             shares,
             keep,
+            uniform,
             rounds,
         }
     }
@@ -348,8 +365,14 @@ fn split_rows<'a, T>(mut values: &'a mut [T], start: &[usize]) -> Vec<(usize, &'
 /// edge's share (fixed over the rounds) and what each vertex keeps of its own, and per vertex
 /// the sum of its edges' (length / `h`)², each capped at one ([`rounds_for_fineness`]).
 struct Graph {
+    /// Each edge's share.
     shares: Vec<f64>,
     keep: Vec<f64>,
+    /// Per vertex, the one share of all its edges where every edge is at most a voxel long
+    /// (each share is then the vertex's `0.5 / degree` times one, to the bit), NaN where
+    /// they differ: on a mesh finer than the voxels (almost every vertex of a million-triangle
+    /// figure) the rounds then read one number per vertex instead of one per edge.
+    uniform: Vec<f64>,
     fine: Vec<f64>,
 }
 
@@ -359,29 +382,48 @@ impl Graph {
     fn new(positions: &[DVec3], start: &[usize], adjacent: &[u32], h: f64) -> Self {
         let mut shares = vec![0.0f64; adjacent.len()];
         let h2 = h * h;
-        let (keep, fine): (Vec<f64>, Vec<f64>) = split_rows(&mut shares, start)
-            .into_par_iter()
-            .with_min_len(4096)
-            .map(|(v, out)| {
-                let around = &adjacent[start[v]..start[v + 1]];
-                let p = positions[v];
-                let scale = 0.5 / around.len().max(1) as f64;
-                let mut shared = 0.0;
-                let mut fine = 0.0;
-                for (share, &u) in out.iter_mut().zip(around) {
-                    let len2 = p.distance_squared(positions[u as usize]);
-                    *share = scale * (h2 / len2.max(f64::MIN_POSITIVE)).min(1.0);
-                    shared += *share;
-                    fine += (len2 / h2).min(1.0);
-                }
-                (1.0 - shared, fine)
-            })
-            .unzip();
-        Self { shares, keep, fine }
+        // At most a voxel long: the ratio is at least one, so capped to one without dividing.
+        let capped = |len2: f64| {
+            if len2 <= h2 {
+                1.0
+            } else {
+                (h2 / len2.max(f64::MIN_POSITIVE)).min(1.0)
+            }
+        };
+        let (keep, (uniform, fine)): (Vec<f64>, (Vec<f64>, Vec<f64>)) =
+            split_rows(&mut shares, start)
+                .into_par_iter()
+                .with_min_len(4096)
+                .map(|(v, out)| {
+                    let around = &adjacent[start[v]..start[v + 1]];
+                    let p = positions[v];
+                    let scale = 0.5 / around.len().max(1) as f64;
+                    let length2 = |u: u32| p.distance_squared(positions[u as usize]);
+                    let mut shared = 0.0;
+                    let mut fine = 0.0;
+                    let mut uniform = true;
+                    for (share, &u) in out.iter_mut().zip(around) {
+                        let len2 = length2(u);
+                        let factor = capped(len2);
+                        uniform &= factor == 1.0;
+                        *share = scale * factor;
+                        shared += *share;
+                        fine += (len2 / h2).min(1.0);
+                    }
+                    let one = if uniform { scale } else { f64::NAN };
+                    (1.0 - shared, (one, fine))
+                })
+                .unzip();
+        Self {
+            shares,
+            keep,
+            uniform,
+            fine,
+        }
     }
 }
 
-/// The rounds of `smoothing` on `rows` (in its order); a vertex is computed again only where
+/// The rounds of [`Smoothing`] on `rows` (in its order); a vertex is computed again only where
 /// it or one of its neighbours changed in the round before ([`Settled`]).
 fn smoothing_rounds(rows: &mut Vec<Row>, smoothing: &Smoothing) {
     let Smoothing {
@@ -389,6 +431,7 @@ fn smoothing_rounds(rows: &mut Vec<Row>, smoothing: &Smoothing) {
         ref adjacent,
         ref shares,
         ref keep,
+        ref uniform,
         rounds: iterations,
         ..
     } = *smoothing;
@@ -408,7 +451,20 @@ fn smoothing_rounds(rows: &mut Vec<Row>, smoothing: &Smoothing) {
                     *moves = false;
                     return;
                 }
-                let row = smoothed_row(current, around, &shares[range], keep[v], v, mixer);
+                let one = uniform[v];
+                let row = if one.is_nan() {
+                    smoothed_row(
+                        current,
+                        around,
+                        shares[range].iter().copied(),
+                        keep[v],
+                        v,
+                        mixer,
+                    )
+                } else {
+                    let same = std::iter::repeat_n(one, around.len());
+                    smoothed_row(current, around, same, keep[v], v, mixer)
+                };
                 *moves = row != current[v];
                 *out = row;
             });
@@ -419,31 +475,52 @@ fn smoothing_rounds(rows: &mut Vec<Row>, smoothing: &Smoothing) {
     }
 }
 
-/// One round of [`smoothing_rounds`] at vertex `v` with neighbours `around`.
+/// One round of [`smoothing_rounds`] at vertex `v` with neighbours `around` and their
+/// `shares`: in one pass over the neighbours, whether they all equal the row (then it is the
+/// mean), whether they all have its joints and the sum of [`Row::blend_same_joints`] (the
+/// same products added in the same order), else [`mix`].
 #[inline]
 fn smoothed_row(
     current: &[Row],
     around: &[u32],
-    shares: &[f64],
+    shares: impl Iterator<Item = f64> + Clone,
     keep: f64,
     v: usize,
     mixer: &mut Mixer,
 ) -> Row {
     let own = &current[v];
+    let mut weights = own.weights.map(|w| keep * w);
+    let mut agree = true;
+    let mut same_joints = true;
+    for (&u, share) in around.iter().zip(shares.clone()) {
+        let row = &current[u as usize];
+        let joints = row.joints == own.joints;
+        same_joints &= joints;
+        agree &= joints && row.weights == own.weights;
+        for (w, x) in weights.iter_mut().zip(&row.weights) {
+            *w += share * x;
+        }
+    }
     // Where every neighbour has the same weights the mean is the row.
-    if around.iter().all(|&u| current[u as usize] == *own) {
+    if agree {
         return *own;
     }
-    let neighbours = || {
-        around
-            .iter()
-            .zip(shares)
-            .map(|(&u, &share)| (&current[u as usize], share))
-    };
-    if let Some(row) = own.blend_same_joints(keep, neighbours()) {
-        return row;
+    if same_joints {
+        let used = own.joints.iter().take_while(|&&j| j != NONE).count();
+        let sum: f64 = weights[..used].iter().sum();
+        if used > 0 && sum.is_finite() && weights[..used].iter().all(|&w| w > 0.0) {
+            let mut row = *own;
+            for (out, w) in row.weights[..used].iter_mut().zip(&weights) {
+                *out = w / sum;
+            }
+            return row;
+        }
     }
-    mix(own, keep, neighbours(), mixer)
+    let neighbours = around
+        .iter()
+        .zip(shares)
+        .map(|(&u, share)| (&current[u as usize], share));
+    mix(own, keep, neighbours, mixer)
 }
 
 /// The rounds of [`Smoothing`] for `iterations` asked, from each vertex's sum over its `edges`
@@ -486,6 +563,74 @@ mod tests {
                 mixer.pruned(0.0)
             })
             .collect()
+    }
+
+    /// A row's bits, to compare rows exactly (`Row`'s `==` takes -0 for 0).
+    fn bits(row: &Row) -> ([u32; 4], [u64; 4]) {
+        (row.joints, row.weights.map(f64::to_bits))
+    }
+
+    /// The one-pass round gives, to the bit, the rule it replaced: the row itself where every
+    /// neighbour equals it, else [`Row::blend_same_joints`], else [`mix`]; and a vertex whose
+    /// edges are all at most a voxel long has one share equal to each edge's, which gives the
+    /// same row. On a tube with a band of equal rows, rows of three to five joints and edges
+    /// on both sides of the voxel size.
+    #[test]
+    fn one_pass_round_gives_the_blend_or_mix_rule_to_the_bit() {
+        let rings: Vec<(f64, f64)> = (0..=40).map(|r| (0.2, 1.0 - r as f64 / 20.0)).collect();
+        let mesh = Mesh::lathe(DVec3::new(0.0, 1.0, 0.0), 1.0, &rings, -1.0, 12);
+        let adjacency = Adjacency::new(&mesh);
+        let (start, adjacent) = adjacency.compressed();
+        let mut rows = tube_rows(&mesh);
+        let band = rows[0];
+        for (row, p) in rows.iter_mut().zip(&mesh.positions) {
+            if p.y > 1.4 {
+                *row = band;
+            }
+        }
+        let mut mixer = Mixer::default();
+        let (mut agreeing, mut uniform, mut varying) = (0, 0, 0);
+        for h in [0.03, 0.08, 0.5] {
+            let graph = Graph::new(&mesh.positions, &start, &adjacent, h);
+            for v in 0..rows.len() {
+                let range = start[v]..start[v + 1];
+                let (around, shares, keep) = (
+                    &adjacent[range.clone()],
+                    &graph.shares[range],
+                    graph.keep[v],
+                );
+                let own = &rows[v];
+                let neighbours = || {
+                    around
+                        .iter()
+                        .zip(shares)
+                        .map(|(&u, &share)| (&rows[u as usize], share))
+                };
+                let expected = if around.iter().all(|&u| rows[u as usize] == *own) {
+                    agreeing += 1;
+                    *own
+                } else {
+                    own.blend_same_joints(keep, neighbours())
+                        .unwrap_or_else(|| mix(own, keep, neighbours(), &mut mixer))
+                };
+                let row = smoothed_row(&rows, around, shares.iter().copied(), keep, v, &mut mixer);
+                assert_eq!(bits(&row), bits(&expected), "vertex {v}, h {h}");
+                let one = graph.uniform[v];
+                if one.is_nan() {
+                    varying += 1;
+                    continue;
+                }
+                uniform += 1;
+                assert!(shares.iter().all(|s| s.to_bits() == one.to_bits()));
+                let same = std::iter::repeat_n(one, around.len());
+                let row = smoothed_row(&rows, around, same, keep, v, &mut mixer);
+                assert_eq!(bits(&row), bits(&expected), "vertex {v}, h {h}");
+            }
+        }
+        assert!(
+            agreeing > 0 && uniform > 0 && varying > 0,
+            "{agreeing} {uniform} {varying}"
+        );
     }
 
     #[test]
