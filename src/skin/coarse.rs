@@ -19,10 +19,12 @@ use glam::DVec3;
 /// [`VoxelOptions`](crate::voxel::VoxelOptions)'s default size.
 const SKIN_FRACTION: f64 = 0.01;
 
-/// Coarsening by less than this leaves the grid as it is: the default grid of a figure that
-/// [`voxelize_figure`](crate::voxel::voxelize_figure) refined (it holds too few voxels at the
-/// default size) is within this of the default edge or holds too few voxels to coarsen.
-const MIN_FACTOR: f64 = 1.5;
+/// Coarsening by less than this leaves the grid as it is (a fifth more voxels per edge, about
+/// twice the voxels, is worth resampling for). The default grid of a figure that
+/// [`voxelize_figure`](crate::voxel::voxelize_figure) refined because it holds too few voxels at
+/// the default size is either within this of the default edge or would hold fewer than
+/// [`MIN_INTERIOR`] voxels coarsened, so it is never coarsened.
+const MIN_FACTOR: f64 = 1.2;
 
 /// The fewest interior voxels the coarse copy may hold:
 /// [`VoxelOptions::min_interior`](crate::voxel::VoxelOptions::min_interior)'s default, the
