@@ -7,10 +7,10 @@ mod fast_hash;
 mod pca;
 mod smoothing;
 
-pub(crate) use fast_hash::{fast_map, FastMap};
 pub use douglas_peucker::{
     closest_on_segment, douglas_peucker, douglas_peucker_closed, point_segment_distance,
 };
+pub(crate) use fast_hash::{fast_map, FastMap};
 pub(crate) use pca::{
     major_axis_by_iteration, point_covariance, principal_axes, principal_axis_2d,
 };

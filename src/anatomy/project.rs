@@ -22,12 +22,7 @@ pub fn interior_parts(
     voxel_parts: &[u32],
     radius_weight: f64,
 ) -> Vec<u32> {
-    let sources = interior_sources(
-        solid,
-        surface,
-        |p| voxel_parts[p] != NO_PART,
-        radius_weight,
-    );
+    let sources = interior_sources(solid, surface, |p| voxel_parts[p] != NO_PART, radius_weight);
     parts_from_sources(&sources, voxel_parts)
 }
 

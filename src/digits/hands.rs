@@ -52,8 +52,7 @@ pub(super) fn read_hands(
     fit: &Fit,
     options: &DigitOptions,
 ) -> Vec<HandReading> {
-    if template.posture != Posture::Upright || !options.enabled || hand_group(template).is_none()
-    {
+    if template.posture != Posture::Upright || !options.enabled || hand_group(template).is_none() {
         return Vec::new();
     }
     let read = |side: Side| {

@@ -54,7 +54,10 @@ pub(super) fn parse_obj(path: &Path) -> Result<ParsedObj, MeshError> {
 }
 
 /// The welded mesh of the parsed file and the map of its `v` statements onto it.
-pub(super) fn welded(path: &Path, parsed: &ParsedObj) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
+pub(super) fn welded(
+    path: &Path,
+    parsed: &ParsedObj,
+) -> Result<(Mesh, Vec<Option<u32>>), MeshError> {
     let coordinates = &parsed.coordinates;
     let corners = &parsed.corners;
     if let Some(MeshError::IndexOutOfRange {
@@ -221,9 +224,7 @@ fn statement(
                     .map_err(|_| format!("vertex coordinate {word:?} is not a number"))
             };
             if count < 3 {
-                return Err(format!(
-                    "a vertex needs x, y and z, found {count} values"
-                ));
+                return Err(format!("a vertex needs x, y and z, found {count} values"));
             }
             let mut p = DVec3::new(number(values[0])?, number(values[1])?, number(values[2])?);
             match count {

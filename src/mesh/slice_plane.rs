@@ -282,15 +282,22 @@ mod outer_tests {
             .subdivided()
             .subdivided();
         let base = mesh.positions.len() as u32;
-        mesh.positions
-            .extend([DVec3::new(2.0, 0.0, 0.0), DVec3::new(3.0, 0.0, 0.0), DVec3::new(2.0, 1.0, 0.0)]);
+        mesh.positions.extend([
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(3.0, 0.0, 0.0),
+            DVec3::new(2.0, 1.0, 0.0),
+        ]);
         mesh.triangles.push([base, base + 1, base + 2]);
         for normal in [DVec3::Y, DVec3::new(0.3, 1.0, -0.2), DVec3::X * 2.0] {
             let slicer = PlaneSlicer::new(&mesh, normal);
             let mut points: Vec<DVec3> = mesh.positions.iter().step_by(7).copied().collect();
             points.extend((0..40).map(|i| DVec3::splat(-4.0 + 0.2 * f64::from(i))));
             for point in points {
-                assert_eq!(slicer.slice(point), slice_plane(&mesh, point, normal), "{point}");
+                assert_eq!(
+                    slicer.slice(point),
+                    slice_plane(&mesh, point, normal),
+                    "{point}"
+                );
                 assert_eq!(
                     slicer.slice_outer(point),
                     slice_plane_outer(&mesh, point, normal)
@@ -299,7 +306,9 @@ mod outer_tests {
                 assert_eq!(once.slice(point), slice_plane(&mesh, point, normal));
             }
         }
-        assert!(PlaneSlicer::new(&mesh, DVec3::ZERO).slice(DVec3::ZERO).is_empty());
+        assert!(PlaneSlicer::new(&mesh, DVec3::ZERO)
+            .slice(DVec3::ZERO)
+            .is_empty());
     }
 
     #[test]

@@ -98,7 +98,9 @@ impl<'a> SphereSlicer<'a> {
         let volume = extent.x.max(1e-300) * extent.y.max(1e-300) * extent.z.max(1e-300);
         let mut cell = (volume * VERTICES_PER_CELL / n.max(1) as f64).cbrt();
         // At most ~n cells along the longest side and some cells in all.
-        cell = cell.max(extent.max_element() / (n.max(1) as f64)).max(1e-300);
+        cell = cell
+            .max(extent.max_element() / (n.max(1) as f64))
+            .max(1e-300);
         let finite = cell.is_finite() && min.is_finite();
         let dims = if finite {
             [extent.x, extent.y, extent.z].map(|e| ((e / cell).floor() as usize).saturating_add(1))
@@ -129,8 +131,10 @@ impl<'a> SphereSlicer<'a> {
             .iter()
             .map(|&p| slicer.cell_index(slicer.coords(p)))
             .collect();
-        (slicer.cell_start, slicer.cell_vertices) =
-            buckets(dims[0] * dims[1] * dims[2], (0..n as u32).map(|v| (cell_of[v as usize], v)));
+        (slicer.cell_start, slicer.cell_vertices) = buckets(
+            dims[0] * dims[1] * dims[2],
+            (0..n as u32).map(|v| (cell_of[v as usize], v)),
+        );
         (slicer.vertex_start, slicer.vertex_triangles) = buckets(
             n,
             mesh.triangles
@@ -163,7 +167,10 @@ impl<'a> SphereSlicer<'a> {
         }
         let mesh = self.mesh;
         // Inside: not on or outside the sphere (a NaN side counts inside, as in slice_sphere).
-        let inside = |v: u32| !(inside_by(mesh.positions[v as usize], centre, radius) >= 0.0);
+        let inside = |v: u32| {
+            let side = inside_by(mesh.positions[v as usize], centre, radius);
+            side < 0.0 || side.is_nan()
+        };
         let mut triangles: Vec<u32> = Vec::new();
         let mut gather = |v: u32| {
             if inside(v) {
@@ -204,7 +211,10 @@ impl<'a> SphereSlicer<'a> {
 
 /// `(bucket, item)` pairs grouped by bucket (a counting sort, items of a bucket in their
 /// order): the start of each of the `count` buckets (plus the end) and the items.
-fn buckets(count: usize, pairs: impl Iterator<Item = (usize, u32)> + Clone) -> (Vec<u32>, Vec<u32>) {
+fn buckets(
+    count: usize,
+    pairs: impl Iterator<Item = (usize, u32)> + Clone,
+) -> (Vec<u32>, Vec<u32>) {
     let mut start = vec![0u32; count + 1];
     for (b, _) in pairs.clone() {
         start[b + 1] += 1;
@@ -237,17 +247,25 @@ mod tests {
         let slicer = SphereSlicer::new(&mesh);
         let mut x = 11u64;
         let mut next = || {
-            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            x = x
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
             (x >> 11) as f64 / (1u64 << 53) as f64
         };
         for _ in 0..200 {
             let centre = DVec3::new(2.4 * next() - 1.2, 0.8 * next() - 0.4, 0.6 * next() - 0.3);
             let radius = 0.8 * next();
-            assert_eq!(slicer.slice(centre, radius), slice_sphere(&mesh, centre, radius));
+            assert_eq!(
+                slicer.slice(centre, radius),
+                slice_sphere(&mesh, centre, radius)
+            );
         }
         let corner = mesh.positions[0];
         assert_eq!(slicer.slice(corner, 0.3), slice_sphere(&mesh, corner, 0.3));
-        assert_eq!(slicer.slice(DVec3::ZERO, 5.0), slice_sphere(&mesh, DVec3::ZERO, 5.0));
+        assert_eq!(
+            slicer.slice(DVec3::ZERO, 5.0),
+            slice_sphere(&mesh, DVec3::ZERO, 5.0)
+        );
         assert!(slicer.slice(DVec3::ZERO, 0.0).is_empty());
         assert!(slicer.slice(DVec3::ZERO, f64::NAN).is_empty());
     }

@@ -217,9 +217,8 @@ mod tests {
             let radius = tolerance * diagonal;
             let mut brute: Vec<u32> = Vec::new();
             for (i, p) in mesh.positions.iter().enumerate() {
-                let kept = (0..i).find(|&k| {
-                    brute[k] == k as u32 && mesh.positions[k].distance(*p) <= radius
-                });
+                let kept = (0..i)
+                    .find(|&k| brute[k] == k as u32 && mesh.positions[k].distance(*p) <= radius);
                 brute.push(kept.unwrap_or(i) as u32);
             }
             let merged = mesh.merge_within(tolerance);

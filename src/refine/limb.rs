@@ -122,7 +122,16 @@ pub fn trace_limb(
         + options.distal_overshoot * chain[last].distance(chain[last - 1]);
     let seed_to_end = chain_length - chain[0].distance(chain[1]) * 0.5;
     let slicer = SphereSlicer::new(mesh);
-    let outward = march(&slicer, seed, axis, radius, step, seed_to_end, false, options);
+    let outward = march(
+        &slicer,
+        seed,
+        axis,
+        radius,
+        step,
+        seed_to_end,
+        false,
+        options,
+    );
     let inward = march(
         &slicer,
         seed,

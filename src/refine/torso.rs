@@ -183,13 +183,7 @@ pub fn hips(
 /// whose centroid lies within `reach` of `centre` across the body, the second longest is at
 /// least half as long as the longest (two thighs; above the crotch one pelvis loop dwarfs any
 /// hand or arm beside it).
-fn legs_apart(
-    slicer: &PlaneSlicer,
-    frame: &BodyFrame,
-    centre: DVec3,
-    h: f64,
-    reach: f64,
-) -> bool {
+fn legs_apart(slicer: &PlaneSlicer, frame: &BodyFrame, centre: DVec3, h: f64, reach: f64) -> bool {
     let mut perimeters: Vec<f64> = loops_near(slicer, frame, frame.at_height(centre, h), reach)
         .iter()
         .filter(|l| l.closed)
@@ -296,10 +290,11 @@ pub fn split_flare(
 ) -> Option<f64> {
     let slicer = PlaneSlicer::once(mesh, frame.up);
     let extents = |h: f64, pieces: usize| -> Option<(f64, f64)> {
-        let mut loops: Vec<SliceLoop> = loops_near(&slicer, frame, frame.at_height(centre, h), reach)
-            .into_iter()
-            .filter(|l| l.closed)
-            .collect();
+        let mut loops: Vec<SliceLoop> =
+            loops_near(&slicer, frame, frame.at_height(centre, h), reach)
+                .into_iter()
+                .filter(|l| l.closed)
+                .collect();
         loops.sort_by(|a, b| b.perimeter().total_cmp(&a.perimeter()));
         loops.truncate(pieces);
         let span = |axis: DVec3| {
