@@ -51,9 +51,13 @@ pub(super) struct FootReading {
     foot: Option<FootJoints>,
 }
 
+/// A foot chain: the joints from the ankle to the toe chain's end, and the toe's index in it
+/// ([`foot_chain`]).
+type FootChain = (Vec<JointId>, usize);
+
 /// The knee and ankle positions of `side`'s foot chain, when the fit has its knee, ankle and
 /// toe and the toe hangs below the ankle, with the chain.
-fn leg_end(fit: &Fit, side: Side) -> Option<((DVec3, DVec3), (Vec<JointId>, usize))> {
+fn leg_end(fit: &Fit, side: Side) -> Option<((DVec3, DVec3), FootChain)> {
     let key = |k: fn(Side) -> Canonical| fit.canonical.joint_of(k(side));
     let (Some(knee), Some(ankle), Some(toe)) = (
         key(Canonical::Knee),
@@ -138,7 +142,7 @@ pub(super) fn place_feet(
 /// The joints from `ankle` to `toe` (both included) and on from `toe` while each has a single
 /// child (the toe chain to its end), with the index of `toe` in it; `None` when `toe` does not
 /// hang below `ankle`.
-fn foot_chain(skeleton: &Skeleton, ankle: JointId, toe: JointId) -> Option<(Vec<JointId>, usize)> {
+fn foot_chain(skeleton: &Skeleton, ankle: JointId, toe: JointId) -> Option<FootChain> {
     let mut up = vec![toe];
     while *up.last()? != ankle {
         up.push(skeleton.joint(*up.last()?).parent?);
@@ -154,7 +158,7 @@ fn foot_chain(skeleton: &Skeleton, ankle: JointId, toe: JointId) -> Option<(Vec<
 /// Places the chain: the toe at the ball, its last joint (when past the toe) at the tip, the
 /// joints between at their arc-length fractions of the old chain along the straight segments
 /// ankle → ball and ball → tip.
-fn place_foot(skeleton: &mut Skeleton, chain: &(Vec<JointId>, usize), foot: FootJoints) {
+fn place_foot(skeleton: &mut Skeleton, chain: &FootChain, foot: FootJoints) {
     let (joints, at) = (&chain.0, chain.1);
     let old: Vec<DVec3> = joints.iter().map(|&j| skeleton.joint(j).position).collect();
     // Every other joint stays (`carry` would move the ones above a moved joint with it).

@@ -167,7 +167,10 @@ impl<'a> SphereSlicer<'a> {
         }
         let mesh = self.mesh;
         // Inside: not on or outside the sphere (a NaN side counts inside, as in slice_sphere).
-        let inside = |v: u32| !(inside_by(mesh.positions[v as usize], centre, radius) >= 0.0);
+        let inside = |v: u32| {
+            let side = inside_by(mesh.positions[v as usize], centre, radius);
+            side < 0.0 || side.is_nan()
+        };
         let mut triangles: Vec<u32> = Vec::new();
         let mut gather = |v: u32| {
             if inside(v) {

@@ -110,7 +110,12 @@ impl Mesh {
         if !(radius > 0.0 && radius.is_finite()) {
             return self.merge_exact();
         }
-        let cell_of = |p: DVec3| (p / radius).floor().as_i64vec3().to_array();
+        // Cells twice the radius wide: the points within the radius of a vertex lie in the
+        // one or two cells per axis that its reach (the radius and a margin for rounding)
+        // spans, at most 8 cells instead of the 27 around a radius-wide cell.
+        let size = 2.0 * radius;
+        let cell_of = |p: DVec3| (p / size).floor().as_i64vec3().to_array();
+        let reach = |p: DVec3| DVec3::splat(radius * (1.0 + 1e-9) + 1e-12 * p.abs().max_element());
         // The kept vertices of each cell as a linked list: the cell's last kept vertex, and
         // for each kept vertex the one kept before it in its cell (`NONE` ends the list).
         const NONE: u32 = u32::MAX;
@@ -120,11 +125,12 @@ impl Mesh {
         let mut representative = Vec::with_capacity(n);
         for (i, &p) in self.positions.iter().enumerate() {
             let [cx, cy, cz] = cell_of(p);
+            let (lo, hi) = (cell_of(p - reach(p)), cell_of(p + reach(p)));
             let mut found = None;
-            for dx in -1..=1 {
-                for dy in -1..=1 {
-                    for dz in -1..=1 {
-                        let Some(&last) = last_in_cell.get(&[cx + dx, cy + dy, cz + dz]) else {
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        let Some(&last) = last_in_cell.get(&[x, y, z]) else {
                             continue;
                         };
                         let mut k = last;
@@ -177,6 +183,48 @@ mod tests {
         assert_eq!(welded.positions.len(), 8);
         assert_eq!(welded.triangles.len(), 12);
         assert!((welded.signed_volume() - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn merging_within_a_tolerance_matches_brute_force() {
+        // Clusters of near points (some just inside, some just outside the radius) far from
+        // and near the origin.
+        let mut positions = Vec::new();
+        let mut x = 5u64;
+        let mut next = || {
+            x = x
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for offset in [DVec3::ZERO, DVec3::new(40.0, -7.0, 3.0)] {
+            for _ in 0..60 {
+                let centre = offset + DVec3::new(next(), next(), next()) * 2.0;
+                for _ in 0..4 {
+                    positions.push(centre + DVec3::new(next(), next(), next()) * 4e-4);
+                }
+            }
+        }
+        let n = positions.len() as u32;
+        let mesh = Mesh {
+            triangles: (0..n - 2).map(|i| [i, i + 1, i + 2]).collect(),
+            positions,
+        };
+        for tolerance in [1e-6, 1e-5, 1e-4] {
+            let diagonal = mesh
+                .bounding_box()
+                .map_or(0.0, |(min, max)| (max - min).length());
+            let radius = tolerance * diagonal;
+            let mut brute: Vec<u32> = Vec::new();
+            for (i, p) in mesh.positions.iter().enumerate() {
+                let kept = (0..i)
+                    .find(|&k| brute[k] == k as u32 && mesh.positions[k].distance(*p) <= radius);
+                brute.push(kept.unwrap_or(i) as u32);
+            }
+            let merged = mesh.merge_within(tolerance);
+            assert_eq!(merged, brute, "tolerance {tolerance}");
+            assert!(merged.iter().enumerate().any(|(i, &r)| r != i as u32));
+        }
     }
 
     #[test]

@@ -62,15 +62,23 @@ const LIMB_CHAINS: [[JointOfSide; 3]; 2] = [
 /// of it).
 pub fn joint_balls(mesh: &Mesh) -> Vec<JointBall> {
     let (labels, count) = mesh.triangle_components();
-    let mut pieces: Vec<Vec<u32>> = vec![Vec::new(); count];
+    // Components join triangles through shared vertices, so each used vertex lies in one
+    // piece: the piece of any triangle using it. Each piece's vertices, ascending.
+    let mut vertex_piece = vec![u32::MAX; mesh.positions.len()];
     for (t, &label) in labels.iter().enumerate() {
-        pieces[label as usize].extend_from_slice(&mesh.triangles[t]);
+        for v in mesh.triangles[t] {
+            vertex_piece[v as usize] = label;
+        }
+    }
+    let mut pieces: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for (v, &label) in vertex_piece.iter().enumerate() {
+        if label != u32::MAX {
+            pieces[label as usize].push(v as u32);
+        }
     }
     pieces
         .into_iter()
-        .filter_map(|mut indices| {
-            indices.sort_unstable();
-            indices.dedup();
+        .filter_map(|indices| {
             let points: Vec<DVec3> = indices
                 .iter()
                 .map(|&v| mesh.positions[v as usize])
