@@ -296,7 +296,7 @@ impl LevelTree {
         }
     }
 
-    /// [`super::project::interior_parts`] of `voxel_parts` (per DMS position) over `solid`
+    /// `anatomy::project::interior_parts` of `voxel_parts` (per DMS position) over `solid`
     /// (the tree's), from the tree's interior search when `voxel_parts` seeds the same DMS
     /// voxels as the tree's vertices (a part exactly for the inside DMS voxels that have a
     /// vertex): the search's sources do not depend on the parts. `None` when the seeds differ
