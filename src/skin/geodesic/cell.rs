@@ -7,8 +7,7 @@
 //! [`diffuse`]: super::diffusion
 //! [`NEGLIGIBLE`]: super::NEGLIGIBLE
 
-use super::rows::{Row, KEPT, NONE};
-use super::LABELS;
+use super::rows::{pruned, Row, KEPT, NONE};
 
 /// The weights of one voxel during diffusion: at most [`KEPT`] joints, ascending, then
 /// [`NONE`] (weight 0).
@@ -145,79 +144,16 @@ pub(super) fn blend(
     prune(&joints[..used], &weights[..used])
 }
 
-/// The sum `weights` of `joints` (distinct) pruned to four joints: keeps the [`LABELS`]
-/// largest (ties: lower joint id), subtracts the smallest of them from the others (none when
-/// there are fewer than [`LABELS`]), so that a joint whose rank crosses the cut enters or
-/// leaves with weight zero, drops what is left at zero and normalises; joints ascending. The
-/// single-precision [`prune`](super::rows::prune) with cut 0.
+/// The sum `weights` of `joints` (distinct) pruned to four joints by the rule of
+/// [`prune`](super::rows::prune) with cut 0, in single precision.
 pub(super) fn prune(joints: &[u32], weights: &[f32]) -> Cell {
-    let mut top = [usize::MAX; LABELS];
-    let mut count = 0;
-    let before = |a: usize, b: usize| {
-        weights[a]
-            .total_cmp(&weights[b])
-            .reverse()
-            .then(joints[a].cmp(&joints[b]))
-            .is_lt()
-    };
-    for k in 0..joints.len() {
-        let mut at = count;
-        while at > 0 && before(k, top[at - 1]) {
-            at -= 1;
-        }
-        if at < LABELS {
-            let end = count.min(LABELS - 1);
-            top.copy_within(at..end, at + 1);
-            top[at] = k;
-            count = (count + 1).min(LABELS);
-        }
-    }
-    let mut cell = Cell {
-        joints: [NONE; KEPT],
-        weights: [0.0; KEPT],
-    };
-    if count == 0 {
-        return cell;
-    }
-    let floor = if count == LABELS {
-        weights[top[LABELS - 1]]
-    } else {
-        0.0
-    }
-    .max(0.0f32.min(weights[top[0]]));
-    let kept = count.min(KEPT);
-    let mut entries = [(NONE, 0.0f32); KEPT];
-    let mut sum = 0.0;
-    for (slot, &k) in entries.iter_mut().zip(&top[..kept]) {
-        let w = (weights[k] - floor).max(0.0);
-        *slot = (joints[k], w);
-        sum += w;
-    }
-    let mut used = kept;
-    if sum > 0.0 && sum.is_finite() {
-        used = 0;
-        for k in 0..kept {
-            if entries[k].1 > 0.0 {
-                entries[used] = (entries[k].0, entries[k].1 / sum);
-                used += 1;
-            }
-        }
-    } else {
-        let share = 1.0 / kept as f32;
-        for entry in &mut entries[..kept] {
-            entry.1 = share;
-        }
-    }
-    entries[..used].sort_unstable_by_key(|e| e.0);
-    for (k, &(j, w)) in entries[..used].iter().enumerate() {
-        cell.joints[k] = j;
-        cell.weights[k] = w;
-    }
-    cell
+    let (joints, weights) = pruned(joints, weights, 0.0);
+    Cell { joints, weights }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::LABELS;
     use super::*;
 
     /// The pruning rule written plainly (sort, cut, normalise).

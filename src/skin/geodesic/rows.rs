@@ -248,12 +248,66 @@ impl Mixer {
 /// with weight zero, drops what is left at zero and normalises. When every kept weight
 /// ties with the cut, the kept joints share equally.
 pub(super) fn prune(joints: &[u32], weights: &[f64], cut: f64) -> Row {
+    let (joints, weights) = pruned(joints, weights, cut);
+    Row { joints, weights }
+}
+
+/// A weight of [`pruned`]: `f64` for the rows, `f32` for the diffusion's
+/// [`Cell`](super::cell::Cell)s.
+pub(super) trait Weight:
+    Copy
+    + PartialOrd
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Div<Output = Self>
+    + std::ops::AddAssign
+{
+    const ZERO: Self;
+    fn total_order(&self, other: &Self) -> std::cmp::Ordering;
+    fn larger(self, other: Self) -> Self;
+    fn smaller(self, other: Self) -> Self;
+    fn finite(self) -> bool;
+    fn share(count: usize) -> Self;
+}
+
+macro_rules! weight {
+    ($t:ty) => {
+        impl Weight for $t {
+            const ZERO: Self = 0.0;
+            #[inline]
+            fn total_order(&self, other: &Self) -> std::cmp::Ordering {
+                self.total_cmp(other)
+            }
+            #[inline]
+            fn larger(self, other: Self) -> Self {
+                self.max(other)
+            }
+            #[inline]
+            fn smaller(self, other: Self) -> Self {
+                self.min(other)
+            }
+            #[inline]
+            fn finite(self) -> bool {
+                self.is_finite()
+            }
+            #[inline]
+            fn share(count: usize) -> Self {
+                1.0 / count as $t
+            }
+        }
+    };
+}
+weight!(f64);
+weight!(f32);
+
+/// [`prune`] in either precision: the kept joints ascending, then [`NONE`] (weight 0).
+pub(super) fn pruned<W: Weight>(joints: &[u32], weights: &[W], cut: W) -> ([u32; KEPT], [W; KEPT]) {
     // The LABELS largest, largest first: insertion into a short sorted list.
     let mut top = [usize::MAX; LABELS];
     let mut count = 0;
     let before = |a: usize, b: usize| {
         weights[a]
-            .total_cmp(&weights[b])
+            .total_order(&weights[b])
             .reverse()
             .then(joints[a].cmp(&joints[b]))
             .is_lt()
@@ -270,34 +324,35 @@ pub(super) fn prune(joints: &[u32], weights: &[f64], cut: f64) -> Row {
             count = (count + 1).min(LABELS);
         }
     }
+    let mut out = ([NONE; KEPT], [W::ZERO; KEPT]);
     if count == 0 {
-        return Row::EMPTY;
+        return out;
     }
     let floor = if count == LABELS {
         weights[top[LABELS - 1]]
     } else {
-        0.0
+        W::ZERO
     }
-    .max(cut.min(weights[top[0]]));
+    .larger(cut.smaller(weights[top[0]]));
     let kept = count.min(KEPT);
-    let mut entries = [(NONE, 0.0f64); KEPT];
-    let mut sum = 0.0;
+    let mut entries = [(NONE, W::ZERO); KEPT];
+    let mut sum = W::ZERO;
     for (slot, &k) in entries.iter_mut().zip(&top[..kept]) {
-        let w = (weights[k] - floor).max(0.0);
+        let w = (weights[k] - floor).larger(W::ZERO);
         *slot = (joints[k], w);
         sum += w;
     }
     let mut used = kept;
-    if sum > 0.0 && sum.is_finite() {
+    if sum > W::ZERO && sum.finite() {
         used = 0;
         for k in 0..kept {
-            if entries[k].1 > 0.0 {
+            if entries[k].1 > W::ZERO {
                 entries[used] = (entries[k].0, entries[k].1 / sum);
                 used += 1;
             }
         }
     } else {
-        let share = 1.0 / kept as f64;
+        let share = W::share(kept);
         for entry in &mut entries[..kept] {
             entry.1 = share;
         }
@@ -310,13 +365,11 @@ pub(super) fn prune(joints: &[u32], weights: &[f64], cut: f64) -> Row {
             at -= 1;
         }
     }
-    let entries = &entries[..used];
-    let mut row = Row::EMPTY;
-    for (k, &(j, w)) in entries.iter().enumerate() {
-        row.joints[k] = j;
-        row.weights[k] = w;
+    for (k, &(j, w)) in entries[..used].iter().enumerate() {
+        out.0[k] = j;
+        out.1[k] = w;
     }
-    row
+    out
 }
 
 #[cfg(test)]
