@@ -153,38 +153,8 @@ pub(super) fn prune(joints: &[u32], weights: &[f32]) -> Cell {
 
 #[cfg(test)]
 mod tests {
-    use super::super::LABELS;
+    use super::super::rows::tests::pruned_by_sorting;
     use super::*;
-
-    /// The pruning rule written plainly (sort, cut, normalise).
-    fn pruned_by_sorting(mut weights: Vec<(u32, f32)>) -> Vec<(u32, f32)> {
-        weights.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-        let floor = if weights.len() >= LABELS {
-            weights[LABELS - 1].1
-        } else {
-            0.0
-        }
-        .max(0.0f32.min(weights.first().map_or(0.0, |w| w.1)));
-        weights.truncate(KEPT);
-        let mut sum = 0.0;
-        for w in weights.iter_mut() {
-            w.1 = (w.1 - floor).max(0.0);
-            sum += w.1;
-        }
-        if sum > 0.0 && sum.is_finite() {
-            weights.retain(|w| w.1 > 0.0);
-            for w in weights.iter_mut() {
-                w.1 /= sum;
-            }
-        } else {
-            let share = 1.0 / weights.len().max(1) as f32;
-            for w in weights.iter_mut() {
-                w.1 = share;
-            }
-        }
-        weights.sort_by_key(|w| w.0);
-        weights
-    }
 
     fn entries(cell: &Cell) -> Vec<(u32, f32)> {
         cell.joints
@@ -234,11 +204,13 @@ mod tests {
                     }
                 }
             }
-            let want = pruned_by_sorting(summed);
+            // The rule written plainly, in double precision.
+            let summed = summed.into_iter().map(|(j, w)| (j, f64::from(w))).collect();
+            let want = pruned_by_sorting(summed, 0.0);
             proptest::prop_assert_eq!(got.len(), want.len());
             for (g, w) in got.iter().zip(&want) {
                 proptest::prop_assert_eq!(g.0, w.0);
-                proptest::prop_assert!((g.1 - w.1).abs() < 1e-5, "{:?} vs {:?}", got, want);
+                proptest::prop_assert!((f64::from(g.1) - w.1).abs() < 1e-5, "{:?} vs {:?}", got, want);
             }
             // The scratch table is left clean.
             proptest::prop_assert!(scratch.slot.iter().all(|&s| s == u8::MAX));

@@ -373,11 +373,14 @@ pub(super) fn pruned<W: Weight>(joints: &[u32], weights: &[W], cut: W) -> ([u32;
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     /// The pruning rule written plainly (sort, cut, normalise), to check [`Mixer::pruned`].
-    fn pruned_by_sorting(mut weights: Vec<(u32, f64)>, cut: f64) -> Vec<(u32, f64)> {
+    pub(in crate::skin::geodesic) fn pruned_by_sorting(
+        mut weights: Vec<(u32, f64)>,
+        cut: f64,
+    ) -> Vec<(u32, f64)> {
         weights.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         let floor = if weights.len() >= LABELS {
             weights[LABELS - 1].1
