@@ -138,8 +138,8 @@ fn nearest_joints(
     }
     // Each interior voxel's neighbours as compact indices (`NONE` outside), found once in
     // parallel: the search then reads them in order instead of the whole grid's index.
+    // Slot `k` holds the neighbour at `steps[k]`, also on the grid's border.
     let steps = options.connectivity.neighbours();
-    let around = Neighbourhood::new(*grid, steps);
     let stride = steps.len();
     let mut adjacent = vec![NONE; n * stride];
     adjacent
@@ -147,11 +147,12 @@ fn nearest_joints(
         .zip(interior.par_iter())
         .with_min_len(512)
         .for_each(|(out, &i)| {
-            let mut k = 0;
-            around.for_each(i, |next| {
-                out[k] = compact[next];
-                k += 1;
-            });
+            let coords = grid.coords(i);
+            for (slot, step) in out.iter_mut().zip(steps) {
+                if let Some(next) = grid.offset(coords, step.offset) {
+                    *slot = compact[next];
+                }
+            }
         });
     while let Some((d, length, c, joint)) = queue.pop() {
         let node = &mut nodes[c as usize];
