@@ -159,19 +159,7 @@ impl Mesh {
                 sets.union(a.triangle, b.triangle);
             }
         }
-        let mut label = vec![u32::MAX; self.triangles.len()];
-        let mut count = 0u32;
-        let components = (0..self.triangles.len() as u32)
-            .map(|t| {
-                let root = sets.find(t) as usize;
-                if label[root] == u32::MAX {
-                    label[root] = count;
-                    count += 1;
-                }
-                label[root]
-            })
-            .collect();
-        (components, count as usize)
+        sets.numbered()
     }
 }
 
@@ -189,18 +177,7 @@ pub(crate) fn vertex_pieces(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
         sets.union(a, b);
         sets.union(a, c);
     }
-    let mut number = vec![u32::MAX; n];
-    let mut next = 0;
-    (0..n as u32)
-        .map(|i| {
-            let root = sets.find(i) as usize;
-            if number[root] == u32::MAX {
-                number[root] = next;
-                next += 1;
-            }
-            number[root]
-        })
-        .collect()
+    sets.numbered().0
 }
 
 impl DisjointSets {
@@ -226,6 +203,25 @@ impl DisjointSets {
         let (ra, rb) = (self.find(a), self.find(b));
         let (low, high) = (ra.min(rb), ra.max(rb));
         self.parent[high as usize] = low;
+    }
+
+    /// Each element's set numbered from 0 in the order of the sets' first elements, and the
+    /// number of sets.
+    pub fn numbered(&mut self) -> (Vec<u32>, usize) {
+        let n = self.parent.len();
+        let mut number = vec![u32::MAX; n];
+        let mut next = 0u32;
+        let numbers = (0..n as u32)
+            .map(|i| {
+                let root = self.find(i) as usize;
+                if number[root] == u32::MAX {
+                    number[root] = next;
+                    next += 1;
+                }
+                number[root]
+            })
+            .collect();
+        (numbers, next as usize)
     }
 }
 

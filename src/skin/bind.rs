@@ -1,6 +1,6 @@
 //! The skinning stage driver and its result.
 
-use super::coarse::{coarse_segments, coarse_solid, coarsening};
+use super::coarse::{coarse_grid, coarse_segments, coarsening};
 use super::geodesic::geodesic_weights;
 use super::weights::{nearest_segment, segment_distance};
 use super::{
@@ -90,8 +90,7 @@ pub fn skin(
             // (`coarse.rs`), the segments carried over to it.
             match coarsening(solid) {
                 Some(factor) => {
-                    let coarse = coarse_solid(solid, factor);
-                    let distance = crate::distance::edt(&coarse);
+                    let (coarse, distance) = coarse_grid(solid, factor);
                     let segments = coarse_segments(segments, &solid.grid, &coarse.grid);
                     geodesic_weights(mesh, skeleton, &coarse, &distance, &segments, options)
                 }
@@ -223,8 +222,7 @@ pub fn skin_from_bones(
     // default resolution (`coarse.rs`): the bones' segments are found on that grid directly.
     if options.method == SkinMethod::Geodesic {
         if let Some(factor) = coarsening(solid) {
-            let coarse = coarse_solid(solid, factor);
-            let distance = crate::distance::edt(&coarse);
+            let (coarse, distance) = coarse_grid(solid, factor);
             let segments = bone_segments(skeleton, &coarse, &distance, options);
             return skin(mesh, skeleton, &coarse, &distance, &segments, options);
         }

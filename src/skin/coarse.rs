@@ -12,6 +12,7 @@
 //! resampled to the default resolution, and joint placement keeps the fine grid.
 
 use super::SegmentVoxels;
+use crate::distance::DistanceMap;
 use crate::voxel::{Grid, Solid};
 use glam::DVec3;
 
@@ -80,6 +81,13 @@ pub(super) fn coarse_solid(solid: &Solid, factor: f64) -> Solid {
         surface,
         report,
     }
+}
+
+/// [`coarse_solid`] and its distance map.
+pub(super) fn coarse_grid(solid: &Solid, factor: f64) -> (Solid, DistanceMap) {
+    let coarse = coarse_solid(solid, factor);
+    let distance = crate::distance::edt(&coarse);
+    (coarse, distance)
 }
 
 /// `segments` (chain voxels of `fine`) on `coarse`: each voxel becomes the coarse voxel holding
