@@ -68,8 +68,10 @@ impl Scratch {
 
 /// `keep` times `own` plus `share` times each of `others`, pruned to four joints the way
 /// [`prune`] does: where every cell has `own`'s joints (most of a limb: the same bones on every
-/// side), the four weights are blended lane by lane; elsewhere the joints are summed on the
-/// stack through `scratch`'s table.
+/// side), the four weights are blended lane by lane; where `own` has four joints and the
+/// neighbours bring others besides (where bones meet: a fifth joint at the edge of the row's
+/// set), `own`'s four are summed lane by lane and the others beside them ([`own_lanes`]);
+/// elsewhere the joints are summed on the stack through `scratch`'s table.
 #[inline]
 pub(super) fn blend(
     own: &Cell,
@@ -95,7 +97,15 @@ pub(super) fn blend(
             }
             return cell;
         }
+    } else if let Some(cell) = own_lanes(own, keep, share, others) {
+        return cell;
     }
+    by_table(own, keep, share, others, scratch)
+}
+
+/// [`blend`]'s general case: the joints summed on the stack through `scratch`'s table, then
+/// [`prune`]d.
+fn by_table(own: &Cell, keep: f32, share: f32, others: &[&Cell], scratch: &mut Scratch) -> Cell {
     let mut joints = [NONE; STACK];
     let mut weights = [0.0f32; STACK];
     let mut used = 0;
@@ -142,6 +152,107 @@ pub(super) fn blend(
         return prune(&j, &w);
     }
     prune(&joints[..used], &weights[..used])
+}
+
+/// Joints besides `own`'s four that [`own_lanes`] sums on the stack.
+const EXTRA: usize = 8;
+
+/// [`blend`] where `own` has four joints: `own`'s weights summed lane by lane, the
+/// neighbours' other joints beside them, each joint's terms added in the same order as
+/// [`blend`]'s table (`own` first, then `others` in order), so the sums are the same to the
+/// bit. Where the largest other joint ranks below all four of `own`'s (by weight, then
+/// joint, as [`pruned`] ranks them), the result is [`pruned`]'s written out for that case:
+/// the fifth joint's weight subtracted from `own`'s four, summed largest first and
+/// normalised; otherwise the entries go to [`prune`]. `None` where `own` has fewer than four
+/// joints or the neighbours bring more than [`EXTRA`] others (then [`blend`]'s table).
+#[inline]
+fn own_lanes(own: &Cell, keep: f32, share: f32, others: &[&Cell]) -> Option<Cell> {
+    if own.joints[KEPT - 1] == NONE {
+        return None;
+    }
+    let mut lanes = own.weights.map(|w| keep * w);
+    let mut extra_joints = [NONE; EXTRA];
+    let mut extra_weights = [0.0f32; EXTRA];
+    let mut extras = 0;
+    for other in others {
+        for (&j, &x) in other.joints.iter().zip(&other.weights) {
+            if j == NONE {
+                break;
+            }
+            let w = share * x;
+            if let Some(lane) = own.joints.iter().position(|&o| o == j) {
+                lanes[lane] += w;
+            } else if let Some(e) = extra_joints[..extras].iter().position(|&e| e == j) {
+                extra_weights[e] += w;
+            } else if extras < EXTRA {
+                extra_joints[extras] = j;
+                extra_weights[extras] = w;
+                extras += 1;
+            } else {
+                return None;
+            }
+        }
+    }
+    // `pruned`'s order: larger weight first, then smaller joint.
+    let before = |(ja, wa): (u32, f32), (jb, wb): (u32, f32)| {
+        wa.total_cmp(&wb).reverse().then(ja.cmp(&jb)).is_lt()
+    };
+    let largest_extra = (0..extras)
+        .map(|e| (extra_joints[e], extra_weights[e]))
+        .reduce(|a, b| if before(b, a) { b } else { a });
+    let fifth = match largest_extra {
+        Some(fifth) if (0..KEPT).all(|lane| before((own.joints[lane], lanes[lane]), fifth)) => {
+            fifth
+        }
+        _ => {
+            let mut joints = [NONE; KEPT + EXTRA];
+            let mut weights = [0.0f32; KEPT + EXTRA];
+            joints[..KEPT].copy_from_slice(&own.joints);
+            weights[..KEPT].copy_from_slice(&lanes);
+            joints[KEPT..KEPT + extras].copy_from_slice(&extra_joints[..extras]);
+            weights[KEPT..KEPT + extras].copy_from_slice(&extra_weights[..extras]);
+            return Some(prune(&joints[..KEPT + extras], &weights[..KEPT + extras]));
+        }
+    };
+    // `own`'s lanes largest first (insertion sort of four).
+    let mut order = [0, 1, 2, 3];
+    for k in 1..KEPT {
+        let mut at = k;
+        while at > 0
+            && before(
+                (own.joints[order[at]], lanes[order[at]]),
+                (own.joints[order[at - 1]], lanes[order[at - 1]]),
+            )
+        {
+            order.swap(at - 1, at);
+            at -= 1;
+        }
+    }
+    // `pruned` with cut 0: the floor is the fifth weight, or the largest if that is negative.
+    let floor = fifth.1.max(0.0f32.min(lanes[order[0]]));
+    let reduced = lanes.map(|w| (w - floor).max(0.0));
+    let mut sum = 0.0f32;
+    for &lane in &order {
+        sum += reduced[lane];
+    }
+    let mut cell = Cell {
+        joints: [NONE; KEPT],
+        weights: [0.0; KEPT],
+    };
+    if sum > 0.0 && sum.is_finite() {
+        let mut used = 0;
+        for lane in 0..KEPT {
+            if reduced[lane] > 0.0 {
+                cell.joints[used] = own.joints[lane];
+                cell.weights[used] = reduced[lane] / sum;
+                used += 1;
+            }
+        }
+    } else {
+        cell.joints = own.joints;
+        cell.weights = [0.25; KEPT];
+    }
+    Some(cell)
 }
 
 /// The sum `weights` of `joints` (distinct) pruned to four joints by the rule of
@@ -214,6 +325,31 @@ mod tests {
             }
             // The scratch table is left clean.
             proptest::prop_assert!(scratch.slot.iter().all(|&s| s == u8::MAX));
+        }
+
+        #[test]
+        fn own_lanes_equal_the_table_to_the_bit(
+            own in proptest::collection::vec((0u32..12, 0.01f32..1.0), 4..8),
+            others in proptest::collection::vec(
+                proptest::collection::vec((0u32..12, 0.01f32..1.0), 1..5), 1..7),
+            keep in 0.1f32..1.0,
+            ties in proptest::bool::ANY,
+        ) {
+            let mut own = cell(&own);
+            if ties {
+                // Equal weights, so that ranking falls to the joints.
+                own.weights = [0.25; KEPT];
+            }
+            proptest::prop_assume!(own.used() == KEPT);
+            let others: Vec<Cell> = others.iter().map(|o| cell(o)).collect();
+            let share = (1.0 - keep) / others.len() as f32;
+            let refs: Vec<&Cell> = others.iter().collect();
+            let mut scratch = Scratch::new(12);
+            let table = by_table(&own, keep, share, &refs, &mut scratch);
+            if let Some(lanes) = own_lanes(&own, keep, share, &refs) {
+                proptest::prop_assert_eq!(lanes.joints, table.joints);
+                proptest::prop_assert_eq!(lanes.weights.map(f32::to_bits), table.weights.map(f32::to_bits));
+            }
         }
     }
 }
