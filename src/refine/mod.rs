@@ -44,7 +44,7 @@ mod torso;
 mod warning;
 
 pub use carry::carry;
-pub use driver::{refine, refine_fit, Refinement, REFINED, REFINED_KEYS};
+pub use driver::{refine, refine_fit, Refinement, NECK_MAX_LEAN_DEGREES, REFINED, REFINED_KEYS};
 pub use error::RefineError;
 pub use frame::{frame_from_head, head_slices, BodyFrame, HeadSlices};
 pub use full_spine::{

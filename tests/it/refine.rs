@@ -842,6 +842,24 @@ fn a_kink_at_the_crotch_is_not_a_knee() {
     }
 }
 
+/// A big cartoon head's shell envelops the top of the trunk, whose back silhouette then runs
+/// up the head's back and puts C7 far behind the head joint: the neck comes forward to the
+/// cervical column's lean ([`skelfit::refine::NECK_MAX_LEAN_DEGREES`];
+/// quaternius_platformer_character: neck 4.60 % of height off, 2.25 % after).
+#[test]
+fn a_head_shell_around_the_neck_does_not_push_the_neck_back() {
+    let Some((_, _, result)) = real_core("quaternius_platformer_character") else {
+        return;
+    };
+    let evaluation = result.evaluation.as_ref().unwrap();
+    let neck = evaluation
+        .joints
+        .iter()
+        .find(|j| j.key == Canonical::Neck.as_str())
+        .expect("neck paired");
+    assert!(neck.error_percent < 3.0, "neck {:.2} %", neck.error_percent);
+}
+
 /// A block figure: legs, torso, neck, a head of `head` (its centre and radius) and two ears
 /// above the head, one each side of the median plane x = 0.
 fn eared_figure(head: Mesh) -> Mesh {
