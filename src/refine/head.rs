@@ -122,7 +122,8 @@ fn forward_most<'a>(frame: &BodyFrame, head: &'a HeadSlices) -> Option<&'a Slice
 /// joints, `shoulders`, below which the torso and arms are no neck); going up from it, the
 /// first slice whose diameter reaches `head_neck_widening` times the neck's is where the head
 /// begins (the neck itself when none does). The joint is at that height on the neck's axis (the slice's own centroid takes in
-/// the jaw, in front of the spine).
+/// the jaw, in front of the spine), brought forward when that lies far behind the skull above
+/// it ([`not_behind_skull`]).
 fn neck_top(
     mesh: &Mesh,
     frame: &BodyFrame,
