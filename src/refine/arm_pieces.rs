@@ -64,8 +64,43 @@ pub(super) fn shoulder_on_arm_piece(
     radii.sort_by(f64::total_cmp);
     let radius = radii[3 * radii.len() / 4];
     // Buried: the piece reaches past the shoulder by more than its radius; the cap's centre
-    // is one radius in from its tip.
-    (reach - radius > length && radius > 0.0).then(|| elbow + axis * (reach - radius))
+    // is one radius in from its tip, on the piece's own axis there.
+    if !(reach - radius > length && radius > 0.0) {
+        return None;
+    }
+    let on_line = elbow + axis * (reach - radius);
+    Some(on_line + cap_offset(pieces, component, piece, elbow, axis, reach - 2.0 * radius))
+}
+
+/// How far the piece's own axis lies from the line through `elbow` along `axis` at its buried
+/// end: the mean offset, across that line, of the piece's vertices beyond `from` along it (the
+/// round cap and the ring at its base lie evenly around the piece's axis). The line runs from
+/// the elbow to the shoulder sliced where the arm leaves the trunk, which a chest or a head
+/// shell around the arm's root can put off the piece's axis (the platformer character's
+/// shoulders lay 0.1 behind the arm's axis, 2.8 % of its height).
+fn cap_offset(
+    pieces: &Mesh,
+    component: &[u32],
+    piece: u32,
+    elbow: DVec3,
+    axis: DVec3,
+    from: f64,
+) -> DVec3 {
+    let (sum, count) = pieces
+        .positions
+        .iter()
+        .zip(component)
+        .filter(|&(_, &c)| c == piece)
+        .map(|(&p, _)| (p - elbow, (p - elbow).dot(axis)))
+        .filter(|&(_, t)| t >= from)
+        .fold((DVec3::ZERO, 0usize), |(s, n), (d, t)| {
+            (s + d - axis * t, n + 1)
+        });
+    if count == 0 {
+        DVec3::ZERO
+    } else {
+        sum / count as f64
+    }
 }
 
 #[cfg(test)]
@@ -110,6 +145,17 @@ mod tests {
         // The capsule's proximal tip is near x = 0.1; its cap's centre one radius further out.
         assert!((moved.x - 0.18).abs() < 0.03, "{moved:?}");
         assert!((moved.y - 1.3).abs() < 1e-9);
+        // A shoulder sliced off the piece's axis (behind it) still turns about the cap's
+        // centre, on the piece's axis.
+        let behind = DVec3::new(0.45, 1.3, -0.06);
+        let moved = shoulder_on_arm_piece(&mesh, &component, &frame(), DVec3::ZERO, elbow, behind)
+            .expect("buried arm");
+        // (On the line it was 0.09 behind.)
+        assert!(
+            moved.z.abs() < 0.02 && (moved.y - 1.3).abs() < 0.01,
+            "{moved:?}"
+        );
+        assert!((moved.x - 0.18).abs() < 0.08, "{moved:?}");
         // An arm piece that starts at the shoulder is not buried: no move.
         let (mesh, component) = figure(0.4);
         assert!(

@@ -485,7 +485,35 @@ fn spine_and_neck(
     if on_trunk {
         neck_at_junction(&scene.frame, found);
     }
+    neck_under_head(&scene.frame, found);
     spine_result
+}
+
+/// The most the cervical column leans forward from C7 (the `neck` joint) up to the head
+/// joint, degrees from the body's up: in an upright posture it rises about 20° forward of
+/// vertical (the MakeHuman rigs 19-23°, the game rigs 0-17°).
+pub const NECK_MAX_LEAN_DEGREES: f64 = 25.0;
+
+/// The neck joint moved forward (along `frame.forward`, at its height) until the line up to
+/// the head joint leans no more than [`NECK_MAX_LEAN_DEGREES`]. C7 is found on the trunk's
+/// back silhouette, which a cartoon's head shell enveloping the neck, a hood or an armour
+/// collar pushes back (the platformer character's neck leaned 54° back from its head, 4 % of
+/// the height behind the reference; the knight's, CesiumMan's and the adventurer's 34-39°).
+/// Nothing moves when the neck is not below the head.
+fn neck_under_head(frame: &BodyFrame, found: &mut Found) {
+    let (Some(&head), Some(&neck)) = (found.get(&Canonical::Head), found.get(&Canonical::Neck))
+    else {
+        return;
+    };
+    let rise = frame.h(head) - frame.h(neck);
+    if rise <= 0.0 {
+        return;
+    }
+    let behind = (head - neck).dot(frame.forward);
+    let most = rise * NECK_MAX_LEAN_DEGREES.to_radians().tan();
+    if behind > most {
+        found.insert(Canonical::Neck, neck + frame.forward * (behind - most));
+    }
 }
 
 /// The errors of [`refine`] that need no work: bad options, an empty mesh, non-finite
@@ -940,4 +968,42 @@ fn place_spine_joints(rough: &Rough, spine: &Spine) -> Vec<(JointId, DVec3)> {
         out.push((*id, p));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame() -> BodyFrame {
+        let mesh = Mesh::cuboid(DVec3::new(-0.2, 0.0, -0.2), DVec3::new(0.2, 1.8, 0.2));
+        BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap()
+    }
+
+    /// A neck found far behind the head on a back the head's shell or a collar pushed back
+    /// (the platformer character's leaned 54°) comes forward until the cervical column leans
+    /// [`NECK_MAX_LEAN_DEGREES`], at its own height; one leaning less stays.
+    #[test]
+    fn a_neck_far_behind_the_head_comes_forward_to_the_cervical_lean() {
+        let frame = frame();
+        let head = DVec3::new(0.0, 1.6, 0.05);
+        let mut found = Found::new();
+        found.insert(Canonical::Head, head);
+        found.insert(Canonical::Neck, DVec3::new(0.0, 1.5, -0.15));
+        neck_under_head(&frame, &mut found);
+        let neck = found[&Canonical::Neck];
+        let lean = ((head.z - neck.z) / (head.y - neck.y)).atan().to_degrees();
+        assert!((lean - NECK_MAX_LEAN_DEGREES).abs() < 1e-9, "lean {lean}");
+        assert!((neck.y - 1.5).abs() < 1e-12 && neck.x == 0.0, "{neck}");
+
+        let upright = DVec3::new(0.0, 1.5, 0.02);
+        found.insert(Canonical::Neck, upright);
+        neck_under_head(&frame, &mut found);
+        assert_eq!(found[&Canonical::Neck], upright);
+
+        // A neck above its head (no rise) is left alone.
+        let above = DVec3::new(0.0, 1.7, -0.3);
+        found.insert(Canonical::Neck, above);
+        neck_under_head(&frame, &mut found);
+        assert_eq!(found[&Canonical::Neck], above);
+    }
 }

@@ -122,7 +122,8 @@ fn forward_most<'a>(frame: &BodyFrame, head: &'a HeadSlices) -> Option<&'a Slice
 /// joints, `shoulders`, below which the torso and arms are no neck); going up from it, the
 /// first slice whose diameter reaches `head_neck_widening` times the neck's is where the head
 /// begins (the neck itself when none does). The joint is at that height on the neck's axis (the slice's own centroid takes in
-/// the jaw, in front of the spine).
+/// the jaw, in front of the spine), brought forward when that lies far behind the skull above
+/// it ([`not_behind_skull`]).
 fn neck_top(
     mesh: &Mesh,
     frame: &BodyFrame,
@@ -181,12 +182,61 @@ fn neck_top(
         .rev()
         .find(|&&(_, d, _)| d >= options.head_neck_widening * narrowest);
     let joint = frame.at_height(axis, widened.map_or(valley, |&(h, _, _)| h));
+    let joint = skull_centroid(frame, head, frame.h(joint))
+        .map_or(joint, |skull| not_behind_skull(frame, head, joint, skull));
     Some(HeadJoint {
         joint,
         roof: frame.at_height(joint, frame.top),
         centroid,
         on_trunk: widened.is_none(),
     })
+}
+
+/// How far behind the skull's centroid (as a fraction of the head's depth) the joint at the
+/// top of the neck can lie: the head's centre of mass is 1-2 cm in front of the occipital
+/// condyles on which it balances (a head 19-20 cm deep), about a tenth of the head's depth.
+pub const CONDYLES_BEHIND_CENTROID: f64 = 0.1;
+
+/// `joint` (on the neck's axis) moved forward to [`CONDYLES_BEHIND_CENTROID`] of the head's
+/// depth behind the skull's `centroid` when it lies farther back: the skull balances on the
+/// top of the neck. The neck's section is then not the neck's alone: hair, a hood or a
+/// helmet hanging down the nape reaches as far back as the skull and pulls its centroid behind
+/// the spine (a knight's helmet put the joint 4 % of the height behind the reference). A joint
+/// within that distance, or in front of the centroid (a head tilted back over its neck), keeps
+/// the neck's axis. The head's depth is that of its widest slice.
+fn not_behind_skull(frame: &BodyFrame, head: &HeadSlices, joint: DVec3, centroid: DVec3) -> DVec3 {
+    let Some(widest) = head.slices.get(head.largest) else {
+        return joint;
+    };
+    let (back, front) = widest
+        .points
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(b, f), p| {
+            let t = p.dot(frame.forward);
+            (b.min(t), f.max(t))
+        });
+    let limit = centroid.dot(frame.forward) - CONDYLES_BEHIND_CENTROID * (front - back).max(0.0);
+    let depth = joint.dot(frame.forward);
+    if depth < limit {
+        joint + frame.forward * (limit - depth)
+    } else {
+        joint
+    }
+}
+
+/// The perimeter-weighted centroid of the head slices above height `h` (the skull above the
+/// neck's top, without the collar, hood or shoulders the lower slices can reach). `None`
+/// when no slice lies above `h`.
+fn skull_centroid(frame: &BodyFrame, head: &HeadSlices, h: f64) -> Option<DVec3> {
+    let (sum, weight) = head
+        .slices
+        .iter()
+        .filter(|s| s.points.first().is_some_and(|p| frame.h(*p) > h))
+        .fold((DVec3::ZERO, 0.0), |(s, w), slice| match slice.centroid() {
+            Some(c) => (s + c * slice.perimeter(), w + slice.perimeter()),
+            None => (s, w),
+        });
+    (weight > 0.0).then(|| sum / weight)
 }
 
 /// The perimeter-weighted centroid of the head slices.

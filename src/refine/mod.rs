@@ -44,13 +44,13 @@ mod torso;
 mod warning;
 
 pub use carry::carry;
-pub use driver::{refine, refine_fit, Refinement, REFINED, REFINED_KEYS};
+pub use driver::{refine, refine_fit, Refinement, NECK_MAX_LEAN_DEGREES, REFINED, REFINED_KEYS};
 pub use error::RefineError;
 pub use frame::{frame_from_head, head_slices, BodyFrame, HeadSlices};
 pub use full_spine::{
     along_chain, full_spine, pull_inside, NoFullSpine, SpineDetail, GIRDLE_VERTEBRA,
 };
-pub use head::{head_joint, HeadJoint};
+pub use head::{head_joint, HeadJoint, CONDYLES_BEHIND_CENTROID};
 pub use joint_pieces::{joint_balls, JointBall};
 pub use limb::{trace_limb, LimbProfile, LimbSlice};
 pub use limb_joints::{ankle, arc_near, bend, on_axis, wrist, BendRule};

@@ -842,6 +842,24 @@ fn a_kink_at_the_crotch_is_not_a_knee() {
     }
 }
 
+/// A big cartoon head's shell envelops the top of the trunk, whose back silhouette then runs
+/// up the head's back and puts C7 far behind the head joint: the neck comes forward to the
+/// cervical column's lean ([`skelfit::refine::NECK_MAX_LEAN_DEGREES`];
+/// quaternius_platformer_character: neck 4.60 % of height off, 2.25 % after).
+#[test]
+fn a_head_shell_around_the_neck_does_not_push_the_neck_back() {
+    let Some((_, _, result)) = real_core("quaternius_platformer_character") else {
+        return;
+    };
+    let evaluation = result.evaluation.as_ref().unwrap();
+    let neck = evaluation
+        .joints
+        .iter()
+        .find(|j| j.key == Canonical::Neck.as_str())
+        .expect("neck paired");
+    assert!(neck.error_percent < 3.0, "neck {:.2} %", neck.error_percent);
+}
+
 /// A block figure: legs, torso, neck, a head of `head` (its centre and radius) and two ears
 /// above the head, one each side of the median plane x = 0.
 fn eared_figure(head: Mesh) -> Mesh {
@@ -912,6 +930,61 @@ fn a_round_head_without_a_nose_has_its_joint_at_the_neck() {
     let [auto, neck, _] = head_joints_by_level(&mesh, DVec3::new(0.0, 1.66, 0.0));
     assert!(auto.distance(neck) < 1e-9, "auto {auto} vs neck top {neck}");
     assert!(auto.y < 1.62, "head joint at {}", auto.y);
+}
+
+/// A figure of blocks (legs, torso) with a neck block 0.12 wide spanning `neck_depth` (back,
+/// front) in z from the torso's top at 1.45 up to a head block 0.24 wide and deep centred at
+/// (0, 1.72, `head_z`): the head joint at the top of the neck.
+fn neck_top_joint(neck_depth: (f64, f64), head_z: f64) -> DVec3 {
+    let b = |lo: [f64; 3], hi: [f64; 3]| Mesh::cuboid(DVec3::from(lo), DVec3::from(hi));
+    let mesh = merged(&[
+        b([-0.15, 0.0, -0.06], [-0.03, 0.9, 0.06]),
+        b([0.03, 0.0, -0.06], [0.15, 0.9, 0.06]),
+        b([-0.18, 0.9, -0.1], [0.18, 1.45, 0.1]),
+        b([-0.06, 1.45, neck_depth.0], [0.06, 1.6, neck_depth.1]),
+        b([-0.12, 1.6, head_z - 0.12], [0.12, 1.84, head_z + 0.12]),
+    ]);
+    let frame = skelfit::refine::BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap();
+    let near = DVec3::new(0.0, 1.7, head_z);
+    let options = RefineOptions {
+        head_level: skelfit::refine::HeadLevel::NeckTop,
+        ..RefineOptions::default()
+    };
+    let slices = skelfit::refine::head_slices(&mesh, &frame, near, Some(1.45), &options)
+        .expect("head slices");
+    skelfit::refine::head_joint(&mesh, &frame, &slices, Some(1.45), &options)
+        .expect("a head joint")
+        .joint
+}
+
+/// A hood or helmet hanging down the nape fills the back of the neck's section, whose centroid
+/// then lies far behind the skull balanced on it: the joint at the top of the neck comes
+/// forward to a tenth of the head's depth behind the skull's centroid
+/// ([`skelfit::refine::CONDYLES_BEHIND_CENTROID`]; quaternius_knight: head 4.25 % of height
+/// off, 0.24 behind the reference; 2.97 % after). A neck under the skull's centre, or in front
+/// of it (a head tilted back), keeps its own axis.
+#[test]
+fn a_hood_behind_the_neck_does_not_pull_the_head_joint_back() {
+    let limit = -skelfit::refine::CONDYLES_BEHIND_CENTROID * 0.24;
+    // The neck's block reaches 0.12 behind the head's centre: its centroid is 0.035 behind.
+    let hooded = neck_top_joint((-0.12, 0.05), 0.0);
+    assert!(
+        hooded.z > limit - 0.005 && hooded.z < 0.0,
+        "hooded neck's head joint at z {}",
+        hooded.z
+    );
+    let plain = neck_top_joint((-0.06, 0.06), 0.0);
+    assert!(
+        plain.z.abs() < 0.005,
+        "plain neck's head joint at z {}",
+        plain.z
+    );
+    let tilted = neck_top_joint((-0.06, 0.06), -0.04);
+    assert!(
+        tilted.z.abs() < 0.005,
+        "a head behind its neck moved the joint to z {}",
+        tilted.z
+    );
 }
 
 /// Shoulder pads and a chest plate (quaternius_cyberpunk_character: separate shells over the
