@@ -37,6 +37,7 @@
 mod bone_labels;
 mod build;
 mod error;
+mod fore_limbs;
 mod frame;
 mod level_graph;
 mod limb_root;

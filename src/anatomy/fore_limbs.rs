@@ -1,0 +1,138 @@
+//! Short fore limbs of a biped (issue 21, item 2): a pair of mirror-symmetric protrusions
+//! either side of the median plane, ahead of the hind legs, is the fore-limb pair even when it
+//! is too short for the arm rule's length (a raptor's or a tyrannosaur's arms).
+//!
+//! Bilateral symmetry is the principle: a vertebrate's paired limbs mirror each other across
+//! the median plane, a single bump or a part on that plane (a jaw, a dewlap) does not. Limbs hang
+//! from the trunk or reach sideways in a rest pose; paired parts that rise (ears, horns,
+//! antlers) are the head's, and they sit on the head, at its far end, not where the neck leaves
+//! the chest.
+//!
+//! Two places hold such a pair. Short arms joining the trunk are sections of their own
+//! ([`fore_pair`] among them). When the heart lies at the hips, the trunk stops there and the
+//! arms branch off the head's section, between the trunk and the neck: [`chest_junction`]
+//! finds where, so that the trunk is carried on to it and the arms become sections.
+
+use super::sections::section;
+use super::{Frame, LevelGraph, Section};
+use crate::medial::MedialSurface;
+use glam::DVec3;
+
+/// Whether `section` leaves its attachment vertex's centroid `from` as a rest-pose limb does:
+/// at least as far sideways or down as up (ears, horns and antlers rise).
+pub(super) fn hangs_or_reaches_sideways(section: &Section, from: DVec3, frame: &Frame) -> bool {
+    let d = section.distal - from;
+    let (side, up) = (d.dot(frame.left).abs(), d.dot(frame.up));
+    side.max(-up) >= up
+}
+
+/// Whether sections `a` and `b` mirror each other across the median plane through `centre`
+/// (normal `frame.left`): comparable lengths (the shorter at least half the longer), each voxel
+/// mean off the plane and on opposite sides by more than a third of the longer length, and `b`'s
+/// mean reflected across the plane within that third of `a`'s.
+pub(super) fn mirror_pair(a: &Section, b: &Section, frame: &Frame, centre: DVec3) -> bool {
+    let offset = |p: DVec3| (p - centre).dot(frame.left);
+    let longer = a.length.max(b.length);
+    let tolerance = longer / 3.0;
+    let reflected = b.mean - frame.left * (2.0 * offset(b.mean));
+    a.length.min(b.length) >= 0.5 * longer
+        && offset(a.mean).abs() > tolerance
+        && offset(b.mean).abs() > tolerance
+        && offset(a.mean) * offset(b.mean) < 0.0
+        && reflected.distance(a.mean) <= tolerance
+}
+
+/// The fore-limb pair among `candidates` (indices into `sections` of `graph`): two sections
+/// that mirror each other ([`mirror_pair`]), both leaving the body (their attachment vertex's
+/// centroid, which their length is measured from) ahead of `behind` along `frame.forward` (the
+/// hind legs' attachment) and neither rising ([`hangs_or_reaches_sideways`]). Of several such
+/// pairs the one whose means mirror best (then the longer) is taken; `None` when there is none.
+pub(super) fn fore_pair(
+    candidates: &[usize],
+    sections: &[Section],
+    graph: &LevelGraph,
+    frame: &Frame,
+    centre: DVec3,
+    behind: f64,
+) -> Option<(usize, usize)> {
+    let from = |s: usize| graph.vertices[sections[s].attachment_vertex].centroid;
+    let limb_like = |s: usize| {
+        from(s).dot(frame.forward) > behind
+            && hangs_or_reaches_sideways(&sections[s], from(s), frame)
+    };
+    let offset = |p: DVec3| (p - centre).dot(frame.left);
+    let mut best: Option<(f64, f64, usize, usize)> = None;
+    for (i, &a) in candidates.iter().enumerate() {
+        for &b in &candidates[i + 1..] {
+            let (sa, sb) = (&sections[a], &sections[b]);
+            if !(limb_like(a) && limb_like(b) && mirror_pair(sa, sb, frame, centre)) {
+                continue;
+            }
+            let reflected = sb.mean - frame.left * (2.0 * offset(sb.mean));
+            let misfit = reflected.distance(sa.mean) / sa.length.max(sb.length);
+            let length = sa.length + sb.length;
+            let better = match best {
+                None => true,
+                Some((m, l, _, _)) => misfit < m || (misfit == m && length > l),
+            };
+            if better {
+                best = Some((misfit, length, a, b));
+            }
+        }
+    }
+    best.map(|(_, _, a, b)| (a, b))
+}
+
+/// Where a short fore-limb pair branches off the head's section `head` (a section of `graph`
+/// hanging off the trunk): the level-graph vertex to carry the trunk on to, or `None`.
+///
+/// The head's main path runs from its top to the vertex holding its distal voxel; every subtree
+/// leaving that path is a candidate branch, measured as a section from the path vertex it
+/// leaves. A pair of significant branches forming a [`fore_pair`] ahead of `behind` (the hind
+/// legs' attachment along forward), both leaving the path within the proximal half of the
+/// head section's length (the chest and the base of the neck, not the head where ears and
+/// horns sit), gives the junction: the more distal of the two path vertices they leave from.
+pub(super) fn chest_junction(
+    graph: &LevelGraph,
+    surface: &MedialSurface,
+    head: &Section,
+    frame: &Frame,
+    centre: DVec3,
+    behind: f64,
+) -> Option<usize> {
+    let tip = head.vertices.iter().copied().max_by(|&a, &b| {
+        let top = |v: usize| {
+            graph.vertices[v]
+                .voxels
+                .iter()
+                .map(|&p| graph.heart_values[p])
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        top(a).total_cmp(&top(b)).then(b.cmp(&a))
+    })?;
+    let mut path: Vec<usize> = graph
+        .ancestors(tip)
+        .into_iter()
+        .take_while(|&v| v != head.attachment_vertex)
+        .collect();
+    path.reverse();
+    let root = graph.vertices[head.attachment_vertex].centroid;
+    let proximal = 0.5 * head.length;
+    let mut branches = Vec::new();
+    let mut leaves = Vec::new();
+    for (k, &v) in path.iter().enumerate() {
+        if graph.vertices[v].centroid.distance(root) > proximal {
+            continue;
+        }
+        let next = path.get(k + 1).copied();
+        for &c in &graph.vertices[v].children {
+            if Some(c) != next && !graph.vertices[c].insignificant {
+                branches.push(section(graph, surface, v, c));
+                leaves.push(k);
+            }
+        }
+    }
+    let candidates: Vec<usize> = (0..branches.len()).collect();
+    let (a, b) = fore_pair(&candidates, &branches, graph, frame, centre, behind)?;
+    Some(path[leaves[a].max(leaves[b])])
+}
