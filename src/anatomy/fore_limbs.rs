@@ -87,15 +87,18 @@ pub(super) fn fore_pair(
 /// hanging off the trunk): the level-graph vertex to carry the trunk on to, or `None`.
 ///
 /// The head's main path runs from its top to the vertex holding its distal voxel; every subtree
-/// leaving that path is a candidate branch, measured as a section from the path vertex it
-/// leaves. A pair of significant branches forming a [`fore_pair`] ahead of `behind` (the hind
-/// legs' attachment along forward), both leaving the path within the proximal half of the
-/// head section's length (the chest and the base of the neck, not the head where ears and
-/// horns sit), gives the junction: the more distal of the two path vertices they leave from.
+/// leaving that path within the proximal half of the head section's length (the chest and the
+/// base of the neck, not the head where ears and horns sit) is a candidate branch, measured as
+/// a section from the path vertex it leaves. With them, the trunk's unlabelled sections `loose`
+/// are candidates too: one arm of an asymmetrically tessellated pair may leave the trunk while
+/// its partner leaves the head's section. A [`fore_pair`] ahead of `behind` (the hind legs'
+/// attachment along forward) with at least one branch gives the junction: the most distal path
+/// vertex its branches leave from.
 pub(super) fn chest_junction(
     graph: &LevelGraph,
     surface: &MedialSurface,
     head: &Section,
+    loose: &[&Section],
     frame: &Frame,
     centre: DVec3,
     behind: f64,
@@ -118,8 +121,9 @@ pub(super) fn chest_junction(
     path.reverse();
     let root = graph.vertices[head.attachment_vertex].centroid;
     let proximal = 0.5 * head.length;
-    let mut branches = Vec::new();
-    let mut leaves = Vec::new();
+    // Candidates, each with the index on `path` of the vertex it leaves (`None`: the trunk).
+    let mut branches: Vec<Section> = loose.iter().map(|&s| s.clone()).collect();
+    let mut leaves: Vec<Option<usize>> = vec![None; branches.len()];
     for (k, &v) in path.iter().enumerate() {
         if graph.vertices[v].centroid.distance(root) > proximal {
             continue;
@@ -128,11 +132,12 @@ pub(super) fn chest_junction(
         for &c in &graph.vertices[v].children {
             if Some(c) != next && !graph.vertices[c].insignificant {
                 branches.push(section(graph, surface, v, c));
-                leaves.push(k);
+                leaves.push(Some(k));
             }
         }
     }
     let candidates: Vec<usize> = (0..branches.len()).collect();
     let (a, b) = fore_pair(&candidates, &branches, graph, frame, centre, behind)?;
-    Some(path[leaves[a].max(leaves[b])])
+    let k = leaves[a].max(leaves[b])?;
+    Some(path[k])
 }

@@ -212,7 +212,19 @@ fn chest_of_a_biped(
                 .dot(frame.forward)
         })
         .fold(f64::NEG_INFINITY, f64::max);
-    chest_junction(graph, surface, &draft.sections[head], frame, centre, behind)
+    let loose: Vec<&Section> = (0..draft.sections.len())
+        .filter(|&s| draft.assignments[s].label.is_none() && !draft.sections[s].insignificant)
+        .map(|s| &draft.sections[s])
+        .collect();
+    chest_junction(
+        graph,
+        surface,
+        &draft.sections[head],
+        &loose,
+        frame,
+        centre,
+        behind,
+    )
 }
 
 /// [`label_graph`]'s phases on a given trunk.
