@@ -141,3 +141,60 @@ pub(super) fn chest_junction(
     let k = leaves[a].max(leaves[b])?;
     Some(path[k])
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::anatomy::{Extremes, Reach};
+
+    /// A section from `attachment` to `distal` whose voxel mean is halfway.
+    fn section_to(attachment: DVec3, distal: DVec3) -> Section {
+        Section {
+            top: 0,
+            attachment_vertex: 0,
+            vertices: vec![0],
+            voxels: 4,
+            weight: 0.01,
+            attachment,
+            distal,
+            length: attachment.distance(distal),
+            mean: 0.5 * (attachment + distal),
+            reach: Reach::EMPTY,
+            extreme: Extremes::default(),
+            linear_fraction: 0.0,
+            insignificant: false,
+        }
+    }
+
+    fn frame() -> Frame {
+        Frame::new(DVec3::Y, DVec3::Z).unwrap()
+    }
+
+    #[test]
+    fn arms_hanging_or_held_out_sideways_are_limb_like_and_ears_are_not() {
+        let from = DVec3::new(0.2, 1.0, 0.5);
+        let hanging = section_to(from, DVec3::new(0.3, 0.6, 0.7));
+        let held_out = section_to(from, DVec3::new(0.8, 1.1, 0.5));
+        let ear = section_to(from, DVec3::new(0.3, 1.5, 0.5));
+        assert!(hangs_or_reaches_sideways(&hanging, from, &frame()));
+        assert!(hangs_or_reaches_sideways(&held_out, from, &frame()));
+        assert!(!hangs_or_reaches_sideways(&ear, from, &frame()));
+    }
+
+    #[test]
+    fn a_mirror_pair_lies_on_both_sides_of_the_median_plane() {
+        let arm = |x: f64| section_to(DVec3::new(0.2 * x, 1.0, 0.5), DVec3::new(0.3 * x, 0.6, 0.7));
+        let (left, right) = (arm(1.0), arm(-1.0));
+        assert!(mirror_pair(&left, &right, &frame(), DVec3::ZERO));
+        // Both on one side, or one on the median plane (a jaw), or one twice as long: no pair.
+        assert!(!mirror_pair(&left, &left, &frame(), DVec3::ZERO));
+        let median = section_to(DVec3::new(0.0, 1.0, 0.5), DVec3::new(0.0, 0.6, 0.7));
+        assert!(!mirror_pair(&left, &median, &frame(), DVec3::ZERO));
+        let long = section_to(DVec3::new(-0.2, 1.0, 0.5), DVec3::new(-0.5, 0.0, 1.0));
+        assert!(!mirror_pair(&left, &long, &frame(), DVec3::ZERO));
+        // The plane through a centre off the origin.
+        let shift = DVec3::new(1.0, 0.0, 0.0);
+        let moved = |s: &Section| section_to(s.attachment + shift, s.distal + shift);
+        assert!(mirror_pair(&moved(&left), &moved(&right), &frame(), shift));
+    }
+}
