@@ -18,6 +18,42 @@ use super::{Frame, LevelGraph, Section};
 use crate::medial::MedialSurface;
 use glam::DVec3;
 
+/// Where "ahead of the hind legs" is: past the hind legs' attachment along the body's
+/// anterior axis, from the hind legs towards the head. The head gives that axis rather than the
+/// frame's forward, which is only a first guess while the up direction is being tried.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Ahead {
+    /// Unit anterior axis, perpendicular to up.
+    axis: DVec3,
+    /// The hind legs' attachment farthest along `axis`.
+    behind: f64,
+}
+
+impl Ahead {
+    /// From the hind legs' attachment points (`hind`, mesh units) towards `head` (the head's
+    /// distal point; `frame.forward` without a head or when the head is not off the hind legs
+    /// across up).
+    pub fn new(hind: &[DVec3], head: Option<DVec3>, frame: &Frame) -> Self {
+        let mid = hind.iter().sum::<DVec3>() / hind.len().max(1) as f64;
+        let axis = head
+            .and_then(|h| {
+                let d = h - mid;
+                (d - frame.up * d.dot(frame.up)).try_normalize()
+            })
+            .unwrap_or(frame.forward);
+        let behind = hind
+            .iter()
+            .map(|p| p.dot(axis))
+            .fold(f64::NEG_INFINITY, f64::max);
+        Self { axis, behind }
+    }
+
+    /// Whether `p` lies ahead of the hind legs.
+    fn contains(&self, p: DVec3) -> bool {
+        p.dot(self.axis) > self.behind
+    }
+}
+
 /// Whether `section` leaves its attachment vertex's centroid `from` as a rest-pose limb does:
 /// at least as far sideways or down as up (ears, horns and antlers rise).
 pub(super) fn hangs_or_reaches_sideways(section: &Section, from: DVec3, frame: &Frame) -> bool {
@@ -44,8 +80,7 @@ pub(super) fn mirror_pair(a: &Section, b: &Section, frame: &Frame, centre: DVec3
 
 /// The fore-limb pair among `candidates` (indices into `sections` of `graph`): two sections
 /// that mirror each other ([`mirror_pair`]), both leaving the body (their attachment vertex's
-/// centroid, which their length is measured from) ahead of `behind` along `frame.forward` (the
-/// hind legs' attachment) and neither rising ([`hangs_or_reaches_sideways`]). Of several such
+/// centroid, which their length is measured from) `ahead` of the hind legs and neither rising ([`hangs_or_reaches_sideways`]). Of several such
 /// pairs the one whose means mirror best (then the longer) is taken; `None` when there is none.
 pub(super) fn fore_pair(
     candidates: &[usize],
@@ -53,12 +88,11 @@ pub(super) fn fore_pair(
     graph: &LevelGraph,
     frame: &Frame,
     centre: DVec3,
-    behind: f64,
+    ahead: &Ahead,
 ) -> Option<(usize, usize)> {
     let from = |s: usize| graph.vertices[sections[s].attachment_vertex].centroid;
     let limb_like = |s: usize| {
-        from(s).dot(frame.forward) > behind
-            && hangs_or_reaches_sideways(&sections[s], from(s), frame)
+        ahead.contains(from(s)) && hangs_or_reaches_sideways(&sections[s], from(s), frame)
     };
     let offset = |p: DVec3| (p - centre).dot(frame.left);
     let mut best: Option<(f64, f64, usize, usize)> = None;
@@ -91,8 +125,8 @@ pub(super) fn fore_pair(
 /// base of the neck, not the head where ears and horns sit) is a candidate branch, measured as
 /// a section from the path vertex it leaves. With them, the trunk's unlabelled sections `loose`
 /// are candidates too: one arm of an asymmetrically tessellated pair may leave the trunk while
-/// its partner leaves the head's section. A [`fore_pair`] ahead of `behind` (the hind legs'
-/// attachment along forward) with at least one branch gives the junction: the most distal path
+/// its partner leaves the head's section. A [`fore_pair`] `ahead` of the hind legs with at least
+/// one branch gives the junction: the most distal path
 /// vertex its branches leave from.
 pub(super) fn chest_junction(
     graph: &LevelGraph,
@@ -101,7 +135,7 @@ pub(super) fn chest_junction(
     loose: &[&Section],
     frame: &Frame,
     centre: DVec3,
-    behind: f64,
+    ahead: &Ahead,
 ) -> Option<usize> {
     let tip = head.vertices.iter().copied().max_by(|&a, &b| {
         let top = |v: usize| {
@@ -137,7 +171,7 @@ pub(super) fn chest_junction(
         }
     }
     let candidates: Vec<usize> = (0..branches.len()).collect();
-    let (a, b) = fore_pair(&candidates, &branches, graph, frame, centre, behind)?;
+    let (a, b) = fore_pair(&candidates, &branches, graph, frame, centre, ahead)?;
     let k = leaves[a].max(leaves[b])?;
     Some(path[k])
 }
@@ -179,6 +213,20 @@ mod tests {
         assert!(hangs_or_reaches_sideways(&hanging, from, &frame()));
         assert!(hangs_or_reaches_sideways(&held_out, from, &frame()));
         assert!(!hangs_or_reaches_sideways(&ear, from, &frame()));
+    }
+
+    #[test]
+    fn ahead_of_the_hind_legs_is_towards_the_head_whatever_the_forward_guess() {
+        let hind = [DVec3::new(0.2, 1.0, 0.0), DVec3::new(-0.2, 1.0, 0.0)];
+        let backwards = Frame::new(DVec3::Y, -DVec3::Z).unwrap();
+        let ahead = Ahead::new(&hind, Some(DVec3::new(0.0, 1.5, 1.2)), &backwards);
+        assert!(ahead.contains(DVec3::new(0.2, 1.0, 0.5)));
+        assert!(!ahead.contains(DVec3::new(0.2, 1.0, -0.5)));
+        // Without a head (or one straight above the hips) the frame's forward is used.
+        let no_head = Ahead::new(&hind, None, &backwards);
+        assert!(no_head.contains(DVec3::new(0.2, 1.0, -0.5)));
+        let above = Ahead::new(&hind, Some(DVec3::new(0.0, 2.0, 0.0)), &frame());
+        assert!(above.contains(DVec3::new(0.2, 1.0, 0.5)));
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Labelling the level graph (dissertation ch.7.3.3): trunk, legs, wings, tail, head, arms,
 //! leftovers.
 
-use super::fore_limbs::{chest_junction, fore_pair};
+use super::fore_limbs::{chest_junction, fore_pair, Ahead};
 use super::sections::sections;
 use super::tail::TailRule;
 use super::trunk::{trunk, Trunk};
@@ -204,14 +204,11 @@ fn chest_of_a_biped(
         return None;
     }
     let head = labelled(Label::Head).next()?;
-    let behind = legs
+    let hind: Vec<DVec3> = legs
         .iter()
-        .map(|&s| {
-            graph.vertices[draft.sections[s].attachment_vertex]
-                .centroid
-                .dot(frame.forward)
-        })
-        .fold(f64::NEG_INFINITY, f64::max);
+        .map(|&s| graph.vertices[draft.sections[s].attachment_vertex].centroid)
+        .collect();
+    let ahead = Ahead::new(&hind, Some(draft.sections[head].distal), frame);
     let loose: Vec<&Section> = (0..draft.sections.len())
         .filter(|&s| draft.assignments[s].label.is_none() && !draft.sections[s].insignificant)
         .map(|s| &draft.sections[s])
@@ -223,7 +220,7 @@ fn chest_of_a_biped(
         &loose,
         frame,
         centre,
-        behind,
+        &ahead,
     )
 }
 
@@ -534,14 +531,12 @@ impl Rules<'_> {
         let Some(&(h0, h1)) = legs.pairs.first() else {
             return;
         };
-        let behind = [h0, h1]
-            .iter()
-            .map(|&s| {
-                self.graph.vertices[self.sections[s].attachment_vertex]
-                    .centroid
-                    .dot(self.frame.forward)
-            })
-            .fold(f64::NEG_INFINITY, f64::max);
+        let hind =
+            [h0, h1].map(|s| self.graph.vertices[self.sections[s].attachment_vertex].centroid);
+        let head = (0..self.sections.len())
+            .find(|&s| self.assign[s].label == Some(Label::Head))
+            .map(|s| self.sections[s].distal);
+        let ahead = Ahead::new(&hind, head, self.frame);
         let candidates = self.unlabelled();
         if let Some(pair) = fore_pair(
             &candidates,
@@ -549,7 +544,7 @@ impl Rules<'_> {
             self.graph,
             self.frame,
             centre,
-            behind,
+            &ahead,
         ) {
             self.label_pair(pair, Label::Leg, LimbPair::Fore);
             legs.pairs.insert(0, pair);
