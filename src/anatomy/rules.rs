@@ -519,13 +519,18 @@ impl Rules<'_> {
         arms
     }
 
-    /// The short fore limbs of an animal on one leg pair (`legs`) with no arms: the
+    /// The short fore limbs of an animal on one leg pair (`legs`) with no arms or wings (a
+    /// bird's fore limbs are its wings): the
     /// [`fore_pair`] among the unlabelled significant sections, ahead of the hind legs'
     /// attachment, labelled as the fore leg pair (the quadruped template's fore-leg chain) and
     /// put first in `legs.pairs`. No length threshold: bilateral symmetry, not length, tells a
     /// limb pair from a bump (issue 21).
     fn short_fore_limbs(&mut self, legs: &mut Legs, centre: DVec3) {
-        if self.assign.iter().any(|a| a.label == Some(Label::Arm)) {
+        if self
+            .assign
+            .iter()
+            .any(|a| matches!(a.label, Some(Label::Arm | Label::Wing)))
+        {
             return;
         }
         let Some(&(h0, h1)) = legs.pairs.first() else {

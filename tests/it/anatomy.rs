@@ -934,6 +934,18 @@ fn a_bipeds_short_arm_pair_is_its_fore_limb_pair() {
         .iter()
         .all(|p| p.limb_pair != Some(LimbPair::Fore)));
 
+    // A winged biped's fore limbs are its wings: no third limb pair.
+    let wing = |x: f64| {
+        Mesh::cuboid(
+            DVec3::new(if x > 0.0 { 0.1 } else { -1.1 }, 0.96, -0.2),
+            DVec3::new(if x > 0.0 { 1.1 } else { -0.1 }, 1.04, 0.3),
+        )
+    };
+    let mesh = biped_with(&[wing(1.0), wing(-1.0), short_arm(1.0), short_arm(-1.0)]);
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
+    assert_eq!(labels.count(Label::Wing), 2, "{:?}", parts(&labels));
+    assert_eq!(labels.count(Label::Leg), 2, "{:?}", parts(&labels));
+
     // Ears rising from the head mirror each other too, but they are not limbs.
     let ear = |x: f64| {
         limb(
