@@ -8,7 +8,8 @@
 //!   (ch.7.3.1-7.3.2);
 //! - [`label_graph`] (`rules.rs`): the trunk from the major junctions and its slope
 //!   (human-like/animal-like, `trunk.rs`), the sections hanging off it (`sections.rs`), then
-//!   legs, wings, tail (`tail.rs`), head, arms, leftovers (ch.7.3.3), a phase per function;
+//!   legs, wings, tail (`tail.rs`), head, arms, an animal biped's short fore limbs
+//!   (`fore_limbs.rs`), leftovers (ch.7.3.3), a phase per function;
 //! - [`Overrides`] (`overrides.rs`): a JSON file of user corrections;
 //! - `build.rs`: parts with girdles and digits; `neck.rs`: the trunk pieces between the
 //!   pectoral limbs' and the head's junctions, which the per-vertex labels give to the head;
@@ -37,6 +38,7 @@
 mod bone_labels;
 mod build;
 mod error;
+mod fore_limbs;
 mod frame;
 mod level_graph;
 mod limb_root;

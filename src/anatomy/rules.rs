@@ -1,9 +1,10 @@
 //! Labelling the level graph (dissertation ch.7.3.3): trunk, legs, wings, tail, head, arms,
 //! leftovers.
 
+use super::fore_limbs::{chest_junction, fore_pair, Ahead};
 use super::sections::sections;
 use super::tail::TailRule;
-use super::trunk::trunk;
+use super::trunk::{trunk, Trunk};
 use super::{
     AnatomyWarning, FigureClass, Frame, Label, LevelGraph, LimbPair, Reach, RuleOptions, Section,
     Side,
@@ -143,15 +144,94 @@ fn reaches_like_an_arm(section: &Section, frame: &Frame) -> bool {
 /// Labels the level graph (ch.7.3.3), a phase per step: the trunk and the figure class
 /// (`trunk.rs`), the sections hanging off the trunk (`sections.rs`), then legs, wings, the tail
 /// (an animal's before the head, a human-like figure's after the head and the arms), the head,
-/// arms (none on an animal standing on two leg pairs), lone arms, unpaired legs, and the
-/// leftovers merged into the trunk.
+/// arms (none on an animal standing on two leg pairs), an animal biped's short fore limbs
+/// (`fore_limbs.rs`), lone arms, unpaired legs, and the leftovers merged into the trunk.
+///
+/// An animal standing on one leg pair whose short fore limbs branch off the head's section
+/// (the heart at the hips ends the trunk there) is labelled again with the trunk carried on to
+/// where they branch ([`chest_junction`]); the second labelling is kept when it finds them.
 pub fn label_graph(
     graph: &LevelGraph,
     surface: &MedialSurface,
     frame: &Frame,
     options: &RuleOptions,
 ) -> Draft {
-    let trunk = trunk(graph, surface, frame, options);
+    let mut trunk = trunk(graph, surface, frame, options);
+    let draft = label_with_trunk(graph, surface, frame, options, &trunk);
+    let Some(junction) = chest_of_a_biped(&draft, graph, surface, frame, trunk.centre()) else {
+        return draft;
+    };
+    trunk.extend_to(junction, graph, surface);
+    let extended = label_with_trunk(graph, surface, frame, options, &trunk);
+    if fore_limbs_of(&extended) == 2 {
+        extended
+    } else {
+        draft
+    }
+}
+
+/// Sections labelled as a fore limb (leg or arm of the fore girdle) in `draft`.
+fn fore_limbs_of(draft: &Draft) -> usize {
+    draft
+        .assignments
+        .iter()
+        .filter(|a| a.label.is_some_and(Label::is_limb) && a.limb_pair == Some(LimbPair::Fore))
+        .count()
+}
+
+/// Where the trunk of an animal biped (animal-like, one leg pair, no fore limbs, a head) should
+/// be carried on so that short fore limbs branching off the head's section become sections:
+/// [`chest_junction`] of the head's section ahead of the hind legs' attachment. `None` for
+/// every other figure.
+fn chest_of_a_biped(
+    draft: &Draft,
+    graph: &LevelGraph,
+    surface: &MedialSurface,
+    frame: &Frame,
+    centre: DVec3,
+) -> Option<usize> {
+    let labelled = |label: Label| {
+        (0..draft.sections.len()).filter(move |&s| draft.assignments[s].label == Some(label))
+    };
+    let legs: Vec<usize> = labelled(Label::Leg).collect();
+    let paired = legs.len() == 2 && legs.iter().all(|&s| draft.assignments[s].partner.is_some());
+    if draft.figure != FigureClass::AnimalLike
+        || !paired
+        || fore_limbs_of(draft) > 0
+        || labelled(Label::Arm).next().is_some()
+        || labelled(Label::Wing).next().is_some()
+    {
+        return None;
+    }
+    let head = labelled(Label::Head).next()?;
+    let hind: Vec<DVec3> = legs
+        .iter()
+        .map(|&s| graph.vertices[draft.sections[s].attachment_vertex].centroid)
+        .collect();
+    let ahead = Ahead::new(&hind, Some(draft.sections[head].distal), frame);
+    let loose: Vec<&Section> = (0..draft.sections.len())
+        .filter(|&s| draft.assignments[s].label.is_none() && !draft.sections[s].insignificant)
+        .map(|s| &draft.sections[s])
+        .collect();
+    chest_junction(
+        graph,
+        surface,
+        &draft.sections[head],
+        &loose,
+        frame,
+        centre,
+        &ahead,
+    )
+}
+
+/// [`label_graph`]'s phases on a given trunk.
+fn label_with_trunk(
+    graph: &LevelGraph,
+    surface: &MedialSurface,
+    frame: &Frame,
+    options: &RuleOptions,
+    trunk: &Trunk,
+) -> Draft {
     let mut warnings = Vec::new();
     if !trunk.has_junction {
         warnings.push(AnatomyWarning::NoMajorJunction);
@@ -177,13 +257,15 @@ pub fn label_graph(
     // Tail: an animal's before the head (its tail may reach as high as its head); a human-like
     // figure's after the head and the arms, which it may never take (a T-posed arm reaching
     // back, a head leaning back).
+    // The tail looks at the leg pairs found so far (the fore limbs found later are ahead).
+    let leg_pairs = legs.pairs.clone();
     let tail = TailRule {
         graph,
         sections: &sections,
         frame,
         figure: trunk.figure,
         trunk_points: &trunk.points,
-        pairs: &legs.pairs,
+        pairs: &leg_pairs,
         limit: options.tail_distance * rules.radius,
         min_length: options.tail_length * rules.radius,
     };
@@ -199,6 +281,9 @@ pub fn label_graph(
     } else {
         rules.arms()
     };
+    if trunk.figure == FigureClass::AnimalLike && legs.pairs.len() == 1 {
+        rules.short_fore_limbs(&mut legs, centre);
+    }
     if human_like {
         rules.tail(&tail, &mut legs.single);
         rules.lone_arms(&arms, centre);
@@ -214,7 +299,7 @@ pub fn label_graph(
         figure: trunk.figure,
         trunk_axis: trunk.axis,
         trunk_angle: trunk.angle,
-        trunk: trunk.vertices,
+        trunk: trunk.vertices.clone(),
         sections,
         assignments: assign,
         warnings,
@@ -432,6 +517,43 @@ impl Rules<'_> {
             self.label_pair(pair, Label::Arm, LimbPair::Fore);
         }
         arms
+    }
+
+    /// The short fore limbs of an animal on one leg pair (`legs`) with no arms or wings (a
+    /// bird's fore limbs are its wings): the
+    /// [`fore_pair`] among the unlabelled significant sections, ahead of the hind legs'
+    /// attachment, labelled as the fore leg pair (the quadruped template's fore-leg chain) and
+    /// put first in `legs.pairs`. No length threshold: bilateral symmetry, not length, tells a
+    /// limb pair from a bump (issue 21).
+    fn short_fore_limbs(&mut self, legs: &mut Legs, centre: DVec3) {
+        if self
+            .assign
+            .iter()
+            .any(|a| matches!(a.label, Some(Label::Arm | Label::Wing)))
+        {
+            return;
+        }
+        let Some(&(h0, h1)) = legs.pairs.first() else {
+            return;
+        };
+        let hind =
+            [h0, h1].map(|s| self.graph.vertices[self.sections[s].attachment_vertex].centroid);
+        let head = (0..self.sections.len())
+            .find(|&s| self.assign[s].label == Some(Label::Head))
+            .map(|s| self.sections[s].distal);
+        let ahead = Ahead::new(&hind, head, self.frame);
+        let candidates = self.unlabelled();
+        if let Some(pair) = fore_pair(
+            &candidates,
+            self.sections,
+            self.graph,
+            self.frame,
+            centre,
+            &ahead,
+        ) {
+            self.label_pair(pair, Label::Leg, LimbPair::Fore);
+            legs.pairs.insert(0, pair);
+        }
     }
 
     /// Left or right of the trunk's centre line (through `centre`).

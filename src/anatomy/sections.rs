@@ -22,8 +22,9 @@ pub fn sections(graph: &LevelGraph, surface: &MedialSurface, trunk: &[bool]) -> 
     out
 }
 
-/// The section rooted at `top`, a child of the trunk vertex `attachment_vertex`.
-fn section(
+/// The section rooted at `top`, a child of the trunk vertex `attachment_vertex` (also used
+/// for a branch leaving a section's main path, `fore_limbs.rs`).
+pub(super) fn section(
     graph: &LevelGraph,
     surface: &MedialSurface,
     attachment_vertex: usize,

@@ -30,6 +30,21 @@ impl Trunk {
             self.points.iter().sum::<DVec3>() / self.points.len() as f64
         }
     }
+
+    /// Carries the trunk on from the nearest trunk vertex up the tree to `v` (a chest
+    /// junction where short fore limbs leave, `fore_limbs.rs`): the vertices on the way join
+    /// the trunk and their voxels its points. The axis, its angle and the figure class stay
+    /// those of the major junctions' trunk, so adding the chest never changes the class.
+    pub fn extend_to(&mut self, v: usize, graph: &LevelGraph, surface: &MedialSurface) {
+        for a in graph.ancestors(v) {
+            if self.vertices[a] {
+                break;
+            }
+            self.vertices[a] = true;
+            self.points
+                .extend(graph.vertices[a].voxels.iter().map(|&p| surface.centre(p)));
+        }
+    }
 }
 
 /// The trunk of `graph` and the figure class from its slope against `frame.up`: human-like

@@ -791,3 +791,198 @@ fn skin_following_labels_score_on_the_artists_weights() {
         );
     }
 }
+
+/// A capsule of `radius` from `from` to `to`.
+fn limb(from: DVec3, to: DVec3, radius: f64) -> Mesh {
+    let axis = to - from;
+    let turn = DQuat::from_rotation_arc(DVec3::Y, axis.normalize());
+    let centre = 0.5 * (from + to);
+    Mesh::capsule(DVec3::ZERO, radius, 0.5 * axis.length(), 8, 16)
+        .transformed(|p| turn * p + centre)
+}
+
+/// A raptor-like biped facing +Z: a horizontal body on two hind legs, a long tail, a neck and
+/// head rising in front, and `extras` (short arms, a single bump, ears) added to it.
+fn biped_with(extras: &[Mesh]) -> Mesh {
+    let mut parts = vec![
+        limb(
+            DVec3::new(0.0, 1.0, -0.45),
+            DVec3::new(0.0, 1.0, 0.45),
+            0.25,
+        ),
+        limb(
+            DVec3::new(0.0, 1.05, -0.5),
+            DVec3::new(0.0, 1.15, -1.8),
+            0.12,
+        ),
+        limb(DVec3::new(0.0, 1.1, 0.5), DVec3::new(0.0, 1.45, 0.95), 0.12),
+        Mesh::uv_sphere(DVec3::new(0.0, 1.5, 1.1), 0.18, 12, 24),
+    ];
+    for x in [0.18, -0.18] {
+        parts.push(limb(
+            DVec3::new(x, 0.95, -0.15),
+            DVec3::new(x * 1.1, 0.08, -0.1),
+            0.09,
+        ));
+    }
+    parts.extend(extras.iter().cloned());
+    merge(&parts)
+}
+
+/// A biped whose heart lies at its hips: a short body on two hind legs, a long heavy tail, and
+/// in front one long piece rising from the hips to the head (chest and neck), carrying the
+/// `extras`. Its short arms branch off the head's section, not off the trunk.
+fn long_necked_biped_with(extras: &[Mesh]) -> Mesh {
+    let mut parts = vec![
+        limb(DVec3::new(0.0, 1.0, -0.45), DVec3::new(0.0, 1.0, 0.0), 0.25),
+        limb(
+            DVec3::new(0.0, 1.05, -0.5),
+            DVec3::new(0.0, 1.15, -2.2),
+            0.14,
+        ),
+        limb(DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, 1.5, 1.1), 0.17),
+        limb(DVec3::new(0.0, 1.5, 1.0), DVec3::new(0.0, 1.45, 1.35), 0.14),
+    ];
+    for x in [0.18, -0.18] {
+        parts.push(limb(
+            DVec3::new(x, 0.95, -0.2),
+            DVec3::new(x * 1.1, 0.08, -0.1),
+            0.09,
+        ));
+    }
+    parts.extend(extras.iter().cloned());
+    merge(&parts)
+}
+
+/// A short arm hanging from the chest on the side of `x` (its sign).
+fn short_arm(x: f64) -> Mesh {
+    limb(
+        DVec3::new(0.2 * x, 0.95, 0.45),
+        DVec3::new(0.3 * x, 0.68, 0.62),
+        0.05,
+    )
+}
+
+/// The raptor-like biped of [`biped_with`] with both short arms (shared with `rig.rs`).
+pub(crate) fn short_armed_biped() -> Mesh {
+    biped_with(&[short_arm(1.0), short_arm(-1.0)])
+}
+
+/// Issue 21: a raptor's short arms were merged into the trunk ("no front limb pair"), being
+/// shorter than the arm rule's length. A mirror-symmetric pair ahead of the hind legs is the
+/// fore-limb pair however short; a single bump or a pair rising from the head (ears) is not.
+#[test]
+fn a_bipeds_short_arm_pair_is_its_fore_limb_pair() {
+    let mesh = short_armed_biped();
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
+    assert_eq!(labels.figure, FigureClass::AnimalLike);
+    for side in [Side::Left, Side::Right] {
+        let fore = &labels.parts[one(&labels, Label::Leg, Some(side), Some(LimbPair::Fore))];
+        let hind = &labels.parts[one(&labels, Label::Leg, Some(side), Some(LimbPair::Hind))];
+        let sign = if side == Side::Left { 1.0 } else { -1.0 };
+        assert!(
+            fore.distal.x * sign > 0.1,
+            "{side:?} fore {:?}",
+            fore.distal
+        );
+        assert!(
+            fore.distal.z > 0.3 && fore.distal.y > 0.5,
+            "{:?}",
+            fore.distal
+        );
+        assert!(hind.distal.y < 0.3, "{side:?} hind {:?}", hind.distal);
+    }
+    assert_eq!(labels.count(Label::Head), 1, "{:?}", parts(&labels));
+    assert_eq!(labels.count(Label::Tail), 1, "{:?}", parts(&labels));
+
+    // The heart at the hips: the arms branch off the head's section (the raptor's case), and
+    // the trunk is carried on to where they leave it.
+    let arm = |x: f64| {
+        limb(
+            DVec3::new(0.12 * x, 1.1, 0.4),
+            DVec3::new(0.25 * x, 0.85, 0.55),
+            0.05,
+        )
+    };
+    let mesh = long_necked_biped_with(&[arm(1.0), arm(-1.0)]);
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
+    for side in [Side::Left, Side::Right] {
+        let fore = &labels.parts[one(&labels, Label::Leg, Some(side), Some(LimbPair::Fore))];
+        let sign = if side == Side::Left { 1.0 } else { -1.0 };
+        assert!(
+            fore.distal.x * sign > 0.1,
+            "{side:?} fore {:?}",
+            fore.distal
+        );
+        assert!((0.3..0.7).contains(&fore.distal.z), "{:?}", fore.distal);
+    }
+    let head = &labels.parts[one(&labels, Label::Head, None, None)];
+    assert!(head.distal.z > 1.2, "{:?}", head.distal);
+    let mesh = long_necked_biped_with(&[arm(-1.0)]);
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
+    assert!(labels
+        .parts
+        .iter()
+        .all(|p| p.limb_pair != Some(LimbPair::Fore)));
+
+    // One arm only: a bump, not a limb pair.
+    let mesh = biped_with(&[short_arm(1.0)]);
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
+    assert_eq!(labels.count(Label::Leg), 2, "{:?}", parts(&labels));
+    assert!(labels
+        .parts
+        .iter()
+        .all(|p| p.limb_pair != Some(LimbPair::Fore)));
+
+    // A winged biped's fore limbs are its wings: no third limb pair.
+    let wing = |x: f64| {
+        Mesh::cuboid(
+            DVec3::new(if x > 0.0 { 0.1 } else { -1.1 }, 0.96, -0.2),
+            DVec3::new(if x > 0.0 { 1.1 } else { -0.1 }, 1.04, 0.3),
+        )
+    };
+    let mesh = biped_with(&[wing(1.0), wing(-1.0), short_arm(1.0), short_arm(-1.0)]);
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
+    assert_eq!(labels.count(Label::Wing), 2, "{:?}", parts(&labels));
+    assert_eq!(labels.count(Label::Leg), 2, "{:?}", parts(&labels));
+
+    // Ears rising from the head mirror each other too, but they are not limbs.
+    let ear = |x: f64| {
+        limb(
+            DVec3::new(0.1 * x, 1.6, 1.05),
+            DVec3::new(0.2 * x, 1.9, 1.0),
+            0.05,
+        )
+    };
+    let mesh = biped_with(&[ear(1.0), ear(-1.0)]);
+    let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
+    assert_eq!(labels.count(Label::Leg), 2, "{:?}", parts(&labels));
+    assert!(labels
+        .parts
+        .iter()
+        .all(|p| p.limb_pair != Some(LimbPair::Fore)));
+}
+
+/// Issue 21 on the reference dinosaurs: the velociraptor's short arms branch off the head's
+/// section (its heart lies at the hips), the T-rex's leave the trunk as sections too short for
+/// the arm rule; both are now the fore leg pair, held above the ground ahead of the hind legs.
+/// Before: trunk, head, tail and two hind legs only (label weight share 70.0 % and 78.3 %).
+#[test]
+fn the_dinosaurs_short_arms_are_their_fore_legs() {
+    for model in ["other/quaternius_velociraptor", "other/quaternius_trex"] {
+        let Some(dir) = common::model(model) else {
+            return;
+        };
+        let (_, labels) = labelled(&dir, &LabelOptions::default());
+        for side in [Side::Left, Side::Right] {
+            let fore = &labels.parts[one(&labels, Label::Leg, Some(side), Some(LimbPair::Fore))];
+            let hind = &labels.parts[one(&labels, Label::Leg, Some(side), Some(LimbPair::Hind))];
+            assert!(
+                fore.distal.z > hind.distal.z && fore.distal.y > 0.5 * hind.attachment.y,
+                "{model} {side:?}: fore {:?} hind {:?}",
+                fore.distal,
+                hind.distal
+            );
+        }
+    }
+}

@@ -1176,3 +1176,64 @@ fn a_thin_tail_is_followed_past_its_medial_surface_to_its_tip() {
     );
     assert!(tail_end.x.abs() < 2.0 * grid.voxel_size, "{tail_end:?}");
 }
+
+/// Issue 21: a biped's short arms, once labelled as its fore-limb pair, get the quadruped
+/// template's fore-leg chain (scapula, shoulder, elbow, wrist on each side) and the skin of the
+/// hands moves with it. Before, the arms were trunk: no fore-leg joints, the hands weighted to
+/// the spine.
+#[test]
+fn a_bipeds_short_arms_get_a_fore_leg_chain_with_weights() {
+    let mesh = crate::anatomy::short_armed_biped();
+    let r = rig(&mesh, &RigOptions::default()).unwrap();
+    let keys = [
+        "shoulder_L",
+        "elbow_L",
+        "wrist_L",
+        "shoulder_R",
+        "elbow_R",
+        "wrist_R",
+    ];
+    assert_keys("short-armed biped", &r, &keys);
+    assert_skin("short-armed biped", &mesh, &r);
+    let skeleton = &r.fit.skeleton;
+    for (side, sign) in [("L", 1.0), ("R", -1.0)] {
+        let shoulder = r.fit.canonical[format!("shoulder_{side}").as_str()];
+        let wrist = skeleton
+            .joint(r.fit.canonical[format!("wrist_{side}").as_str()])
+            .position;
+        assert!(
+            wrist.x * sign > 0.1 && wrist.z > 0.35 && wrist.y > 0.55,
+            "wrist_{side} {wrist:?}"
+        );
+        // The shoulder's chain: every joint below it.
+        let mut chain = vec![shoulder];
+        let mut k = 0;
+        while k < chain.len() {
+            chain.extend(skeleton.children(chain[k]));
+            k += 1;
+        }
+        // The hand's skin (the arm's last quarter) mostly follows the chain.
+        let hand: Vec<usize> = (0..mesh.positions.len())
+            .filter(|&v| {
+                let p = mesh.positions[v];
+                p.x * sign > 0.22 && p.z > 0.52 && p.y < 0.8
+            })
+            .collect();
+        assert!(!hand.is_empty());
+        let on_chain: f64 = hand
+            .iter()
+            .map(|&v| {
+                r.skin.weights[v]
+                    .iter()
+                    .filter(|(j, _)| chain.contains(j))
+                    .map(|(_, w)| w)
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+            / hand.len() as f64;
+        assert!(
+            on_chain > 0.8,
+            "{side}: hand weight on the fore leg {on_chain}"
+        );
+    }
+}
