@@ -241,10 +241,10 @@ fn own_lanes(own: &Cell, keep: f32, share: f32, others: &[&Cell]) -> Option<Cell
     };
     if sum > 0.0 && sum.is_finite() {
         let mut used = 0;
-        for lane in 0..KEPT {
-            if reduced[lane] > 0.0 {
-                cell.joints[used] = own.joints[lane];
-                cell.weights[used] = reduced[lane] / sum;
+        for (&joint, &w) in own.joints.iter().zip(&reduced) {
+            if w > 0.0 {
+                cell.joints[used] = joint;
+                cell.weights[used] = w / sum;
                 used += 1;
             }
         }
