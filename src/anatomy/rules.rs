@@ -149,7 +149,7 @@ fn reaches_like_an_arm(section: &Section, frame: &Frame) -> bool {
 ///
 /// An animal standing on one leg pair whose short fore limbs branch off the head's section
 /// (the heart at the hips ends the trunk there) is labelled again with the trunk carried on to
-/// where they branch ([`chest_junction`]); the second labelling is kept when it finds them.
+/// where they branch (`fore_limbs::chest_junction`); the second labelling is kept when it finds them.
 pub fn label_graph(
     graph: &LevelGraph,
     surface: &MedialSurface,
