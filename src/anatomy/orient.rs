@@ -9,9 +9,7 @@
 //! at once when the figure is complete and standing, or stands on a pair of legs hanging
 //! within 45° of vertical, under it; otherwise every axis is scored and the best
 //! complete one wins, unless the opposite direction is complete too (a figure standing either way
-//! up, legs sprawling from a flat body, has no up to find; but a human-like figure whole under
-//! both +Z and -Z, whose big ears hang like legs upside down, is read +Z up, as files are
-//! written) or its legs hang less plumb than the
+//! up, legs sprawling from a flat body, has no up to find) or its legs hang less plumb than the
 //! legs labelled under +Y do (an insect standing under +Y on one leg the labels found). When no axis gives a complete
 //! standing figure, +Y stays, with a warning.
 
@@ -66,8 +64,6 @@ pub struct UpScore {
     pub hanging: f64,
     /// The score: parts found, completeness and hanging legs.
     pub score: f64,
-    /// Whether the labels read the figure as human-like (upright, two legs).
-    pub human_like: bool,
 }
 
 /// The up direction chosen by [`find_up`] and why.
@@ -151,7 +147,6 @@ fn score(draft: &Draft, up: DVec3, name: &'static str) -> UpScore {
         standing,
         hanging,
         score,
-        human_like: draft.figure == FigureClass::HumanLike,
     }
 }
 
@@ -222,27 +217,12 @@ pub(super) fn find_up_in(
             .unwrap_or(std::cmp::Ordering::Equal)
             .then(a.cmp(&b))
     });
-    // A human-like figure that labels whole both ways up along Z (a stylised figure with big
-    // ears or a crest, which hang like legs when it stands on its head) is read the way files
-    // are written: +Z up, the convention of Blender, CAD tools and scanners (no tool writes
-    // -Z up), as +Y is kept at once above.
-    if let Some(at) = order.iter().position(|&o| scores[o].up == DVec3::Z) {
-        let z = &scores[at];
-        let down = scores.iter().find(|s| s.up == DVec3::NEG_Z);
-        if z.complete && z.human_like && down.is_some_and(|d| d.complete && d.human_like) {
-            let first = order.remove(at);
-            order.insert(0, first);
-        }
-    }
-    let conventional = |best: &UpScore, other: &UpScore| {
-        best.up == DVec3::Z && other.up == DVec3::NEG_Z && best.human_like && other.human_like
-    };
     // A figure that stands either way up (legs sprawling from a flat body, a spider) has no
-    // up to find, but for the Z-up convention above.
+    // up to find.
     let flips = |best: &UpScore| {
         scores
             .iter()
-            .any(|s| s.complete && s.up.dot(best.up) < -0.5 && !conventional(best, s))
+            .any(|s| s.complete && s.up.dot(best.up) < -0.5)
     };
     // Leaving the glTF convention needs legs that hang at least as plumb under the new up as
     // the labelled legs do under +Y (less PLUMB_MARGIN): an insect whose one labelled leg hangs

@@ -961,37 +961,6 @@ fn quadrupeds_with_reference_ears_get_ears() {
     }
 }
 
-/// A stylised human-like figure with big ears (the platformer bunny of `../shared/refdata`)
-/// labels whole both ways up along Z: upside down its ears hang like legs. Turned Z-up, it is
-/// read the way files are written, +Z up, and rigs as a humanoid instead of falling back to
-/// +Y and the general skeleton.
-#[test]
-fn a_z_up_figure_whole_either_way_up_is_read_z_up() {
-    let Some(root) = common::refdata() else {
-        return;
-    };
-    let path = root.join("humanoid/quaternius_platformer_character/mesh.obj");
-    if !path.exists() {
-        eprintln!("skipped: {} is missing", path.display());
-        return;
-    }
-    let mut mesh = load(&path).unwrap();
-    let turn = glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z);
-    for p in &mut mesh.positions {
-        *p = turn * *p;
-    }
-    let found = rig(&mesh, &RigOptions::default()).unwrap();
-    let choice = found.labelling.up_found.as_ref().expect("up was found");
-    assert!(choice.up.distance(DVec3::Z) < 1e-9, "{choice:?}");
-    for key in ["pelvis", "head", "wrist_L", "wrist_R", "ankle_L", "ankle_R"] {
-        assert!(
-            found.fit.canonical.contains_key(key),
-            "no {key}: {:?}",
-            found.warnings
-        );
-    }
-}
-
 /// The bundled body and horse turned Z-up (as Blender and CAD tools write them) rig with no
 /// orientation given: up is found (+Z), forward follows Blender's convention (-Y), and the
 /// joints match the Y-up rig's turned the same way.
