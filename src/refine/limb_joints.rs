@@ -20,6 +20,18 @@ pub fn arc_near(profile: &LimbProfile, p: DVec3) -> f64 {
         .map_or(0.0, |s| s.arc)
 }
 
+/// Whether the trace `profile` reaches out from `root` as far as the rough joint `p`, less
+/// `slack` (mesh units): whether a slice's centre lies at least `|p - root| - slack` from
+/// `root`. Measured as a distance from the limb's root, not to `p`, so a rough joint off the
+/// limb's axis (in the top of a big hand) still counts as reached by a trace along the limb.
+pub fn reaches(profile: &LimbProfile, root: DVec3, p: DVec3, slack: f64) -> bool {
+    let needed = root.distance(p) - slack;
+    profile
+        .slices
+        .iter()
+        .any(|s| s.centre.distance(root) >= needed)
+}
+
 /// The ankle: the point of maximal curvature on the lower part of the leg's centroid curve,
 /// beyond `from` (arc length). Curvature is the turning angle between the chords `window`
 /// behind and ahead, divided by the window. `None` when the curve has no part that far.
