@@ -487,3 +487,58 @@ fn digits(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fit::options::BendSnap;
+
+    /// A limb path of voxel centres (0.01 apart) along x from 0 to 0.6, its end `from` 0.3 on
+    /// lifted by `lift` per voxel (a straight step: a corner of that slope) after a sideways
+    /// jog of `jog` there.
+    fn path(jog: f64, lift: f64) -> Polyline {
+        Polyline::new(
+            (0..=60)
+                .map(|i| {
+                    let x = i as f64 * 0.01;
+                    let beyond = (x - 0.3).max(0.0);
+                    let y = if i >= 30 { jog } else { 0.0 } + beyond * lift;
+                    DVec3::new(x.min(0.3) + beyond / (1.0 + lift * lift).sqrt(), y, 0.0)
+                })
+                .collect(),
+        )
+    }
+
+    /// Snaps the middle joint of a root–middle–tip chain placed at 0.27 of the path.
+    fn snapped(path: &Polyline) -> f64 {
+        let length = path.length();
+        let mut chain = vec![Some(path.at(0.0)), Some(path.at(0.27)), Some(path.at(length))];
+        let mut chain_s = vec![Some(0.0), Some(0.27), Some(length)];
+        let bend = BendSnap {
+            window: 0.15,
+            stencil: 0.06,
+            min_angle: 20.0,
+        };
+        snap_to_bends(path, &mut chain, &mut chain_s, 0.0, length, &bend);
+        chain_s[1].unwrap()
+    }
+
+    /// Regression (quaternius_cyberpunk_character turned Z-up): a straight limb whose centred
+    /// voxel path jogs sideways by a voxel and a half turns 23 degrees over the 0.036 stencil,
+    /// which moved its joint onto the jog; over twice the stencil it turns 12 and the joint
+    /// stays. A real bend (45 degrees) turns as much over both and still takes the joint.
+    #[test]
+    fn a_voxel_jog_of_a_straight_limb_is_no_bend_but_a_corner_is() {
+        let jogged = path(0.015, 0.0);
+        let h = 0.06 * jogged.length();
+        let at_jog = (0..=60)
+            .map(|i| turn_over(&jogged, 0.25 + i as f64 * 0.001, h))
+            .fold(0.0, f64::max);
+        assert!(at_jog > 20.0, "the short stencil sees a bend: {at_jog}");
+        assert_eq!(snapped(&jogged), 0.27, "a jog moved the joint");
+        let bent = path(0.0, 1.0);
+        let s = snapped(&bent);
+        assert!((s - 0.3).abs() < 0.01, "the corner at 0.3 takes the joint: {s}");
+        assert!(bend_turn(&bent, 0.3, h) > 40.0);
+    }
+}

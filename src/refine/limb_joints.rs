@@ -445,4 +445,17 @@ mod tests {
         let w = wrist(&profile, 0.0, 0.25).unwrap();
         assert!((20.0..26.0).contains(&w.x), "wrist at {w}");
     }
+
+    /// A trace along the arm reaches a rough joint off its axis (in the top of a big hand) as
+    /// far out from the root, but not one beyond its end by more than the slack: a trace
+    /// stopped short at a seam between a jointed figure's pieces.
+    #[test]
+    fn a_trace_reaches_joints_as_far_out_as_its_end_only() {
+        let profile = arm(|_| (4.0, 4.0));
+        let root = DVec3::ZERO;
+        assert!(reaches(&profile, root, DVec3::new(38.0, 8.0, 0.0), 0.0));
+        assert!(reaches(&profile, root, DVec3::new(45.0, 0.0, 0.0), 6.0));
+        assert!(!reaches(&profile, root, DVec3::new(45.0, 0.0, 0.0), 4.0));
+        assert!(!reaches(&profile, root, DVec3::new(0.0, 60.0, 0.0), 10.0));
+    }
 }

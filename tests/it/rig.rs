@@ -1237,3 +1237,34 @@ fn a_bipeds_short_arms_get_a_fore_leg_chain_with_weights() {
         );
     }
 }
+
+/// A jointed figure's arms (quaternius_cyberpunk_character: rigid pieces with a ball at each
+/// joint) turned Z-up: a sub-voxel change of the grid had a straight arm's voxel path jog snap
+/// the rough wrist a fifth of the arm inward, and the sphere trace, stopped at a seam between
+/// pieces near the shoulder, gave elbow and wrist points that took the wrong balls (wrists
+/// 10 %, elbows 8 % of the height off the Y-up rig). Elbows and wrists now match the Y-up
+/// rig's within 5 % of the height.
+#[test]
+fn a_jointed_figures_arms_turned_z_up_match_the_y_up_rig() {
+    let Some(dir) = common::model("humanoid/quaternius_cyberpunk_character") else {
+        return;
+    };
+    let y_up = load(&dir.join("mesh.obj")).unwrap();
+    let turn = glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z);
+    let mut z_up = y_up.clone();
+    for p in &mut z_up.positions {
+        *p = turn * *p;
+    }
+    let reference = rig(&y_up, &RigOptions::default()).unwrap();
+    let found = rig(&z_up, &RigOptions::default()).unwrap();
+    let (lo, hi) = y_up.bounding_box().unwrap();
+    let height = hi.y - lo.y;
+    for key in ["elbow_L", "elbow_R", "wrist_L", "wrist_R"] {
+        let at = |r: &Rig| r.fit.canonical.get(key).map(|id| r.fit.skeleton.joints[id.0].position);
+        let (Some(p), Some(q)) = (at(&reference), at(&found)) else {
+            panic!("{key} missing");
+        };
+        let off = p.distance(turn.inverse() * q) / height;
+        assert!(off < 0.05, "{key} differs by {:.1} % of the height", 100.0 * off);
+    }
+}
