@@ -512,7 +512,11 @@ mod tests {
     /// Snaps the middle joint of a root–middle–tip chain placed at 0.27 of the path.
     fn snapped(path: &Polyline) -> f64 {
         let length = path.length();
-        let mut chain = vec![Some(path.at(0.0)), Some(path.at(0.27)), Some(path.at(length))];
+        let mut chain = vec![
+            Some(path.at(0.0)),
+            Some(path.at(0.27)),
+            Some(path.at(length)),
+        ];
         let mut chain_s = vec![Some(0.0), Some(0.27), Some(length)];
         let bend = BendSnap {
             window: 0.15,
@@ -538,7 +542,10 @@ mod tests {
         assert_eq!(snapped(&jogged), 0.27, "a jog moved the joint");
         let bent = path(0.0, 1.0);
         let s = snapped(&bent);
-        assert!((s - 0.3).abs() < 0.01, "the corner at 0.3 takes the joint: {s}");
+        assert!(
+            (s - 0.3).abs() < 0.01,
+            "the corner at 0.3 takes the joint: {s}"
+        );
         assert!(bend_turn(&bent, 0.3, h) > 40.0);
     }
 }
