@@ -65,7 +65,18 @@ pub(super) fn arm(
     if !reached(wr, el) {
         warnings.push(RefineWarning::TraceShort(Canonical::Wrist(side)));
     } else {
-        match wrist(&profile, se + options.wrist_search_from * (sw - se), step) {
+        // A forearm is shorter than the upper arm (0.146 and 0.186 of the height in Drillis
+        // and Contini's table), so the wrist lies within an upper arm's length of the elbow:
+        // a rough wrist that the fit's segmentation put far out in a big hand or fist (a
+        // sub-voxel change of the grid moved quaternius_platformer_character's, turned Z-up,
+        // past its wrist's narrowing) does not start the search beyond the real wrist.
+        let upper = se - arc_near(&profile, sh);
+        let forearm = if upper > 0.0 {
+            (sw - se).min(upper)
+        } else {
+            sw - se
+        };
+        match wrist(&profile, se + options.wrist_search_from * forearm, step) {
             Some(w) => {
                 found.insert(Canonical::Wrist(side), w);
             }

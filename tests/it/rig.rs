@@ -1304,3 +1304,42 @@ fn a_skirt_fold_beside_the_legs_is_no_leg_of_a_z_up_figure() {
         );
     }
 }
+
+/// A cartoon figure with big fists (quaternius_platformer_character) turned Z-up: the fit's
+/// rough wrist fell far out in the fist, and the wrist search, starting half that rough
+/// forearm beyond the elbow, began past the wrist's narrowing (wrists 10 % of the height off
+/// the Y-up rig). The search starts at most half an upper arm beyond the elbow: the wrists
+/// match the Y-up rig's within 3 % of the height.
+#[test]
+fn a_big_fists_rough_wrist_does_not_start_the_wrist_search_past_the_wrist() {
+    let Some(dir) = common::model("humanoid/quaternius_platformer_character") else {
+        return;
+    };
+    let y_up = load(&dir.join("mesh.obj")).unwrap();
+    let turn = glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z);
+    let mut z_up = y_up.clone();
+    for p in &mut z_up.positions {
+        *p = turn * *p;
+    }
+    let reference = rig(&y_up, &RigOptions::default()).unwrap();
+    let found = rig(&z_up, &RigOptions::default()).unwrap();
+    let (lo, hi) = y_up.bounding_box().unwrap();
+    let height = hi.y - lo.y;
+    for key in ["wrist_L", "wrist_R"] {
+        let at = |r: &Rig| {
+            r.fit
+                .canonical
+                .get(key)
+                .map(|id| r.fit.skeleton.joints[id.0].position)
+        };
+        let (Some(p), Some(q)) = (at(&reference), at(&found)) else {
+            panic!("{key} missing");
+        };
+        let off = p.distance(turn.inverse() * q) / height;
+        assert!(
+            off < 0.03,
+            "{key} differs by {:.1} % of the height",
+            100.0 * off
+        );
+    }
+}
