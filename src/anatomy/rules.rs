@@ -395,15 +395,12 @@ impl Rules<'_> {
             f64::INFINITY,
             &comparable_length,
         );
-        // A lateral section reaching down less than half as long as the shortest paired leg
-        // is a fold or stub beside the legs (a skirt's), not a leg: it stays unlabelled.
-        let shortest = pairs
-            .iter()
-            .flat_map(|&(a, b)| [a, b])
-            .map(|s| self.sections[s].length)
-            .fold(f64::INFINITY, f64::min);
-        if shortest.is_finite() {
-            single.retain(|&s| self.sections[s].length >= 0.5 * shortest);
+        // Beside a biped's one leg pair, a lateral section reaching down less than half as
+        // long as its shorter leg is a fold or stub (a skirt's at the hip), not a leg: it
+        // stays unlabelled. Figures of more leg pairs (spiders) keep their odd legs.
+        if let [(a, b)] = pairs[..] {
+            let shorter = self.sections[a].length.min(self.sections[b].length);
+            single.retain(|&s| self.sections[s].length >= 0.5 * shorter);
         }
         single.extend(median);
         pairs.sort_by(|x, y| {

@@ -1282,7 +1282,7 @@ fn a_jointed_figures_arms_turned_z_up_match_the_y_up_rig() {
 /// skirt at the hip reaches down beside the legs and, attached where the left leg is, was
 /// paired with it; the right leg stayed single, three legs made five limbs and the figure got
 /// the general skeleton with no canonical joints. Legs pair with a partner of comparable
-/// length first and a stub beside a leg pair is no leg: it rigs as a humanoid.
+/// length first and a stub beside a biped's leg pair is no leg: it rigs as a humanoid.
 #[test]
 fn a_skirt_fold_beside_the_legs_is_no_leg_of_a_z_up_figure() {
     let Some(dir) = common::model("humanoid/quaternius_women_formal") else {
