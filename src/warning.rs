@@ -316,6 +316,7 @@ fn refine_code(w: &RefineWarning) -> &'static str {
         RefineWarning::NoWrist(_) => "no_wrist",
         RefineWarning::NoArmpit(_) => "no_armpit",
         RefineWarning::NoElbow(_) => "no_elbow",
+        RefineWarning::TraceShort(_) => "trace_short",
         RefineWarning::NoTorsoSilhouette => "no_torso_silhouette",
         RefineWarning::NoHipSlice => "no_hip_slice",
         RefineWarning::CrotchHidden { .. } => "crotch_hidden",

@@ -52,13 +52,14 @@ pub struct Draft {
     pub warnings: Vec<AnatomyWarning>,
 }
 
-/// Greedy pairing of `items` (section indices) by attachment distance: the closest pair first.
-/// Returns the pairs and the unpaired items.
+/// Greedy pairing of `items` (section indices) by attachment distance: the closest pair first,
+/// the pairs `preferred` accepts before all others. Returns the pairs and the unpaired items.
 fn pair_up(
     items: &[usize],
     sections: &[Section],
     graph: &LevelGraph,
     max_distance: f64,
+    preferred: &dyn Fn(&Section, &Section) -> bool,
 ) -> (Vec<(usize, usize)>, Vec<usize>) {
     let mut candidates = Vec::new();
     for (i, &a) in items.iter().enumerate() {
@@ -69,18 +70,19 @@ fn pair_up(
                 .distance(graph.vertices[sb.attachment_vertex].centroid);
             let d2 = sa.attachment.distance(sb.attachment);
             if d <= max_distance {
-                candidates.push((d, d2, a, b));
+                candidates.push((!preferred(sa, sb), d, d2, a, b));
             }
         }
     }
     candidates.sort_by(|x, y| {
-        x.0.total_cmp(&y.0)
+        x.0.cmp(&y.0)
             .then(x.1.total_cmp(&y.1))
-            .then((x.2, x.3).cmp(&(y.2, y.3)))
+            .then(x.2.total_cmp(&y.2))
+            .then((x.3, x.4).cmp(&(y.3, y.4)))
     });
     let mut used = vec![false; sections.len()];
     let mut pairs = Vec::new();
-    for (_, _, a, b) in candidates {
+    for (_, _, _, a, b) in candidates {
         if !used[a] && !used[b] {
             used[a] = true;
             used[b] = true;
@@ -89,6 +91,17 @@ fn pair_up(
     }
     let rest = items.iter().copied().filter(|&i| !used[i]).collect();
     (pairs, rest)
+}
+
+/// Whether two sections are of comparable length, the shorter at least half the longer: the
+/// limbs of a pair mirror each other ([`mirrored`] asks the same).
+fn comparable_length(a: &Section, b: &Section) -> bool {
+    a.length.min(b.length) >= 0.5 * a.length.max(b.length)
+}
+
+/// Any two sections may pair.
+fn any_pair(_: &Section, _: &Section) -> bool {
+    true
 }
 
 /// Left/right of a pair: the one whose voxels lie farther along `left` is L.
@@ -119,7 +132,7 @@ fn mirrored(
         let b = &sections[t];
         let longer = a.length.max(b.length);
         let tolerance = longer / 3.0;
-        let comparable = a.length.min(b.length) >= 0.5 * longer;
+        let comparable = comparable_length(a, b);
         let reflected = b.mean - frame.left * (2.0 * offset(b.mean));
         t != s
             && comparable
@@ -375,7 +388,20 @@ impl Rules<'_> {
         let (median, lateral): (Vec<usize>, Vec<usize>) = legs.iter().partition(|&&s| {
             self.sections[s].extreme.backward && self.on_median_plane(s, &legs, centre)
         });
-        let (mut pairs, mut single) = pair_up(&lateral, self.sections, self.graph, f64::INFINITY);
+        let (mut pairs, mut single) = pair_up(
+            &lateral,
+            self.sections,
+            self.graph,
+            f64::INFINITY,
+            &comparable_length,
+        );
+        // Beside a biped's one leg pair, a lateral section reaching down less than half as
+        // long as its shorter leg is a fold or stub (a skirt's at the hip), not a leg: it
+        // stays unlabelled. Figures of more leg pairs (spiders) keep their odd legs.
+        if let [(a, b)] = pairs[..] {
+            let shorter = self.sections[a].length.min(self.sections[b].length);
+            single.retain(|&s| self.sections[s].length >= 0.5 * shorter);
+        }
         single.extend(median);
         pairs.sort_by(|x, y| {
             (self.anterior(y.0) + self.anterior(y.1))
@@ -426,7 +452,7 @@ impl Rules<'_> {
                     && self.sections[s].length >= options.limb_length * radius
             })
             .collect();
-        let (pairs, _) = pair_up(&wings, self.sections, self.graph, f64::INFINITY);
+        let (pairs, _) = pair_up(&wings, self.sections, self.graph, f64::INFINITY, &any_pair);
         for pair in pairs {
             self.label_pair(pair, Label::Wing, LimbPair::Fore);
         }
@@ -498,6 +524,7 @@ impl Rules<'_> {
             self.sections,
             self.graph,
             options.pair_distance * radius,
+            &any_pair,
         );
         // In a rest pose (T, A or arms down) arms reach sideways or down from the trunk, not
         // up or forward: with several candidate pairs, those that point up (ears, horns) or

@@ -257,7 +257,8 @@ fn wing_shift(
 
 /// Moves each inner chain joint (not the limb's root or tip) to the sharpest bend of the path
 /// within `bend.window * span` of its Table 8.1 place when that bend turns by at least
-/// `bend.min_angle` degrees; joints keep their order.
+/// `bend.min_angle` degrees, measured over the stencil and again over twice the stencil
+/// ([`bend_turn`]); joints keep their order.
 fn snap_to_bends(
     path: &Polyline,
     chain: &mut [Option<DVec3>],
@@ -272,15 +273,7 @@ fn snap_to_bends(
     if placed.len() < 3 || h <= 0.0 {
         return;
     }
-    let turn = |s: f64| {
-        let (a, b, c) = (path.at(s - h), path.at(s), path.at(s + h));
-        let (u, v) = (b - a, c - b);
-        if u.length() < 1e-12 || v.length() < 1e-12 {
-            0.0
-        } else {
-            u.angle_between(v).to_degrees()
-        }
-    };
+    let turn = |s: f64| turn_over(path, s, h);
     for w in 1..placed.len() - 1 {
         let k = placed[w];
         let (Some(s), Some(prev), Some(next)) =
@@ -299,12 +292,35 @@ fn snap_to_bends(
             .map(|i| lo + (hi - lo) * i as f64 / STEPS as f64)
             .map(|t| (turn(t), t))
             .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1)));
-        if let Some((angle, t)) = best.filter(|b| b.0 >= bend.min_angle) {
-            let _ = angle;
+        if let Some((_, t)) = best.filter(|&(_, t)| bend_turn(path, t, h) >= bend.min_angle) {
             chain[k] = Some(path.at(t));
             chain_s[k] = Some(t);
         }
     }
+}
+
+/// The turning angle (degrees) of `path` at arc length `s` between the chords `h` behind and
+/// ahead; 0 where a chord is degenerate.
+fn turn_over(path: &Polyline, s: f64, h: f64) -> f64 {
+    let (a, b, c) = (path.at(s - h), path.at(s), path.at(s + h));
+    let (u, v) = (b - a, c - b);
+    if u.length() < 1e-12 || v.length() < 1e-12 {
+        0.0
+    } else {
+        u.angle_between(v).to_degrees()
+    }
+}
+
+/// How far `path` bends at `s` as a limb joint: the smaller of the turns over the stencil `h`
+/// and over `2 h` ([`turn_over`]). A joint bends the limb's straight segments, so its turn is
+/// about the same over both chords; a wiggle of the medial path no longer than the stencil (a
+/// voxel's step of a straight limb's centred path, a piece's seam on a jointed figure) turns
+/// the short chords only, and measures about half as much over the long ones. The short turn
+/// alone moved a straight arm's wrist with a sub-voxel change of the grid's phase
+/// (quaternius_cyberpunk_character turned Z-up: the left wrist 0.454 from the centre instead
+/// of 0.553, the right one 0.564).
+fn bend_turn(path: &Polyline, s: f64, h: f64) -> f64 {
+    turn_over(path, s, h).min(turn_over(path, s, 2.0 * h))
 }
 
 /// The point nearest `target` on the straight line fitted (least squares, principal direction)
@@ -470,4 +486,66 @@ fn digits(
                 .collect()
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fit::options::BendSnap;
+
+    /// A limb path of voxel centres (0.01 apart) along x from 0 to 0.6, its end `from` 0.3 on
+    /// lifted by `lift` per voxel (a straight step: a corner of that slope) after a sideways
+    /// jog of `jog` there.
+    fn path(jog: f64, lift: f64) -> Polyline {
+        Polyline::new(
+            (0..=60)
+                .map(|i| {
+                    let x = i as f64 * 0.01;
+                    let beyond = (x - 0.3).max(0.0);
+                    let y = if i >= 30 { jog } else { 0.0 } + beyond * lift;
+                    DVec3::new(x.min(0.3) + beyond / (1.0 + lift * lift).sqrt(), y, 0.0)
+                })
+                .collect(),
+        )
+    }
+
+    /// Snaps the middle joint of a root–middle–tip chain placed at 0.27 of the path.
+    fn snapped(path: &Polyline) -> f64 {
+        let length = path.length();
+        let mut chain = vec![
+            Some(path.at(0.0)),
+            Some(path.at(0.27)),
+            Some(path.at(length)),
+        ];
+        let mut chain_s = vec![Some(0.0), Some(0.27), Some(length)];
+        let bend = BendSnap {
+            window: 0.15,
+            stencil: 0.06,
+            min_angle: 20.0,
+        };
+        snap_to_bends(path, &mut chain, &mut chain_s, 0.0, length, &bend);
+        chain_s[1].unwrap()
+    }
+
+    /// Regression (quaternius_cyberpunk_character turned Z-up): a straight limb whose centred
+    /// voxel path jogs sideways by a voxel and a half turns 23 degrees over the 0.036 stencil,
+    /// which moved its joint onto the jog; over twice the stencil it turns 12 and the joint
+    /// stays. A real bend (45 degrees) turns as much over both and still takes the joint.
+    #[test]
+    fn a_voxel_jog_of_a_straight_limb_is_no_bend_but_a_corner_is() {
+        let jogged = path(0.015, 0.0);
+        let h = 0.06 * jogged.length();
+        let at_jog = (0..=60)
+            .map(|i| turn_over(&jogged, 0.25 + i as f64 * 0.001, h))
+            .fold(0.0, f64::max);
+        assert!(at_jog > 20.0, "the short stencil sees a bend: {at_jog}");
+        assert_eq!(snapped(&jogged), 0.27, "a jog moved the joint");
+        let bent = path(0.0, 1.0);
+        let s = snapped(&bent);
+        assert!(
+            (s - 0.3).abs() < 0.01,
+            "the corner at 0.3 takes the joint: {s}"
+        );
+        assert!(bend_turn(&bent, 0.3, h) > 40.0);
+    }
 }

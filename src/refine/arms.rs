@@ -2,7 +2,7 @@
 
 use super::driver::{frame_point, Found, Rough, Scene};
 use super::limb::trace_limb;
-use super::limb_joints::{arc_near, bend, centre_in_depth, surface_above, wrist};
+use super::limb_joints::{arc_near, bend, centre_in_depth, reaches, surface_above, wrist};
 use super::shoulder::{armpit, off_axis, shoulder, upper_arm_line, upper_arm_radius};
 use super::RefineWarning;
 use crate::skeleton::{Canonical, Side};
@@ -14,6 +14,17 @@ const ARMPIT_LEVELS: [f64; 3] = [0.0, 0.2, 0.4];
 
 /// Lateral positions tried per side when searching the armpit.
 const ARMPIT_SAMPLES: usize = 120;
+
+/// The arm's trace must reach out from the rough shoulder to within this fraction of the
+/// segment ending at a rough joint (upper arm for the elbow, forearm for the wrist) for that
+/// joint to be searched on it. The wrist's search starts half a forearm before the rough
+/// wrist and the elbow's ratio window is a fifth of the arm, so a trace ending more than a
+/// quarter of the segment short of the joint (spheres stopped at the seams and voxel bridges
+/// between the separate pieces of a jointed figure, or seeded on a strap's loop) finds no
+/// joint there, and how far such a trace gets flips with a sub-voxel change of the grid
+/// (quaternius_cyberpunk_character Y-up or Z-up). The joint keeps its rough place, for the
+/// joint pieces to find its ball from.
+const TRACE_REACH: f64 = 0.25;
 
 /// Places the wrist, shoulder and elbow of `side` into `found`, or warns. `waist` is the height
 /// half-way between the rough hips and shoulders.
@@ -48,11 +59,29 @@ pub(super) fn arm(
     };
     let step = 0.25 * options.limb_step * height;
     let (se, sw) = (arc_near(&profile, el), arc_near(&profile, wr));
-    match wrist(&profile, se + options.wrist_search_from * (sw - se), step) {
-        Some(w) => {
-            found.insert(Canonical::Wrist(side), w);
+    let reached = |joint: DVec3, from: DVec3| {
+        reaches(&profile, sh, joint, TRACE_REACH * joint.distance(from))
+    };
+    if !reached(wr, el) {
+        warnings.push(RefineWarning::TraceShort(Canonical::Wrist(side)));
+    } else {
+        // A forearm is shorter than the upper arm (0.146 and 0.186 of the height in Drillis
+        // and Contini's table), so the wrist lies within an upper arm's length of the elbow:
+        // a rough wrist that the fit's segmentation put far out in a big hand or fist (a
+        // sub-voxel change of the grid moved quaternius_platformer_character's, turned Z-up,
+        // past its wrist's narrowing) does not start the search beyond the real wrist.
+        let upper = se - arc_near(&profile, sh);
+        let forearm = if upper > 0.0 {
+            (sw - se).min(upper)
+        } else {
+            sw - se
+        };
+        match wrist(&profile, se + options.wrist_search_from * forearm, step) {
+            Some(w) => {
+                found.insert(Canonical::Wrist(side), w);
+            }
+            None => warnings.push(RefineWarning::NoWrist(side)),
         }
-        None => warnings.push(RefineWarning::NoWrist(side)),
     }
     let shoulder_point = waist.and_then(|w| {
         let outer = (el - centre).dot(frame.left) * sign;
@@ -109,6 +138,10 @@ pub(super) fn arm(
     }
     let proximal = found.get(&Canonical::Shoulder(side)).copied().unwrap_or(sh);
     let distal = found.get(&Canonical::Wrist(side)).copied().unwrap_or(wr);
+    if !reached(el, sh) {
+        warnings.push(RefineWarning::TraceShort(Canonical::Elbow(side)));
+        return;
+    }
     match bend(&profile, proximal, distal, options.arm_ratio, step, options) {
         Some((e, _)) => {
             found.insert(Canonical::Elbow(side), e);

@@ -20,6 +20,18 @@ pub fn arc_near(profile: &LimbProfile, p: DVec3) -> f64 {
         .map_or(0.0, |s| s.arc)
 }
 
+/// Whether the trace `profile` reaches out from `root` as far as the rough joint `p`, less
+/// `slack` (mesh units): whether a slice's centre lies at least `|p - root| - slack` from
+/// `root`. Measured as a distance from the limb's root, not to `p`, so a rough joint off the
+/// limb's axis (in the top of a big hand) still counts as reached by a trace along the limb.
+pub fn reaches(profile: &LimbProfile, root: DVec3, p: DVec3, slack: f64) -> bool {
+    let needed = root.distance(p) - slack;
+    profile
+        .slices
+        .iter()
+        .any(|s| s.centre.distance(root) >= needed)
+}
+
 /// The ankle: the point of maximal curvature on the lower part of the leg's centroid curve,
 /// beyond `from` (arc length). Curvature is the turning angle between the chords `window`
 /// behind and ahead, divided by the window. `None` when the curve has no part that far.
@@ -432,5 +444,18 @@ mod tests {
         });
         let w = wrist(&profile, 0.0, 0.25).unwrap();
         assert!((20.0..26.0).contains(&w.x), "wrist at {w}");
+    }
+
+    /// A trace along the arm reaches a rough joint off its axis (in the top of a big hand) as
+    /// far out from the root, but not one beyond its end by more than the slack: a trace
+    /// stopped short at a seam between a jointed figure's pieces.
+    #[test]
+    fn a_trace_reaches_joints_as_far_out_as_its_end_only() {
+        let profile = arm(|_| (4.0, 4.0));
+        let root = DVec3::ZERO;
+        assert!(reaches(&profile, root, DVec3::new(38.0, 8.0, 0.0), 0.0));
+        assert!(reaches(&profile, root, DVec3::new(45.0, 0.0, 0.0), 6.0));
+        assert!(!reaches(&profile, root, DVec3::new(45.0, 0.0, 0.0), 4.0));
+        assert!(!reaches(&profile, root, DVec3::new(0.0, 60.0, 0.0), 10.0));
     }
 }

@@ -147,7 +147,8 @@ pub struct RefineOptions {
     /// in front of CesiumMan's (measurement); on the shin's axis they are 0-4 and 22-24 mm off.
     pub ankle_on_shin_axis: bool,
     /// The wrist is searched on the part of the arm curve beyond this fraction of the rough
-    /// elbow-wrist segment. Default 0.5.
+    /// elbow-wrist segment (at most of the rough shoulder-elbow one: a forearm is shorter than
+    /// the upper arm). Default 0.5.
     pub wrist_search_from: f64,
     /// Curvature on the leg's centroid curve is measured over this arc-length window, fraction
     /// of height. Default 0.03 (5 cm).

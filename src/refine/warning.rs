@@ -25,6 +25,10 @@ pub enum RefineWarning {
     NoArmpit(Side),
     /// No elbow on this side's centroid curve.
     NoElbow(Side),
+    /// The limb's slices stop short of this rough joint or run beside it (a sphere stopped
+    /// at a seam or a bridge between separate pieces, a strap's loop): it was not searched
+    /// there and keeps its rough place (unless a joint piece places it).
+    TraceShort(Canonical),
     /// No torso silhouette in the median plane.
     NoTorsoSilhouette,
     /// No transverse slice at hip height.
@@ -90,6 +94,7 @@ impl RefineWarning {
             Self::NoWrist(s) => vec![C::Wrist(s)],
             Self::NoArmpit(s) => vec![C::Shoulder(s)],
             Self::NoElbow(s) => vec![C::Elbow(s)],
+            Self::TraceShort(key) => vec![key],
             Self::NoTorsoSilhouette => vec![C::Neck],
             Self::NoHipSlice => vec![C::Hip(Side::Left), C::Hip(Side::Right), C::Pelvis],
             Self::CrotchHidden { placed: true } => Vec::new(),
@@ -153,6 +158,10 @@ impl fmt::Display for RefineWarning {
                 C::Shoulder(*s)
             ),
             Self::NoElbow(s) => write!(f, "{}: no elbow on the arm's centroid curve", C::Elbow(*s)),
+            Self::TraceShort(key) => write!(
+                f,
+                "{key}: the limb's slices do not reach it; it keeps its rough place"
+            ),
             Self::NoTorsoSilhouette => write!(
                 f,
                 "neck: no torso silhouette in the median plane (torso not upright?)"
