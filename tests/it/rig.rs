@@ -1274,7 +1274,7 @@ fn a_skirt_fold_beside_the_legs_is_no_leg_of_a_z_up_figure() {
     }
 }
 
-/// A cartoon figure with big fists (quaternius_platformer_character) turned Z-up: the fit's
+/// A cartoon figure with big fists (quaternius_platformer_character) turned Z-up (up given): the fit's
 /// rough wrist fell far out in the fist, and the wrist search, starting half that rough
 /// forearm beyond the elbow, began past the wrist's narrowing (wrists 10 % of the height off
 /// the Y-up rig). The search starts at most half an upper arm beyond the elbow: the wrists
@@ -1291,7 +1291,17 @@ fn a_big_fists_rough_wrist_does_not_start_the_wrist_search_past_the_wrist() {
         *p = turn * *p;
     }
     let reference = rig(&y_up, &RigOptions::default()).unwrap();
-    let found = rig(&z_up, &RigOptions::default()).unwrap();
+    // Up given (`--up +Z --forward -Y`): this bunny stands whole either way up along Z (its
+    // big ears hang like legs upside down), so the automatic up keeps +Y.
+    let given = RigOptions {
+        label: skelfit::anatomy::LabelOptions {
+            up: skelfit::anatomy::Up::Direction(DVec3::Z),
+            forward: skelfit::anatomy::Forward::Direction(DVec3::NEG_Y),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let found = rig(&z_up, &given).unwrap();
     let (lo, hi) = y_up.bounding_box().unwrap();
     let height = hi.y - lo.y;
     for key in ["wrist_L", "wrist_R"] {
