@@ -961,12 +961,54 @@ fn quadrupeds_with_reference_ears_get_ears() {
     }
 }
 
+/// Blender's turn of a Y-up figure to Z-up (+Y to +Z, +Z forward to -Y).
+fn z_up_turn() -> glam::DQuat {
+    glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z)
+}
+
+/// `mesh` turned Z-up by [`z_up_turn`].
+fn turned_z_up(mesh: &Mesh) -> Mesh {
+    let turn = z_up_turn();
+    let mut z_up = mesh.clone();
+    for p in &mut z_up.positions {
+        *p = turn * *p;
+    }
+    z_up
+}
+
+/// Per key, how far (fraction of the height) the joint of `y_up`'s rig (default options) lies
+/// from the same joint of its Z-up turn rigged with `options`, turned back; panics naming a key
+/// either rig lacks.
+fn z_up_offsets(y_up: &Mesh, options: &RigOptions, keys: &[&str]) -> Vec<(String, f64)> {
+    let reference = rig(y_up, &RigOptions::default()).unwrap();
+    let found = rig(&turned_z_up(y_up), options).unwrap();
+    let (lo, hi) = y_up.bounding_box().unwrap();
+    let height = hi.y - lo.y;
+    let at = |r: &Rig, key: &str| {
+        r.fit
+            .canonical
+            .get(key)
+            .map(|id| r.fit.skeleton.joints[id.0].position)
+    };
+    keys.iter()
+        .map(|&key| {
+            let (Some(p), Some(q)) = (at(&reference, key), at(&found, key)) else {
+                panic!("{key} missing");
+            };
+            (
+                key.to_string(),
+                p.distance(z_up_turn().inverse() * q) / height,
+            )
+        })
+        .collect()
+}
+
 /// The bundled body and horse turned Z-up (as Blender and CAD tools write them) rig with no
 /// orientation given: up is found (+Z), forward follows Blender's convention (-Y), and the
 /// joints match the Y-up rig's turned the same way.
 #[test]
 fn z_up_copies_rig_without_orientation_flags_like_the_y_up_files() {
-    let turn = glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z);
+    let turn = z_up_turn();
     for dir in [
         "data/humanoid/mh_neutral_default",
         "data/quadruped/quaternius_horse",
@@ -977,10 +1019,7 @@ fn z_up_copies_rig_without_orientation_flags_like_the_y_up_files() {
                 .join("mesh.obj"),
         )
         .unwrap();
-        let mut z_up = y_up.clone();
-        for p in &mut z_up.positions {
-            *p = turn * *p;
-        }
+        let z_up = turned_z_up(&y_up);
         let explicit = RigOptions {
             label: skelfit::anatomy::LabelOptions {
                 up: skelfit::anatomy::Up::Direction(DVec3::Y),
@@ -1219,26 +1258,8 @@ fn a_jointed_figures_arms_turned_z_up_match_the_y_up_rig() {
         return;
     };
     let y_up = load(&dir.join("mesh.obj")).unwrap();
-    let turn = glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z);
-    let mut z_up = y_up.clone();
-    for p in &mut z_up.positions {
-        *p = turn * *p;
-    }
-    let reference = rig(&y_up, &RigOptions::default()).unwrap();
-    let found = rig(&z_up, &RigOptions::default()).unwrap();
-    let (lo, hi) = y_up.bounding_box().unwrap();
-    let height = hi.y - lo.y;
-    for key in ["elbow_L", "elbow_R", "wrist_L", "wrist_R"] {
-        let at = |r: &Rig| {
-            r.fit
-                .canonical
-                .get(key)
-                .map(|id| r.fit.skeleton.joints[id.0].position)
-        };
-        let (Some(p), Some(q)) = (at(&reference), at(&found)) else {
-            panic!("{key} missing");
-        };
-        let off = p.distance(turn.inverse() * q) / height;
+    let keys = ["elbow_L", "elbow_R", "wrist_L", "wrist_R"];
+    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &keys) {
         assert!(
             off < 0.05,
             "{key} differs by {:.1} % of the height",
@@ -1257,11 +1278,7 @@ fn a_skirt_fold_beside_the_legs_is_no_leg_of_a_z_up_figure() {
     let Some(dir) = common::model("humanoid/quaternius_women_formal") else {
         return;
     };
-    let mut mesh = load(&dir.join("mesh.obj")).unwrap();
-    let turn = glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z);
-    for p in &mut mesh.positions {
-        *p = turn * *p;
-    }
+    let mesh = turned_z_up(&load(&dir.join("mesh.obj")).unwrap());
     let found = rig(&mesh, &RigOptions::default()).unwrap();
     for key in [
         "pelvis", "knee_L", "knee_R", "ankle_L", "ankle_R", "wrist_L", "wrist_R",
@@ -1285,12 +1302,6 @@ fn a_big_fists_rough_wrist_does_not_start_the_wrist_search_past_the_wrist() {
         return;
     };
     let y_up = load(&dir.join("mesh.obj")).unwrap();
-    let turn = glam::DQuat::from_rotation_arc(DVec3::Y, DVec3::Z);
-    let mut z_up = y_up.clone();
-    for p in &mut z_up.positions {
-        *p = turn * *p;
-    }
-    let reference = rig(&y_up, &RigOptions::default()).unwrap();
     // Up given (`--up +Z --forward -Y`): this bunny stands whole either way up along Z (its
     // big ears hang like legs upside down), so the automatic up keeps +Y.
     let given = RigOptions {
@@ -1301,20 +1312,7 @@ fn a_big_fists_rough_wrist_does_not_start_the_wrist_search_past_the_wrist() {
         },
         ..Default::default()
     };
-    let found = rig(&z_up, &given).unwrap();
-    let (lo, hi) = y_up.bounding_box().unwrap();
-    let height = hi.y - lo.y;
-    for key in ["wrist_L", "wrist_R"] {
-        let at = |r: &Rig| {
-            r.fit
-                .canonical
-                .get(key)
-                .map(|id| r.fit.skeleton.joints[id.0].position)
-        };
-        let (Some(p), Some(q)) = (at(&reference), at(&found)) else {
-            panic!("{key} missing");
-        };
-        let off = p.distance(turn.inverse() * q) / height;
+    for (key, off) in z_up_offsets(&y_up, &given, &["wrist_L", "wrist_R"]) {
         assert!(
             off < 0.03,
             "{key} differs by {:.1} % of the height",
