@@ -871,6 +871,18 @@ pub(crate) fn short_armed_biped() -> Mesh {
 /// Issue 21: a raptor's short arms were merged into the trunk ("no front limb pair"), being
 /// shorter than the arm rule's length. A mirror-symmetric pair ahead of the hind legs is the
 /// fore-limb pair however short; a single bump or a pair rising from the head (ears) is not.
+/// Fails when any part of `labels` is a fore limb.
+fn assert_no_fore_pair(labels: &Labelling) {
+    assert!(
+        labels
+            .parts
+            .iter()
+            .all(|p| p.limb_pair != Some(LimbPair::Fore)),
+        "{:?}",
+        parts(labels)
+    );
+}
+
 #[test]
 fn a_bipeds_short_arm_pair_is_its_fore_limb_pair() {
     let mesh = short_armed_biped();
@@ -920,19 +932,13 @@ fn a_bipeds_short_arm_pair_is_its_fore_limb_pair() {
     assert!(head.distal.z > 1.2, "{:?}", head.distal);
     let mesh = long_necked_biped_with(&[arm(-1.0)]);
     let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
-    assert!(labels
-        .parts
-        .iter()
-        .all(|p| p.limb_pair != Some(LimbPair::Fore)));
+    assert_no_fore_pair(&labels);
 
     // One arm only: a bump, not a limb pair.
     let mesh = biped_with(&[short_arm(1.0)]);
     let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
     assert_eq!(labels.count(Label::Leg), 2, "{:?}", parts(&labels));
-    assert!(labels
-        .parts
-        .iter()
-        .all(|p| p.limb_pair != Some(LimbPair::Fore)));
+    assert_no_fore_pair(&labels);
 
     // A winged biped's fore limbs are its wings: no third limb pair.
     let wing = |x: f64| {
@@ -957,10 +963,7 @@ fn a_bipeds_short_arm_pair_is_its_fore_limb_pair() {
     let mesh = biped_with(&[ear(1.0), ear(-1.0)]);
     let labels = label(&mesh, &LabelPipelineOptions::default()).unwrap();
     assert_eq!(labels.count(Label::Leg), 2, "{:?}", parts(&labels));
-    assert!(labels
-        .parts
-        .iter()
-        .all(|p| p.limb_pair != Some(LimbPair::Fore)));
+    assert_no_fore_pair(&labels);
 }
 
 /// Issue 21 on the reference dinosaurs: the velociraptor's short arms branch off the head's
