@@ -111,21 +111,7 @@ impl Mesh {
             sets.union(a, b);
             sets.union(b, c);
         }
-        let mut label = vec![u32::MAX; self.positions.len()];
-        let mut count = 0u32;
-        let components = self
-            .triangles
-            .iter()
-            .map(|tri| {
-                let root = sets.find(tri[0]) as usize;
-                if label[root] == u32::MAX {
-                    label[root] = count;
-                    count += 1;
-                }
-                label[root]
-            })
-            .collect();
-        (components, count as usize)
+        sets.numbered_at(self.triangles.iter().map(|tri| tri[0]))
     }
 
     /// Whether the mesh is one closed shell: triangles, every edge shared by exactly two of
@@ -208,10 +194,15 @@ impl DisjointSets {
     /// Each element's set numbered from 0 in the order of the sets' first elements, and the
     /// number of sets.
     pub fn numbered(&mut self) -> (Vec<u32>, usize) {
-        let n = self.parent.len();
-        let mut number = vec![u32::MAX; n];
+        self.numbered_at(0..self.parent.len() as u32)
+    }
+
+    /// The set of each of `elements`, numbered from 0 in the order the sets are first met
+    /// among them, and the number of sets met.
+    pub fn numbered_at(&mut self, elements: impl Iterator<Item = u32>) -> (Vec<u32>, usize) {
+        let mut number = vec![u32::MAX; self.parent.len()];
         let mut next = 0u32;
-        let numbers = (0..n as u32)
+        let numbers = elements
             .map(|i| {
                 let root = self.find(i) as usize;
                 if number[root] == u32::MAX {
