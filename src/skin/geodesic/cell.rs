@@ -7,7 +7,7 @@
 //! [`diffuse`]: super::diffusion
 //! [`NEGLIGIBLE`]: super::NEGLIGIBLE
 
-use super::rows::{pruned, Row, KEPT, NONE};
+use super::rows::{pruned, ranks_before, Row, KEPT, NONE};
 
 /// The weights of one voxel during diffusion: at most [`KEPT`] joints, ascending, then
 /// [`NONE`] (weight 0).
@@ -193,10 +193,8 @@ fn own_lanes(own: &Cell, keep: f32, share: f32, others: &[&Cell]) -> Option<Cell
             }
         }
     }
-    // `pruned`'s order: larger weight first, then smaller joint.
-    let before = |(ja, wa): (u32, f32), (jb, wb): (u32, f32)| {
-        wa.total_cmp(&wb).reverse().then(ja.cmp(&jb)).is_lt()
-    };
+    // `pruned`'s order (`ranks_before`).
+    let before = ranks_before::<f32>;
     let largest_extra = (0..extras)
         .map(|e| (extra_joints[e], extra_weights[e]))
         .reduce(|a, b| if before(b, a) { b } else { a });

@@ -300,18 +300,20 @@ macro_rules! weight {
 weight!(f64);
 weight!(f32);
 
+/// Whether joint `a` ranks before joint `b` when a row is pruned: the larger weight first, then
+/// the smaller joint id.
+#[inline]
+pub(super) fn ranks_before<W: Weight>((ja, wa): (u32, W), (jb, wb): (u32, W)) -> bool {
+    wa.total_order(&wb).reverse().then(ja.cmp(&jb)).is_lt()
+}
+
 /// [`prune`] in either precision: the kept joints ascending, then [`NONE`] (weight 0).
 pub(super) fn pruned<W: Weight>(joints: &[u32], weights: &[W], cut: W) -> ([u32; KEPT], [W; KEPT]) {
     // The LABELS largest, largest first: insertion into a short sorted list.
     let mut top = [usize::MAX; LABELS];
     let mut count = 0;
-    let before = |a: usize, b: usize| {
-        weights[a]
-            .total_order(&weights[b])
-            .reverse()
-            .then(joints[a].cmp(&joints[b]))
-            .is_lt()
-    };
+    let before =
+        |a: usize, b: usize| ranks_before((joints[a], weights[a]), (joints[b], weights[b]));
     for k in 0..joints.len() {
         let mut at = count;
         while at > 0 && before(k, top[at - 1]) {
