@@ -388,13 +388,14 @@ impl Rules<'_> {
         let (median, lateral): (Vec<usize>, Vec<usize>) = legs.iter().partition(|&&s| {
             self.sections[s].extreme.backward && self.on_median_plane(s, &legs, centre)
         });
-        let (mut pairs, mut single) = pair_up(
-            &lateral,
-            self.sections,
-            self.graph,
-            f64::INFINITY,
-            &comparable_length,
-        );
+        // Paired limbs mirror each other: of comparable length, on either side of the median
+        // plane (an arm hanging beside its own leg may join the trunk at the same place).
+        let left = self.frame.left;
+        let across = |a: &Section, b: &Section| {
+            comparable_length(a, b) && (a.mean - centre).dot(left) * (b.mean - centre).dot(left) < 0.0
+        };
+        let (mut pairs, mut single) =
+            pair_up(&lateral, self.sections, self.graph, f64::INFINITY, &across);
         // Beside a biped's one leg pair, a lateral section reaching down less than half as
         // long as its shorter leg is a fold or stub (a skirt's at the hip), not a leg: it
         // stays unlabelled. Figures of more leg pairs (spiders) keep their odd legs.
@@ -407,6 +408,15 @@ impl Rules<'_> {
             (self.anterior(y.0) + self.anterior(y.1))
                 .total_cmp(&(self.anterior(x.0) + self.anterior(x.1)))
         });
+        // An upright figure stands on its lowest pair; a pair above it joining the upper half
+        // of the trunk is a pair of arms hanging down (an A-pose on short legs reaches the
+        // ground's band), left for the arm rule: a pelvis is never above the arm roots.
+        // An upright figure stands on its lowest pair: another pair joining the trunk above
+        // it is a pair of arms hanging down (an A-pose on short legs reaches the ground's
+        // band), left for the arm rule; a pelvis is never above the arm roots.
+        if self.figure == FigureClass::HumanLike {
+            self.keep_standing_pair(&mut pairs);
+        }
         for (k, &pair) in pairs.iter().enumerate() {
             let limb_pair = if pairs.len() >= 2 && k == 0 {
                 LimbPair::Fore
@@ -422,6 +432,33 @@ impl Rules<'_> {
             };
         }
         Legs { pairs, single }
+    }
+
+    /// Of several leg pairs of an upright figure, keeps the one it stands on (the lowest
+    /// reach) and the pairs joining the trunk no higher than it; the pairs joining higher up
+    /// (arms hanging into the ground's band) are dropped, unlabelled.
+    fn keep_standing_pair(&self, pairs: &mut Vec<(usize, usize)>) {
+        let lowest = |&(a, b): &(usize, usize)| {
+            self.sections[a]
+                .reach
+                .lowest
+                .min(self.sections[b].reach.lowest)
+        };
+        // Where each section itself leaves the trunk: an arm and a leg on one side can share
+        // the level-graph vertex they branch from.
+        let up = self.frame.up;
+        let height = |&(a, b): &(usize, usize)| {
+            0.5 * (self.sections[a].attachment + self.sections[b].attachment).dot(up)
+        };
+        let Some(standing) = pairs
+            .iter()
+            .min_by(|x, y| lowest(x).total_cmp(&lowest(y)))
+            .copied()
+        else {
+            return;
+        };
+        let base = height(&standing);
+        pairs.retain(|p| *p == standing || height(p) <= base);
     }
 
     /// Whether section `s` lies on the median plane through `centre` (normal `left`) where the
