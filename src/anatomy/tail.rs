@@ -56,8 +56,16 @@ impl TailRule<'_> {
         let attach = self.attachment(t);
         let mid = |&(a, b): &(usize, usize)| (self.attachment(a) + self.attachment(b)) / 2.0;
         let posterior = self.pairs.last().map(mid);
+        // An upright figure's anterior end is where its arms join the trunk, when it has arms:
+        // a tail roots nearer to the legs than to the arms.
+        let arms: Vec<DVec3> = (0..assign.len())
+            .filter(|&a| assign[a].label == Some(Label::Arm))
+            .map(|a| self.attachment(a))
+            .collect();
         let anterior = if self.pairs.len() >= 2 {
             self.pairs.first().map(mid)
+        } else if self.figure == FigureClass::HumanLike && !arms.is_empty() {
+            Some(arms.iter().sum::<DVec3>() / arms.len() as f64)
         } else {
             let towards = match self.figure {
                 FigureClass::HumanLike => frame.up,
