@@ -55,7 +55,8 @@ pub fn head_joint(
 /// of a round cartoon head is the cap of a sphere, no nose). A head sliced down further than
 /// `head_max_depth` of the height (longer than a child's head: a helmet or a stylised big head)
 /// has no face either: its narrow front is a visor's edge or a snout, and such figures' rigs
-/// put the head joint at the neck's top.
+/// put the head joint at the neck's top. A head sliced down less than [`FACE_MIN_DEPTH`] shows
+/// too little of itself to tell.
 fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bool {
     let (Some(nose), Some(top), Some(bottom)) = (
         forward_most(frame, head),
@@ -65,7 +66,8 @@ fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bo
         return false;
     };
     let (top, bottom) = (frame.h(*top), frame.h(*bottom));
-    if top - bottom > options.head_max_depth * frame.height() {
+    let depth = top - bottom;
+    if depth > options.head_max_depth * frame.height() || depth < FACE_MIN_DEPTH * frame.height() {
         return false;
     }
     let Some(tip) = nose.points.first() else {
@@ -74,6 +76,14 @@ fn has_face(frame: &BodyFrame, head: &HeadSlices, options: &RefineOptions) -> bo
     let t = (frame.h(*tip) - bottom) / (top - bottom).max(f64::MIN_POSITIVE);
     t >= options.head_nose_min && t <= options.head_nose_max && is_narrow_tip(frame, nose)
 }
+
+/// The least depth of the head's slices, as a fraction of the height, that can show a face: a
+/// head is an eighth of an adult's height or more (0.12-0.14 on the MakeHuman bodies, more on a
+/// child or a cartoon), so slices ending higher stopped at the hair or the crown (the shrink
+/// or turn of a strand's slice ended them) and their forward-most slice is no nose: a
+/// quaternius_women_formal re-posed with her arms lowered 30 degrees ended her head 0.06 of the
+/// height down and read a narrow front in those slices as a nose.
+const FACE_MIN_DEPTH: f64 = 0.09;
 
 /// The front [`NOSE_DEPTH`] of a nose's slice (by depth, from its forward-most point) spans at
 /// most this fraction of the slice's width: the MakeHuman noses span 0.20-0.22 of the head's

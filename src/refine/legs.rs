@@ -74,7 +74,11 @@ pub(super) fn leg(
     let step = 0.25 * options.limb_step * height;
     let (sk, sa) = (arc_near(&profile, knee), arc_near(&profile, ank));
     let from = sk + options.ankle_search_from * (sa - sk);
-    match ankle(&profile, from, options.curvature_window * height, step) {
+    // A leg's ankle is on its own side of the median plane: sphere slices that took in both
+    // shins of legs standing close together (feet side by side) centre between them, and
+    // such an ankle is left for the sole rule below.
+    let own_side = |a: &glam::DVec3| (*a - scene.centre).dot(frame.left) * side.sign() > 0.0;
+    match ankle(&profile, from, options.curvature_window * height, step).filter(own_side) {
         Some(a) => {
             let a = match options.ankle_height {
                 Some(f) => sole_under(mesh, frame, a, SOLE_REACH * height)
