@@ -4,18 +4,19 @@
 //! 0°, A-poses 30° and 45°, arms low 60°), then rigged by `skelfit rig`'s defaults (automatic
 //! orientation); the core joints are compared with the artist's joints in the same pose.
 //!
-//! `cargo run --release --example pose_study [REFDATA] [OUT]` (defaults `../shared/refdata`,
-//! `reports/pose`): prints a table and writes `pose.md` and `pose.json` to OUT.
+//! `cargo run --release --example pose_study [REFDATA] [OUT] [--meshes]` (defaults
+//! `../shared/refdata`, `reports/pose`): prints a table and writes `pose.md` and `pose.json`
+//! to OUT; with `--meshes` also each posed mesh (`OUT/meshes/<model>_<angle>.obj`) and the
+//! artist's core joints in that pose beside it (`.reference.json`), to rig again by hand.
 
 #[path = "common/refdata.rs"]
 mod refdata;
 
-use glam::{DAffine3, DQuat, DVec3};
+use glam::DVec3;
 use refdata::{artist_rig, ArtistRig};
-use skelfit::eval::CORE_KEYS;
+use skelfit::eval::{arms_below_horizontal, CORE_KEYS};
 use skelfit::mesh::Mesh;
 use skelfit::pipeline::{rig, RigOptions};
-use skelfit::skeleton::{JointId, Skeleton};
 use skelfit::skin::check::blend;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -41,40 +42,7 @@ struct Row {
     failure: Option<String>,
 }
 
-/// World matrices that turn each arm (the shoulder joint's subtree) so that the upper arm
-/// (shoulder → elbow) points `angle` below the horizontal, out to its side.
-fn arms_at(rig: &ArtistRig, angle: f64, up: DVec3, forward: DVec3) -> Vec<DAffine3> {
-    let skeleton = &rig.skeleton;
-    let left = up.cross(forward);
-    let mut matrices = vec![DAffine3::IDENTITY; skeleton.len()];
-    for (shoulder, elbow, side) in [("shoulder_L", "elbow_L", 1.0), ("shoulder_R", "elbow_R", -1.0)] {
-        let (Some(&s), Some(&e)) = (rig.canonical.get(shoulder), rig.canonical.get(elbow)) else {
-            continue;
-        };
-        let pivot = skeleton.joint(s).position;
-        let now = (skeleton.joint(e).position - pivot).normalize_or_zero();
-        let (sin, cos) = angle.to_radians().sin_cos();
-        let target = (left * side * cos - up * sin).normalize();
-        let turn = DAffine3::from_translation(pivot)
-            * DAffine3::from_quat(DQuat::from_rotation_arc(now, target))
-            * DAffine3::from_translation(-pivot);
-        for k in subtree(skeleton, s) {
-            matrices[k] = turn;
-        }
-    }
-    matrices
-}
-
-/// The joints of `root`'s subtree (parents come before children in a [`Skeleton`]).
-fn subtree(skeleton: &Skeleton, root: JointId) -> Vec<usize> {
-    let mut inside = vec![false; skeleton.len()];
-    for (k, joint) in skeleton.joints.iter().enumerate() {
-        inside[k] = k == root.0 || joint.parent.is_some_and(|p| inside[p.0]);
-    }
-    (0..skeleton.len()).filter(|&k| inside[k]).collect()
-}
-
-fn posed_row(name: &str, artist: &ArtistRig, angle: f64, out: &std::path::Path) -> Row {
+fn posed_row(name: &str, artist: &ArtistRig, angle: f64, meshes: Option<&std::path::Path>) -> Row {
     let mut row = Row {
         model: name.to_string(),
         angle,
@@ -85,7 +53,13 @@ fn posed_row(name: &str, artist: &ArtistRig, angle: f64, out: &std::path::Path) 
         missing: Vec::new(),
         failure: None,
     };
-    let matrices = arms_at(artist, angle, DVec3::Y, DVec3::Z);
+    let matrices = arms_below_horizontal(
+        &artist.skeleton,
+        &artist.canonical,
+        angle,
+        DVec3::Y,
+        DVec3::Z,
+    );
     let positions = blend(&artist.mesh.positions, &artist.weights, &matrices);
     let mesh = match Mesh::new(positions, artist.mesh.triangles.clone()) {
         Ok(m) => m,
@@ -94,13 +68,30 @@ fn posed_row(name: &str, artist: &ArtistRig, angle: f64, out: &std::path::Path) 
             return row;
         }
     };
-    // The posed mesh, to look at or rig again by hand (`skelfit rig OUT/meshes/...`).
-    let file = out.join("meshes").join(format!("{name}_{angle}.obj"));
-    if let Err(e) = std::fs::create_dir_all(out.join("meshes"))
-        .map_err(|e| e.to_string())
-        .and_then(|()| skelfit::export::write_obj(&file, &mesh).map_err(|e| e.to_string()))
-    {
-        eprintln!("could not write {}: {e}", file.display());
+    // The posed mesh and the artist's core joints in the pose, to rig again by hand.
+    if let Some(dir) = meshes {
+        let file = dir.join(format!("{name}_{angle}.obj"));
+        let posed: std::collections::BTreeMap<&str, [f64; 3]> = CORE_KEYS
+            .iter()
+            .filter_map(|&key| {
+                let id = *artist.canonical.get(key)?;
+                let p = matrices[id.0].transform_point3(artist.skeleton.joint(id).position);
+                Some((key, p.to_array()))
+            })
+            .collect();
+        if let Err(e) = std::fs::create_dir_all(dir)
+            .map_err(|e| e.to_string())
+            .and_then(|()| skelfit::export::write_obj(&file, &mesh).map_err(|e| e.to_string()))
+            .and_then(|()| {
+                std::fs::write(
+                    file.with_extension("reference.json"),
+                    serde_json::to_string_pretty(&posed).unwrap_or_default(),
+                )
+                .map_err(|e| e.to_string())
+            })
+        {
+            eprintln!("could not write {}: {e}", file.display());
+        }
     }
     let height = mesh
         .bounding_box()
@@ -112,19 +103,6 @@ fn posed_row(name: &str, artist: &ArtistRig, angle: f64, out: &std::path::Path) 
             return row;
         }
     };
-    // The artist's core joints in the pose, beside the mesh.
-    let posed: std::collections::BTreeMap<&str, [f64; 3]> = CORE_KEYS
-        .iter()
-        .filter_map(|&key| {
-            let id = *artist.canonical.get(key)?;
-            let p = matrices[id.0].transform_point3(artist.skeleton.joint(id).position);
-            Some((key, p.to_array()))
-        })
-        .collect();
-    let _ = std::fs::write(
-        file.with_extension("reference.json"),
-        serde_json::to_string_pretty(&posed).unwrap_or_default(),
-    );
     let mut errors = Vec::new();
     for key in CORE_KEYS {
         let Some(&id) = artist.canonical.get(key) else {
@@ -134,7 +112,8 @@ fn posed_row(name: &str, artist: &ArtistRig, angle: f64, out: &std::path::Path) 
         let reference = matrices[id.0].transform_point3(artist.skeleton.joint(id).position);
         match fitted.fit.canonical.get(key) {
             Some(&p) => {
-                let error = 100.0 * fitted.fit.skeleton.joint(p).position.distance(reference) / height;
+                let error =
+                    100.0 * fitted.fit.skeleton.joint(p).position.distance(reference) / height;
                 errors.push((key.to_string(), error));
             }
             None => row.missing.push(key.to_string()),
@@ -149,9 +128,12 @@ fn posed_row(name: &str, artist: &ArtistRig, angle: f64, out: &std::path::Path) 
 }
 
 fn main() {
-    let mut args = std::env::args().skip(1);
-    let root = PathBuf::from(args.next().unwrap_or_else(|| "../shared/refdata".into()));
-    let out = PathBuf::from(args.next().unwrap_or_else(|| "reports/pose".into()));
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let write_meshes = args.iter().any(|a| a == "--meshes");
+    let mut paths = args.iter().filter(|a| *a != "--meshes");
+    let root = PathBuf::from(paths.next().map_or("../shared/refdata", |s| s.as_str()));
+    let out = PathBuf::from(paths.next().map_or("reports/pose", |s| s.as_str()));
+    let meshes = write_meshes.then(|| out.join("meshes"));
     let humanoids = root.join("humanoid");
     let Ok(entries) = std::fs::read_dir(&humanoids) else {
         eprintln!("no {}: nothing to study", humanoids.display());
@@ -173,7 +155,7 @@ fn main() {
             }
         };
         for angle in ANGLES {
-            let row = posed_row(&name, &artist, angle, &out);
+            let row = posed_row(&name, &artist, angle, meshes.as_deref());
             println!(
                 "{:32} {:>4}°  core {:>6}  paired {}/{}  worst {:<24} missing {:?} {}",
                 row.model,

@@ -8,6 +8,8 @@
 #   reports/real/      the anatomical rig on the real game characters of the reference set, one
 #                      HTML page per character (projections of predicted vs reference joints)
 #   reports/labels/    body-part labelling accuracy on the reference set
+#   reports/pose/      the real characters re-posed by their artists' weights (arms 0-60 degrees
+#                      below the horizontal), rigged, core joint error per pose
 #   reports/scaling/   time against interior voxel count (mesh to skinned general skeleton)
 #   reports/index.html links every report (skelfit report --index reports)
 # Usage: tools/regenerate_reports.sh   (from anywhere; takes a few minutes)
@@ -40,6 +42,7 @@ if [ -f "$REFDATA/README.md" ]; then
   "$BIN" bench "$REFDATA" --rig game_engine --method anatomical --out reports/rig --html
   "$BIN" bench "$REFDATA" --rig game_engine --method anatomical --select real --out reports/real --html --model-pages
   "$BIN" label --table "$REFDATA" -o reports/labels
+  cargo run --release --quiet --example pose_study -- "$REFDATA" reports/pose
 else
   echo "reference data not found at $REFDATA (set SKELFIT_REFDATA): reports/refdata not regenerated" >&2
 fi

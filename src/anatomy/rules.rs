@@ -392,7 +392,8 @@ impl Rules<'_> {
         // plane (an arm hanging beside its own leg may join the trunk at the same place).
         let left = self.frame.left;
         let across = |a: &Section, b: &Section| {
-            comparable_length(a, b) && (a.mean - centre).dot(left) * (b.mean - centre).dot(left) < 0.0
+            comparable_length(a, b)
+                && (a.mean - centre).dot(left) * (b.mean - centre).dot(left) < 0.0
         };
         let (mut pairs, mut single) =
             pair_up(&lateral, self.sections, self.graph, f64::INFINITY, &across);

@@ -61,6 +61,7 @@ mod error;
 mod label_table;
 mod labels;
 mod metrics;
+mod pose;
 mod reference;
 mod regions;
 mod rig;
@@ -101,6 +102,7 @@ pub use metrics::{
     evaluate, figure_size, resolve_measure, ErrorSummary, EvalOptions, Evaluation, FigureMeasure,
     FigureSize, JointError, JointPairing, SizeSource,
 };
+pub use pose::arms_below_horizontal;
 pub use reference::{load_gltf_rig, load_skeleton, parse_json_rig, REFDATA_FORMAT};
 pub use regions::reference_regions;
 pub use rig::{ReferenceRig, RigFormat};

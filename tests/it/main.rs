@@ -22,6 +22,7 @@ mod medial;
 mod mesh;
 mod outline;
 mod outputs;
+mod pose;
 mod presets;
 mod refine;
 mod rig;

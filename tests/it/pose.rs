@@ -1,0 +1,94 @@
+//! Real characters re-posed by their artists' own skin weights (arms lowered into A-poses, as
+//! `examples/pose_study.rs` does for every humanoid) still rig as whole humanoids with their
+//! core joints in place. Skips when ../shared/refdata is missing.
+
+#[path = "../../examples/common/refdata.rs"]
+mod refdata;
+
+use super::common::model;
+use glam::DVec3;
+use skelfit::eval::arms_below_horizontal;
+use skelfit::mesh::Mesh;
+use skelfit::pipeline::{rig, Rig, RigOptions};
+use skelfit::skin::check::blend;
+use std::collections::BTreeMap;
+
+/// The model re-posed with both upper arms `degrees` below the horizontal, rigged with the
+/// defaults; with the artist's joints in that pose by canonical key, and the figure's height.
+fn reposed(relative: &str, degrees: f64) -> Option<(Rig, BTreeMap<String, DVec3>, f64)> {
+    let dir = model(relative)?;
+    let artist = refdata::artist_rig(&dir)?.expect("artist rig");
+    let matrices = arms_below_horizontal(
+        &artist.skeleton,
+        &artist.canonical,
+        degrees,
+        DVec3::Y,
+        DVec3::Z,
+    );
+    let positions = blend(&artist.mesh.positions, &artist.weights, &matrices);
+    let mesh = Mesh::new(positions, artist.mesh.triangles.clone()).expect("posed mesh");
+    let (low, high) = mesh.bounding_box().expect("bounds");
+    let reference = artist
+        .canonical
+        .iter()
+        .map(|(key, &id)| {
+            let p = matrices[id.0].transform_point3(artist.skeleton.joint(id).position);
+            (key.clone(), p)
+        })
+        .collect();
+    let fitted = rig(&mesh, &RigOptions::default()).expect("rig");
+    Some((fitted, reference, high.y - low.y))
+}
+
+/// Error of canonical joint `key`, % of height.
+fn error(rig: &Rig, reference: &BTreeMap<String, DVec3>, height: f64, key: &str) -> f64 {
+    let id = rig.fit.canonical[key];
+    100.0 * rig.fit.skeleton.joint(id).position.distance(reference[key]) / height
+}
+
+#[test]
+fn a_short_legged_figure_with_arms_hanging_into_the_ground_band_keeps_them_as_arms() {
+    // The platformer's hands, arms 45 degrees down, reach the lowest tenth of its height: they
+    // had paired as a second leg pair (each with its own side's leg) and the figure got the
+    // general skeleton. (Its shoulders still land at the elbows: the upper arm is fused with
+    // the costume's side down to there, so the arm's section starts at the elbow.)
+    let Some((rig, reference, height)) = reposed("humanoid/quaternius_platformer_character", 45.0)
+    else {
+        return;
+    };
+    assert_eq!(rig.fit.template, "humanoid", "{:?}", rig.warnings);
+    for key in ["pelvis", "wrist_L", "wrist_R", "hip_R", "knee_L"] {
+        let e = error(&rig, &reference, height, key);
+        assert!(e < 8.0, "{key} {e:.2} % of height off");
+    }
+}
+
+#[test]
+fn a_backpack_is_no_tail_in_an_a_pose() {
+    // Arms 45 degrees down: the backpack was labelled a tail and the pelvis sat at its base,
+    // 22.7 % of the height off.
+    let Some((rig, reference, height)) = reposed("humanoid/quaternius_men_adventurer", 45.0) else {
+        return;
+    };
+    let e = error(&rig, &reference, height, "pelvis");
+    assert!(e < 8.0, "pelvis {e:.2} % of height off");
+}
+
+#[test]
+fn feet_side_by_side_keep_their_ankles_apart_and_the_head_joint_stays_at_the_neck() {
+    // Arms 30 degrees down: the sphere trace took in both shins and symmetry put both ankles
+    // on the median plane; the head slices ended at the fringe and a face was read there, which
+    // put the head joint 9.6 % of the height too high.
+    let Some((rig, reference, height)) = reposed("humanoid/quaternius_women_formal", 30.0) else {
+        return;
+    };
+    let e = error(&rig, &reference, height, "head");
+    assert!(e < 3.0, "head {e:.2} % of height off");
+    let hips = |key: &str| rig.fit.skeleton.joint(rig.fit.canonical[key]).position;
+    let apart = hips("ankle_L").distance(hips("ankle_R"));
+    let hip_width = hips("hip_L").distance(hips("hip_R"));
+    assert!(
+        apart > 0.5 * hip_width,
+        "ankles {apart:.3} apart, hips {hip_width:.3}"
+    );
+}
