@@ -376,6 +376,60 @@ fn the_spider_gets_a_best_effort_with_a_warning() {
     );
 }
 
+/// Paired legs mirror each other across the median plane: a spider's eight legs pair left
+/// with right, not with their neighbours along one side (which leave the trunk closer to each
+/// other than to their partners: the nearest-attachment pairing put `FrontLeg.R` with
+/// `MidFrontLeg.R` and gave both sides one label, weight share 24.2 %). Every leg part's
+/// vertices lie on its side, and the anterior half of the four pairs are fore legs, as the
+/// artist's `FrontLeg`/`MidFrontLeg` against `MidBackLeg`/`BackLeg`.
+#[test]
+fn a_spiders_legs_pair_across_the_median_plane() {
+    let Some(dir) = common::model("other/quaternius_spider") else {
+        return;
+    };
+    let (mesh, labels) = labelled(&dir, &LabelOptions::default());
+    let left = labels.frame.left;
+    let centre = mesh.positions.iter().sum::<DVec3>() / mesh.positions.len() as f64;
+    let mut legs = 0;
+    for (i, part) in labels.parts.iter().enumerate() {
+        if part.label != Label::Leg {
+            continue;
+        }
+        legs += 1;
+        let sign = match part.side {
+            Some(Side::Left) => 1.0,
+            Some(Side::Right) => -1.0,
+            None => panic!("leg {i} without a side: {:?}", parts(&labels)),
+        };
+        let (on_side, all) = mesh
+            .positions
+            .iter()
+            .zip(&labels.mesh_parts)
+            .filter(|(_, &p)| p as usize == i)
+            .fold((0, 0), |(k, n), (x, _)| {
+                (k + usize::from(sign * (*x - centre).dot(left) > 0.0), n + 1)
+            });
+        assert!(
+            all > 0 && on_side == all,
+            "leg {i} ({:?}): {on_side} of {all} vertices on its side",
+            part.side
+        );
+    }
+    assert_eq!(legs, 8, "{:?}", parts(&labels));
+    for side in [Side::Left, Side::Right] {
+        for pair in [LimbPair::Fore, LimbPair::Hind] {
+            let n = labels
+                .parts
+                .iter()
+                .filter(|p| {
+                    p.label == Label::Leg && p.side == Some(side) && p.limb_pair == Some(pair)
+                })
+                .count();
+            assert_eq!(n, 2, "{side:?} {pair:?}: {:?}", parts(&labels));
+        }
+    }
+}
+
 /// Runs `skelfit label MESH -o JSON ARGS...`, asserts success and returns the JSON.
 fn run_label(mesh: &Path, json: &Path, args: &[&str]) -> serde_json::Value {
     let (mesh, json_path) = (mesh.to_str().unwrap(), json.to_str().unwrap());
