@@ -190,7 +190,7 @@ fn reaches_like_an_arm(section: &Section, frame: &Frame) -> bool {
 /// Labels the level graph (ch.7.3.3), a phase per step: the trunk and the figure class
 /// (`trunk.rs`), the sections hanging off the trunk (`sections.rs`), then legs, wings, the tail
 /// (an animal's before the head, a human-like figure's after the head and the arms), the head,
-/// arms (none on an animal standing on two leg pairs), an animal biped's short fore limbs
+/// the lower jaw, arms (none on an animal standing on two leg pairs), an animal biped's short fore limbs
 /// (`fore_limbs.rs`), lone arms, unpaired legs, and the leftovers merged into the trunk.
 ///
 /// An animal standing on one leg pair whose short fore limbs branch off the head's section
@@ -320,6 +320,7 @@ fn label_with_trunk(
         rules.tail(&tail, &mut legs.single);
     }
     rules.head(trunk.has_junction, centre);
+    rules.jaw(centre);
     // An animal standing on two leg pairs has no further limb pair of a vertebrate body plan:
     // its other paired protrusions (ears, horns, antlers, a thigh's bulge) are not arms.
     let arms = if trunk.figure == FigureClass::AnimalLike && legs.pairs.len() >= 2 {
@@ -558,6 +559,43 @@ impl Rules<'_> {
                 }
             }
             _ => self.warnings.push(AnatomyWarning::NoHead),
+        }
+    }
+
+    /// The lower jaw: beside the head, an unlabelled significant section leaving the trunk
+    /// where the head does (the same trunk vertex), on the median plane (no mirror partner, as
+    /// the head), reaching the front of the figure, its tip below the head's (an open mouth's
+    /// mandible). Without it the mandible merges into the trunk. The longest such section.
+    fn jaw(&mut self, centre: DVec3) {
+        let Some(head) =
+            (0..self.sections.len()).find(|&s| self.assign[s].label == Some(Label::Head))
+        else {
+            return;
+        };
+        let h = &self.sections[head];
+        let up = self.frame.up;
+        let candidates = self.unlabelled();
+        let jaw = candidates
+            .iter()
+            .copied()
+            .filter(|&s| {
+                let section = &self.sections[s];
+                section.attachment_vertex == h.attachment_vertex
+                    && section.extreme.forward
+                    && section.distal.dot(up) < h.distal.dot(up)
+                    && !mirrored(s, &candidates, self.sections, self.frame, centre)
+            })
+            .max_by(|&a, &b| {
+                self.sections[a]
+                    .length
+                    .total_cmp(&self.sections[b].length)
+                    .then(b.cmp(&a))
+            });
+        if let Some(s) = jaw {
+            self.assign[s] = Assignment {
+                label: Some(Label::Jaw),
+                ..UNLABELLED
+            };
         }
     }
 
