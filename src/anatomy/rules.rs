@@ -563,9 +563,11 @@ impl Rules<'_> {
     }
 
     /// The lower jaw: beside the head, an unlabelled significant section leaving the trunk
-    /// where the head does (the same trunk vertex), on the median plane (no mirror partner, as
-    /// the head), reaching the front of the figure, its tip below the head's (an open mouth's
-    /// mandible). Without it the mandible merges into the trunk. The longest such section.
+    /// where the head does (the same trunk vertex), on the median plane (its voxel mean and its
+    /// tip within a third of its length of the plane through `centre`: a lone arm whose partner
+    /// is missing stands off it), reaching the front of the figure, its tip below the head's
+    /// (an open mouth's mandible). Without it the mandible merges into the trunk. The longest
+    /// such section.
     fn jaw(&mut self, centre: DVec3) {
         let Some(head) =
             (0..self.sections.len()).find(|&s| self.assign[s].label == Some(Label::Head))
@@ -583,7 +585,9 @@ impl Rules<'_> {
                 section.attachment_vertex == h.attachment_vertex
                     && section.extreme.forward
                     && section.distal.dot(up) < h.distal.dot(up)
-                    && !mirrored(s, &candidates, self.sections, self.frame, centre)
+                    && [section.mean, section.distal]
+                        .iter()
+                        .all(|&p| ((p - centre).dot(self.frame.left)).abs() <= section.length / 3.0)
             })
             .max_by(|&a, &b| {
                 self.sections[a]
