@@ -12,7 +12,13 @@
 //!    `shoulder_*` is the arm's ball joint and stays a fore limb by rule 1); `wing` → wing;
 //!    `arm forearm hand finger thumb wrist elbow` → fore limb; `leg foot toe thigh calf shin
 //!    knee ankle` → fore limb when a word is `front` or `fore`, else hind limb; `spine chest
-//!    torso body back root` → trunk; side from a word `l`/`left` or `r`/`right`;
+//!    torso body back root thorax abdomen belly` → trunk; side from a word `l`/`left` or
+//!    `r`/`right`;
+//!    2b. legs named without a front or back word (`TopLeg1.L`, `MidLeg2.R`, `Leg3.L`) are
+//!    hind limbs, except on a side with more than two such chains hanging from the trunk (an
+//!    insect's, a spider's): there the anterior half of the chains (rounded down), those whose
+//!    root is nearest to the head's joints, are fore limbs, as the labelling divides its leg
+//!    pairs;
 //! 3. otherwise it inherits its parent's region and side.
 //!
 //! Bones are the segments parent → child, each carrying the region of its *parent* (the bone
@@ -145,6 +151,30 @@ const GIRDLE_WORDS: [&str; 5] = [
     Canonical::Pelvis.as_str(),
 ];
 
+/// Words of the trunk's column and body segments (an insect's or a spider's thorax and
+/// abdomen are its trunk, as a vertebrate's chest and belly are).
+const TRUNK_WORDS: [&str; 9] = [
+    "spine", "chest", "torso", "body", "back", "root", "thorax", "abdomen", "belly",
+];
+
+/// Words of a leg (rule 2).
+const LEG_WORDS: [&str; 8] = [
+    "leg", "foot", "toe", "thigh", "calf", "shin", "knee", "ankle",
+];
+
+/// Words that say which girdle a leg hangs from.
+const GIRDLE_SIDE_WORDS: [&str; 5] = ["front", "fore", "back", "hind", "rear"];
+
+/// Whether a joint's name makes it a leg (rule 2) without saying front or back: such a leg's
+/// girdle comes from its place (rule 2b).
+fn unmarked_leg(name: &str) -> bool {
+    let w = words(name);
+    let has = |list: &[&str]| w.iter().any(|x| list.contains(&x.as_str()));
+    matches!(name_region(name), Some(Region::Hind(_)))
+        && has(&LEG_WORDS)
+        && !has(&GIRDLE_SIDE_WORDS)
+}
+
 fn name_region(name: &str) -> Option<Region> {
     let w = words(name);
     let has = |list: &[&str]| w.iter().any(|x| list.contains(&x.as_str()));
@@ -169,15 +199,13 @@ fn name_region(name: &str) -> Option<Region> {
         "arm", "forearm", "hand", "finger", "thumb", "wrist", "elbow",
     ]) {
         Region::Fore(None)
-    } else if has(&[
-        "leg", "foot", "toe", "thigh", "calf", "shin", "knee", "ankle",
-    ]) {
+    } else if has(&LEG_WORDS) {
         if has(&["front", "fore"]) {
             Region::Fore(None)
         } else {
             Region::Hind(None)
         }
-    } else if has(&["spine", "chest", "torso", "body", "back", "root"]) {
+    } else if has(&TRUNK_WORDS) {
         Region::Trunk
     } else {
         return None;
@@ -230,15 +258,38 @@ pub fn joint_regions(
     skeleton: &Skeleton,
     canonical: &BTreeMap<String, JointId>,
 ) -> Vec<Option<Region>> {
+    let named = regions_by_rules(skeleton, canonical, &[]);
+    let fore = fore_leg_chains(skeleton, canonical, &named);
+    if fore.is_empty() {
+        named
+    } else {
+        regions_by_rules(skeleton, canonical, &fore)
+    }
+}
+
+/// Rules 1-3, with the unmarked leg chains rooted at `fore_roots` fore limbs (rule 2b).
+fn regions_by_rules(
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    fore_roots: &[usize],
+) -> Vec<Option<Region>> {
     let joints = &skeleton.joints;
     let mut region: Vec<Option<Region>> = vec![None; joints.len()];
+    let mut fore_chain = vec![false; joints.len()];
     let canonical_of: std::collections::HashMap<usize, &str> =
         canonical.iter().map(|(k, id)| (id.0, k.as_str())).collect();
     for (j, joint) in joints.iter().enumerate() {
-        region[j] = canonical_of
-            .get(&j)
-            .and_then(|k| key_region(k))
+        let by_key = canonical_of.get(&j).and_then(|k| key_region(k));
+        if by_key.is_none() && unmarked_leg(&joint.name) {
+            let parent_fore = joint.parent.is_some_and(|p| fore_chain[p.0]);
+            fore_chain[j] = fore_roots.contains(&j) || parent_fore;
+        }
+        region[j] = by_key
             .or_else(|| name_region(&joint.name))
+            .map(|r| match r {
+                Region::Hind(side) if fore_chain[j] => Region::Fore(side),
+                r => r,
+            })
             .or_else(|| {
                 joint
                     .parent
@@ -246,6 +297,53 @@ pub fn joint_regions(
             });
     }
     region
+}
+
+/// Rule 2b: the roots of the unmarked leg chains (named legs without a front or back word,
+/// not named by the canonical map) that are fore limbs. A chain hangs from the trunk (its
+/// root's parent has the trunk's region); on a side with more than two such chains (a
+/// vertebrate has at most two limb pairs: an insect or a spider) the anterior half of them
+/// (rounded down, as the labelling divides its leg pairs, `rules::fore_pairs`), nearest to the
+/// head's joints, are fore limbs. Fewer chains on a side, or no head, change nothing.
+fn fore_leg_chains(
+    skeleton: &Skeleton,
+    canonical: &BTreeMap<String, JointId>,
+    region: &[Option<Region>],
+) -> Vec<usize> {
+    let joints = &skeleton.joints;
+    let named: std::collections::HashSet<usize> = canonical.values().map(|id| id.0).collect();
+    let unmarked = |j: usize| !named.contains(&j) && unmarked_leg(&joints[j].name);
+    let heads: Vec<DVec3> = (0..joints.len())
+        .filter(|&j| region[j] == Some(Region::Head))
+        .map(|j| joints[j].position)
+        .collect();
+    if heads.is_empty() {
+        return Vec::new();
+    }
+    let to_head = |j: usize| {
+        heads
+            .iter()
+            .map(|h| h.distance(joints[j].position))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut fore = Vec::new();
+    for side in [Side::Left, Side::Right] {
+        let mut roots: Vec<usize> = (0..joints.len())
+            .filter(|&j| {
+                unmarked(j)
+                    && region[j] == Some(Region::Hind(Some(side)))
+                    && joints[j].parent.is_some_and(|p| {
+                        !unmarked(p.0) && region.get(p.0).copied().flatten() == Some(Region::Trunk)
+                    })
+            })
+            .collect();
+        if roots.len() <= 2 {
+            continue;
+        }
+        roots.sort_by(|&a, &b| to_head(a).total_cmp(&to_head(b)).then(a.cmp(&b)));
+        fore.extend(&roots[..super::rules::fore_pairs(roots.len())]);
+    }
+    fore
 }
 
 /// The region of each vertex from skin weights instead of the nearest bone: the region whose
@@ -743,6 +841,94 @@ mod tests {
             top.percent
         );
         assert!(top.percent > best.percent);
+    }
+
+    /// A skeleton of `(name, parent, position)` joints, all deforming.
+    fn rig_of(joints: &[(&str, Option<usize>, [f64; 3])]) -> Skeleton {
+        Skeleton {
+            joints: joints
+                .iter()
+                .map(|&(name, parent, p)| crate::skeleton::Joint {
+                    name: name.into(),
+                    parent: parent.map(JointId),
+                    position: DVec3::from_array(p),
+                    deform: true,
+                    ..Default::default()
+                })
+                .collect(),
+        }
+    }
+
+    /// An insect's abdomen and thorax are its trunk (the wasp's `Abdomen` hangs from its
+    /// `Neck` and took the head's region), and of its three unnamed leg pairs the one nearest
+    /// the head is the fore pair, the others hind, as the labelling divides three leg pairs.
+    #[test]
+    fn an_insects_abdomen_is_trunk_and_its_front_leg_pair_is_fore() {
+        let mut joints = vec![
+            ("Body", None, [0.0, 0.5, 0.0]),
+            ("Thorax", Some(0), [0.0, 2.6, 0.3]),
+            ("Neck", Some(1), [0.0, 2.8, 0.7]),
+            ("Head", Some(2), [0.0, 2.9, 1.0]),
+            ("Abdomen", Some(2), [0.0, 2.3, 0.1]),
+            ("Abdomen2", Some(4), [0.0, 1.9, -0.3]),
+            ("Sting", Some(5), [0.0, 0.6, -0.2]),
+        ];
+        let legs = [("Top", 0.65), ("Mid", 0.5), ("Bottom", 0.35)];
+        let names: Vec<[String; 2]> = legs
+            .iter()
+            .flat_map(|(leg, _)| {
+                ["L", "R"].map(|s| [format!("{leg}Leg1.{s}"), format!("{leg}Leg2.{s}")])
+            })
+            .collect();
+        for (k, (_, z)) in legs.iter().enumerate() {
+            for (s, x) in [0.2, -0.2].into_iter().enumerate() {
+                let [a, b] = &names[2 * k + s];
+                joints.push((a.as_str(), Some(1), [x, 2.4, *z]));
+                let root = joints.len() - 1;
+                joints.push((b.as_str(), Some(root), [x * 2.0, 2.0, *z]));
+            }
+        }
+        let rig = rig_of(&joints);
+        let region = joint_regions(&rig, &BTreeMap::new());
+        let of = |name: &str| region[rig.find(name).unwrap().0];
+        for name in ["Thorax", "Abdomen", "Abdomen2", "Sting"] {
+            assert_eq!(of(name), Some(Region::Trunk), "{name}");
+        }
+        assert_eq!(of("Neck"), Some(Region::Head));
+        let (l, r) = (Some(Side::Left), Some(Side::Right));
+        for (name, expected) in [
+            ("TopLeg1.L", Region::Fore(l)),
+            ("TopLeg2.R", Region::Fore(r)),
+            ("MidLeg1.L", Region::Hind(l)),
+            ("MidLeg2.R", Region::Hind(r)),
+            ("BottomLeg2.L", Region::Hind(l)),
+        ] {
+            assert_eq!(of(name), Some(expected), "{name}");
+        }
+    }
+
+    /// Two unnamed leg chains on a side (a biped's leg and its foot control hanging from the
+    /// root) stay hind limbs: only more than two limb pairs are divided by place.
+    #[test]
+    fn two_unnamed_leg_chains_on_a_side_stay_hind_limbs() {
+        let rig = rig_of(&[
+            ("Root", None, [0.0, 0.0, 0.0]),
+            ("Hips", Some(0), [0.0, 1.0, 0.0]),
+            ("Neck", Some(1), [0.0, 1.5, 0.0]),
+            ("Head", Some(2), [0.0, 1.7, 0.0]),
+            ("UpperLeg.L", Some(1), [0.1, 0.9, 0.0]),
+            ("LowerLeg.L", Some(4), [0.1, 0.5, 0.0]),
+            ("Foot.L", Some(0), [0.1, 0.0, 0.0]),
+        ]);
+        let region = joint_regions(&rig, &BTreeMap::new());
+        for j in 4..7 {
+            assert_eq!(
+                region[j],
+                Some(Region::Hind(Some(Side::Left))),
+                "{}",
+                rig.joints[j].name
+            );
+        }
     }
 
     #[test]

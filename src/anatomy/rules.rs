@@ -52,12 +52,35 @@ pub struct Draft {
     pub warnings: Vec<AnatomyWarning>,
 }
 
-/// Greedy pairing of `items` (section indices) by attachment distance: the closest pair first,
-/// the pairs `preferred` accepts before all others. Returns the pairs and the unpaired items.
+/// The median plane a pair's two parts mirror each other across: through `centre`, normal
+/// `left`.
+#[derive(Debug, Clone, Copy)]
+struct MedianPlane {
+    centre: DVec3,
+    left: DVec3,
+}
+
+impl MedianPlane {
+    /// The distance of `a` from the mirror image of `b` (symmetric in `a` and `b`).
+    fn mirror_distance(&self, a: DVec3, b: DVec3) -> f64 {
+        let reflected = b - self.left * (2.0 * (b - self.centre).dot(self.left));
+        a.distance(reflected)
+    }
+}
+
+/// Greedy pairing of `items` (section indices): paired parts mirror each other across the
+/// median plane, so the pair whose attachments (where they leave the trunk) are nearest to each
+/// other's mirror image first, the pairs `preferred` accepts before all others; ties by the
+/// attachment distance. Only parts whose trunk vertices lie within `max_distance` of each other
+/// pair. Returns the pairs and the unpaired items.
+///
+/// Mirroring, not the attachments' distance, tells the partner: the legs along one side of a
+/// spider or an insect leave the trunk closer to each other than to their partners across it.
 fn pair_up(
     items: &[usize],
     sections: &[Section],
     graph: &LevelGraph,
+    plane: MedianPlane,
     max_distance: f64,
     preferred: &dyn Fn(&Section, &Section) -> bool,
 ) -> (Vec<(usize, usize)>, Vec<usize>) {
@@ -68,9 +91,10 @@ fn pair_up(
             let d = graph.vertices[sa.attachment_vertex]
                 .centroid
                 .distance(graph.vertices[sb.attachment_vertex].centroid);
+            let mirror = plane.mirror_distance(sa.attachment, sb.attachment);
             let d2 = sa.attachment.distance(sb.attachment);
             if d <= max_distance {
-                candidates.push((!preferred(sa, sb), d, d2, a, b));
+                candidates.push((!preferred(sa, sb), mirror, d, d2, a, b));
             }
         }
     }
@@ -78,11 +102,12 @@ fn pair_up(
         x.0.cmp(&y.0)
             .then(x.1.total_cmp(&y.1))
             .then(x.2.total_cmp(&y.2))
-            .then((x.3, x.4).cmp(&(y.3, y.4)))
+            .then(x.3.total_cmp(&y.3))
+            .then((x.4, x.5).cmp(&(y.4, y.5)))
     });
     let mut used = vec![false; sections.len()];
     let mut pairs = Vec::new();
-    for (_, _, _, a, b) in candidates {
+    for (_, _, _, _, a, b) in candidates {
         if !used[a] && !used[b] {
             used[a] = true;
             used[b] = true;
@@ -97,6 +122,14 @@ fn pair_up(
 /// limbs of a pair mirror each other ([`mirrored`] asks the same).
 fn comparable_length(a: &Section, b: &Section) -> bool {
     a.length.min(b.length) >= 0.5 * a.length.max(b.length)
+}
+
+/// How many of `pairs` leg pairs, ordered front to back, are fore legs: the anterior half
+/// (rounded down), so one pair is a biped's hind legs, two a quadruped's fore and hind legs,
+/// an insect's three one fore pair and two hind, a spider's four two and two. The region rule
+/// of reference rigs (`reference.rs`) divides unnamed leg chains the same way.
+pub(crate) fn fore_pairs(pairs: usize) -> usize {
+    pairs / 2
 }
 
 /// Any two sections may pair.
@@ -157,7 +190,7 @@ fn reaches_like_an_arm(section: &Section, frame: &Frame) -> bool {
 /// Labels the level graph (ch.7.3.3), a phase per step: the trunk and the figure class
 /// (`trunk.rs`), the sections hanging off the trunk (`sections.rs`), then legs, wings, the tail
 /// (an animal's before the head, a human-like figure's after the head and the arms), the head,
-/// arms (none on an animal standing on two leg pairs), an animal biped's short fore limbs
+/// the lower jaw, arms (none on an animal standing on two leg pairs), an animal biped's short fore limbs
 /// (`fore_limbs.rs`), lone arms, unpaired legs, and the leftovers merged into the trunk.
 ///
 /// An animal standing on one leg pair whose short fore limbs branch off the head's section
@@ -266,7 +299,7 @@ fn label_with_trunk(
 
     let centre = trunk.centre();
     let mut legs = rules.legs(centre);
-    rules.wings();
+    rules.wings(centre);
     // Tail: an animal's before the head (its tail may reach as high as its head); a human-like
     // figure's after the head and the arms, which it may never take (a T-posed arm reaching
     // back, a head leaning back).
@@ -287,12 +320,13 @@ fn label_with_trunk(
         rules.tail(&tail, &mut legs.single);
     }
     rules.head(trunk.has_junction, centre);
+    rules.jaw(centre);
     // An animal standing on two leg pairs has no further limb pair of a vertebrate body plan:
     // its other paired protrusions (ears, horns, antlers, a thigh's bulge) are not arms.
     let arms = if trunk.figure == FigureClass::AnimalLike && legs.pairs.len() >= 2 {
         Vec::new()
     } else {
-        rules.arms()
+        rules.arms(centre)
     };
     if trunk.figure == FigureClass::AnimalLike && legs.pairs.len() == 1 {
         rules.short_fore_limbs(&mut legs, centre);
@@ -352,6 +386,14 @@ impl Rules<'_> {
             .collect()
     }
 
+    /// The median plane through `centre`.
+    fn median(&self, centre: DVec3) -> MedianPlane {
+        MedianPlane {
+            centre,
+            left: self.frame.left,
+        }
+    }
+
     /// Labels both sections of a pair, left and right by [`sides`].
     fn label_pair(&mut self, (a, b): (usize, usize), label: Label, pair: LimbPair) {
         for (s, side) in sides(a, b, self.sections, self.frame) {
@@ -375,7 +417,8 @@ impl Rules<'_> {
     }
 
     /// Legs: sections reaching the bottom of the figure, paired by where they join the trunk.
-    /// With two or more pairs the most anterior pair is fore, the others hind. Paired limbs
+    /// With two or more pairs the anterior half of them are fore, the others hind
+    /// ([`fore_pairs`]). Paired limbs
     /// mirror each other across the median plane (through `centre`): a section reaching the
     /// back of the figure along that plane (a tail resting on the ground) is nobody's partner
     /// and stays single, for the tail rule to consider.
@@ -395,8 +438,14 @@ impl Rules<'_> {
             comparable_length(a, b)
                 && (a.mean - centre).dot(left) * (b.mean - centre).dot(left) < 0.0
         };
-        let (mut pairs, mut single) =
-            pair_up(&lateral, self.sections, self.graph, f64::INFINITY, &across);
+        let (mut pairs, mut single) = pair_up(
+            &lateral,
+            self.sections,
+            self.graph,
+            self.median(centre),
+            f64::INFINITY,
+            &across,
+        );
         // Beside a biped's one leg pair, a lateral section reaching down less than half as
         // long as its shorter leg is a fold or stub (a skirt's at the hip), not a leg: it
         // stays unlabelled. Figures of more leg pairs (spiders) keep their odd legs.
@@ -409,17 +458,15 @@ impl Rules<'_> {
             (self.anterior(y.0) + self.anterior(y.1))
                 .total_cmp(&(self.anterior(x.0) + self.anterior(x.1)))
         });
-        // An upright figure stands on its lowest pair; a pair above it joining the upper half
-        // of the trunk is a pair of arms hanging down (an A-pose on short legs reaches the
-        // ground's band), left for the arm rule: a pelvis is never above the arm roots.
         // An upright figure stands on its lowest pair: another pair joining the trunk above
         // it is a pair of arms hanging down (an A-pose on short legs reaches the ground's
         // band), left for the arm rule; a pelvis is never above the arm roots.
         if self.figure == FigureClass::HumanLike {
             self.keep_standing_pair(&mut pairs);
         }
+        let fore = fore_pairs(pairs.len());
         for (k, &pair) in pairs.iter().enumerate() {
-            let limb_pair = if pairs.len() >= 2 && k == 0 {
+            let limb_pair = if k < fore {
                 LimbPair::Fore
             } else {
                 LimbPair::Hind
@@ -480,7 +527,7 @@ impl Rules<'_> {
     }
 
     /// Wings: long sections with mostly linear cross-sections, in pairs.
-    fn wings(&mut self) {
+    fn wings(&mut self, centre: DVec3) {
         let (options, radius) = (self.options, self.radius);
         let wings: Vec<usize> = self
             .unlabelled()
@@ -490,7 +537,14 @@ impl Rules<'_> {
                     && self.sections[s].length >= options.limb_length * radius
             })
             .collect();
-        let (pairs, _) = pair_up(&wings, self.sections, self.graph, f64::INFINITY, &any_pair);
+        let (pairs, _) = pair_up(
+            &wings,
+            self.sections,
+            self.graph,
+            self.median(centre),
+            f64::INFINITY,
+            &any_pair,
+        );
         for pair in pairs {
             self.label_pair(pair, Label::Wing, LimbPair::Fore);
         }
@@ -548,9 +602,50 @@ impl Rules<'_> {
         }
     }
 
+    /// The lower jaw: beside the head, an unlabelled significant section leaving the trunk
+    /// where the head does (the same trunk vertex), on the median plane (its voxel mean and its
+    /// tip within a third of its length of the plane through `centre`: a lone arm whose partner
+    /// is missing stands off it), reaching the front of the figure, its tip below the head's
+    /// (an open mouth's mandible). Without it the mandible merges into the trunk. The longest
+    /// such section.
+    fn jaw(&mut self, centre: DVec3) {
+        let Some(head) =
+            (0..self.sections.len()).find(|&s| self.assign[s].label == Some(Label::Head))
+        else {
+            return;
+        };
+        let h = &self.sections[head];
+        let up = self.frame.up;
+        let candidates = self.unlabelled();
+        let jaw = candidates
+            .iter()
+            .copied()
+            .filter(|&s| {
+                let section = &self.sections[s];
+                section.attachment_vertex == h.attachment_vertex
+                    && section.extreme.forward
+                    && section.distal.dot(up) < h.distal.dot(up)
+                    && [section.mean, section.distal]
+                        .iter()
+                        .all(|&p| ((p - centre).dot(self.frame.left)).abs() <= section.length / 3.0)
+            })
+            .max_by(|&a, &b| {
+                self.sections[a]
+                    .length
+                    .total_cmp(&self.sections[b].length)
+                    .then(b.cmp(&a))
+            });
+        if let Some(s) = jaw {
+            self.assign[s] = Assignment {
+                label: Some(Label::Jaw),
+                ..UNLABELLED
+            };
+        }
+    }
+
     /// Arms: remaining long sections joining the trunk at about the same place, in pairs.
     /// Returns the long sections (the candidates, paired or not).
-    fn arms(&mut self) -> Vec<usize> {
+    fn arms(&mut self, centre: DVec3) -> Vec<usize> {
         let (options, radius) = (self.options, self.radius);
         let arms: Vec<usize> = self
             .unlabelled()
@@ -561,6 +656,7 @@ impl Rules<'_> {
             &arms,
             self.sections,
             self.graph,
+            self.median(centre),
             options.pair_distance * radius,
             &any_pair,
         );

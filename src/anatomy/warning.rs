@@ -49,7 +49,8 @@ pub enum AnatomyWarning {
         /// Legs left unpaired.
         unpaired: usize,
     },
-    /// More than two leg pairs: the figure is not vertebrate-like.
+    /// More than two leg pairs: the figure is not vertebrate-like (the anterior half of the
+    /// pairs are fore legs).
     TooManyLegPairs {
         /// Leg pairs found.
         pairs: usize,
@@ -129,7 +130,7 @@ impl fmt::Display for AnatomyWarning {
             ),
             Self::TooManyLegPairs { pairs } => write!(
                 f,
-                "found {pairs} leg pairs: a vertebrate-like figure has at most two limb pairs, so the figure is not vertebrate-like; the pairs behind the most anterior one are all labelled hind legs"
+                "found {pairs} leg pairs: a vertebrate-like figure has at most two limb pairs, so the figure is not vertebrate-like; its anterior half of the pairs (rounded down) are labelled fore legs, the others hind legs"
             ),
             Self::NoLegs => write!(
                 f,
