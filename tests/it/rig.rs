@@ -1291,32 +1291,59 @@ fn a_skirt_fold_beside_the_legs_is_no_leg_of_a_z_up_figure() {
     }
 }
 
-/// A cartoon figure with big fists (quaternius_platformer_character) turned Z-up (up given): the fit's
+/// A cartoon figure with big fists (quaternius_platformer_character) turned Z-up: the fit's
 /// rough wrist fell far out in the fist, and the wrist search, starting half that rough
 /// forearm beyond the elbow, began past the wrist's narrowing (wrists 10 % of the height off
 /// the Y-up rig). The search starts at most half an upper arm beyond the elbow: the wrists
-/// match the Y-up rig's within 3 % of the height.
+/// match the Y-up rig's within 3 % of the height, with the up found automatically.
 #[test]
 fn a_big_fists_rough_wrist_does_not_start_the_wrist_search_past_the_wrist() {
     let Some(dir) = common::model("humanoid/quaternius_platformer_character") else {
         return;
     };
     let y_up = load(&dir.join("mesh.obj")).unwrap();
-    // Up given (`--up +Z --forward -Y`): this bunny stands whole either way up along Z (its
-    // big ears hang like legs upside down), so the automatic up keeps +Y.
-    let given = RigOptions {
-        label: skelfit::anatomy::LabelOptions {
-            up: skelfit::anatomy::Up::Direction(DVec3::Z),
-            forward: skelfit::anatomy::Forward::Direction(DVec3::NEG_Y),
-            ..Default::default()
-        },
-        ..Default::default()
-    };
-    for (key, off) in z_up_offsets(&y_up, &given, &["wrist_L", "wrist_R"]) {
+    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &["wrist_L", "wrist_R"]) {
         assert!(
             off < 0.03,
             "{key} differs by {:.1} % of the height",
             100.0 * off
         );
     }
+}
+
+/// A big-headed bunny (quaternius_platformer_character) turned Z-up labels as a whole standing
+/// humanoid under -Z too: upside down its long ears hang like legs and a bump on the face is
+/// the "head", below the arms. With both ends of Z complete the automatic up kept +Y (the
+/// figure then rigged lying down). A humanoid's head tops its arm roots: -Z is no whole
+/// humanoid and +Z is found. The spider, Y-up, whole either way along Z under those labels
+/// (its head above its arms both ways), still keeps +Y.
+#[test]
+fn a_figure_whose_ears_hang_like_legs_upside_down_is_found_z_up() {
+    let Some(dir) = common::model("humanoid/quaternius_platformer_character") else {
+        return;
+    };
+    let found = rig(
+        &turned_z_up(&load(&dir.join("mesh.obj")).unwrap()),
+        &RigOptions::default(),
+    )
+    .unwrap();
+    let choice = found.labelling.up_found.as_ref().expect("up was found");
+    assert!(choice.up.distance(DVec3::Z) < 1e-9, "{choice:?}");
+    assert!(choice.confidence > 0.5, "{choice:?}");
+    let minus_z = choice.scores.iter().find(|s| s.name == "-Z").unwrap();
+    assert!(!minus_z.complete, "{choice:?}");
+    let Some(spider) = common::model("other/quaternius_spider") else {
+        return;
+    };
+    let found = rig(
+        &load(&spider.join("mesh.obj")).unwrap(),
+        &RigOptions::default(),
+    )
+    .unwrap();
+    let choice = found
+        .labelling
+        .up_found
+        .as_ref()
+        .expect("up was looked for");
+    assert!(choice.up.distance(DVec3::Y) < 1e-9, "{choice:?}");
 }
