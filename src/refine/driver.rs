@@ -467,7 +467,8 @@ fn spine_and_neck(
 ) -> Option<Spine> {
     let options = scene.options;
     let spine_result: Option<Spine> = match (torso, found.get(&Canonical::Head)) {
-        (Some(t), Some(&h)) => spine(&scene.frame, scene.centre, h, t, options),
+        (Some(t), Some(&h)) => spine(&scene.frame, scene.centre, h, t, options)
+            .filter(|s| lumbar_above_pelvis(&scene.frame, s, found.get(&Canonical::Pelvis))),
         _ => None,
     };
     match (&spine_result, torso) {
@@ -487,6 +488,18 @@ fn spine_and_neck(
     }
     neck_under_head(&scene.frame, found);
     spine_result
+}
+
+/// Whether the spine's lumbar control point (L3/L4) lies above the `pelvis` joint (true without
+/// one): the lumbar spine rises from the pelvis. Where clothing hides the crotch (a skirt), the
+/// median silhouette's lower back and buttocks can be folds of the skirt far below the hips;
+/// a curve through them is no spine, and the spine joints are carried along as when its
+/// control points are out of order.
+fn lumbar_above_pelvis(frame: &BodyFrame, spine: &Spine, pelvis: Option<&DVec3>) -> bool {
+    match (spine.control.get(3), pelvis) {
+        (Some(&lumbar), Some(&pelvis)) => frame.h(lumbar) > frame.h(pelvis),
+        _ => true,
+    }
 }
 
 /// The most the cervical column leans forward from C7 (the `neck` joint) up to the head

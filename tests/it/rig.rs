@@ -1291,6 +1291,30 @@ fn a_skirt_fold_beside_the_legs_is_no_leg_of_a_z_up_figure() {
     }
 }
 
+/// A figure in a long skirt (quaternius_women_formal) turned Z-up: the median silhouette's
+/// lower back and buttocks were folds of the skirt, in order from top to bottom on the turned
+/// grid (out of order Y-up), and the spine curve through them put `spine` 0.14 m below the
+/// pelvis (9 % of the height from the Y-up rig's). A spine whose lumbar point lies below the
+/// pelvis is refused: the trunk joints are carried along as Y-up, above the pelvis and within
+/// 5 % of the height of the Y-up rig's.
+#[test]
+fn a_skirts_folds_make_no_spine_below_the_pelvis_of_a_z_up_figure() {
+    let Some(dir) = common::model("humanoid/quaternius_women_formal") else {
+        return;
+    };
+    let y_up = load(&dir.join("mesh.obj")).unwrap();
+    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &["spine", "chest"]) {
+        assert!(
+            off < 0.05,
+            "{key} differs by {:.1} % of the height",
+            100.0 * off
+        );
+    }
+    let found = rig(&turned_z_up(&y_up), &RigOptions::default()).unwrap();
+    let at = |key: &str| found.fit.skeleton.joints[found.fit.canonical[key].0].position;
+    assert!(at("spine").z > at("pelvis").z, "{} {}", at("spine"), at("pelvis"));
+}
+
 /// A cartoon figure with big fists (quaternius_platformer_character) turned Z-up: the fit's
 /// rough wrist fell far out in the fist, and the wrist search, starting half that rough
 /// forearm beyond the elbow, began past the wrist's narrowing (wrists 10 % of the height off
