@@ -269,7 +269,7 @@ fn refine_with(
     // 3.2 Spine and neck.
     let spine_result = spine_and_neck(&scene, torso.as_ref(), on_trunk, &mut found, &mut warnings);
 
-    let (mut targets, moved) = accepted(&rough, &found, &scene.frame, options, &mut warnings);
+    let (mut targets, moved) = accepted(&rough, &found, &scene, &mut warnings);
     let spine_ends_moved = moved.contains_key(Canonical::Pelvis.as_str())
         && moved.contains_key(Canonical::Neck.as_str());
     if let (Some(s), true) = (&spine_result, spine_ends_moved) {
@@ -822,16 +822,41 @@ fn hips_from_arms(
     (h < shoulders && knees.is_none_or(|k| h > k)).then_some(h)
 }
 
+/// How near (fraction of the height) a refined joint's mirror image across the median plane
+/// must lie to its partner's accepted refined place for the joint to be accepted however far
+/// it moved from its rough place: the two sides, found independently on the surface, agree,
+/// so the rough one was wrong (a fit that put one elbow a third of the arm inward).
+const MIRROR_AGREEMENT: f64 = 0.02;
+
+/// The same joint on the other side (`shoulder_R` for `shoulder_L`); `None` for axial keys.
+fn partner(key: Canonical) -> Option<Canonical> {
+    let other = |s: Side| match s {
+        Side::Left => Side::Right,
+        Side::Right => Side::Left,
+    };
+    Some(match key {
+        Canonical::Shoulder(s) => Canonical::Shoulder(other(s)),
+        Canonical::Elbow(s) => Canonical::Elbow(other(s)),
+        Canonical::Wrist(s) => Canonical::Wrist(other(s)),
+        Canonical::Hip(s) => Canonical::Hip(other(s)),
+        Canonical::Knee(s) => Canonical::Knee(other(s)),
+        Canonical::Ankle(s) => Canonical::Ankle(other(s)),
+        _ => return None,
+    })
+}
+
 /// The refined positions that stay near the rough ones, as carry targets (every refined key's
-/// joint, at its rough position unless accepted), and the accepted moves. Joints that are not
-/// refined stay where they were (not carried by their neighbours).
+/// joint, at its rough position unless accepted), and the accepted moves. A refined joint far
+/// from its rough place is accepted when it mirrors its partner's accepted refined place
+/// across the median plane (within [`MIRROR_AGREEMENT`]). Joints that are not refined stay
+/// where they were (not carried by their neighbours).
 fn accepted(
     rough: &Rough,
     found: &Found,
-    frame: &BodyFrame,
-    options: &RefineOptions,
+    scene: &Scene,
     warnings: &mut Vec<RefineWarning>,
 ) -> (BTreeMap<JointId, DVec3>, BTreeMap<String, (DVec3, DVec3)>) {
+    let (frame, options) = (&scene.frame, scene.options);
     let height = frame.height();
     let mut targets: BTreeMap<JointId, DVec3> = REFINED
         .iter()
@@ -839,6 +864,20 @@ fn accepted(
         .map(|id| (id, rough.skeleton.joint(id).position))
         .collect();
     let mut moved = BTreeMap::new();
+    // The refined places near their rough ones, before any partner is consulted.
+    let near = |key: Canonical| {
+        let (id, &to) = (rough.id(key)?, found.get(&key)?);
+        let from = rough.skeleton.joint(id).position;
+        (to.is_finite() && shift(rough, frame, key, from, to) <= options.max_shift * height)
+            .then_some(to)
+    };
+    let mirrors_partner = |key: Canonical, to: DVec3| {
+        let mirrored = to - 2.0 * (to - scene.centre).dot(frame.left) * frame.left;
+        partner(key)
+            .filter(|p| !options.keep.iter().any(|k| k == p.as_str()))
+            .and_then(near)
+            .is_some_and(|other| mirrored.distance(other) <= MIRROR_AGREEMENT * height)
+    };
     for key in REFINED {
         if options.keep.iter().any(|k| k == key.as_str()) {
             continue;
@@ -850,7 +889,10 @@ fn accepted(
             continue;
         };
         let from = rough.skeleton.joint(id).position;
-        if !to.is_finite() || shift(rough, frame, key, from, to) > options.max_shift * height {
+        if !to.is_finite()
+            || (shift(rough, frame, key, from, to) > options.max_shift * height
+                && !mirrors_partner(key, to))
+        {
             warnings.push(RefineWarning::TooFar {
                 key,
                 distance: from.distance(to),
