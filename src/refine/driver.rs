@@ -214,7 +214,7 @@ fn refine_with(
     let mut found = Found::new();
 
     // 3.1 Head and body frame.
-    let on_trunk = head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
+    let (on_trunk, head_top) = head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
 
     // 3.2 Torso points.
     let head_point = found
@@ -277,7 +277,10 @@ fn refine_with(
             targets.insert(id, p);
         }
     }
-    let skeleton = carry(skeleton, &targets);
+    let mut skeleton = carry(skeleton, &targets);
+    if moved.contains_key(Canonical::Head.as_str()) {
+        head_end_above_head(&mut skeleton, &rough, &scene.frame, head_top);
+    }
     let mut canonical = canonical.clone();
     if let Some(rules) = trunk {
         assign_trunk_keys(&skeleton, &mut canonical, rules);
@@ -406,7 +409,7 @@ fn joints_on_balls(
 
 /// Places the head joint, and turns `frame` to the head's axes when the head slices give them
 /// (seed 004, 3.1). Returns whether the head sits on the trunk with no neck between
-/// ([`super::HeadJoint::on_trunk`]).
+/// ([`super::HeadJoint::on_trunk`]) and the height of the head's top slice.
 fn head(
     mesh: &Mesh,
     frame: &mut BodyFrame,
@@ -414,7 +417,7 @@ fn head(
     options: &RefineOptions,
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
-) -> bool {
+) -> (bool, Option<f64>) {
     let near_head = rough
         .at(Canonical::Head)
         .unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
@@ -425,17 +428,49 @@ fn head(
                 *frame = f;
             }
             let shoulders = rough.pair_height(frame, Canonical::Shoulder);
+            let top = slices
+                .slices
+                .first()
+                .and_then(|s| s.points.first())
+                .map(|p| frame.h(*p));
             match head_joint(mesh, frame, &slices, shoulders, options) {
                 Some(h) => {
                     found.insert(Canonical::Head, h.joint);
-                    return h.on_trunk;
+                    return (h.on_trunk, top);
                 }
                 None => warnings.push(RefineWarning::NoOccipitalCircle),
             }
         }
         None => warnings.push(RefineWarning::NoHead),
     }
-    false
+    (false, None)
+}
+
+/// Puts the head's end joint (`head_end`, the head bone's tip) straight above the refined head
+/// joint at `top`, the height of the head's top slice (seed 004, 3.1: the head's leaf at the
+/// top of the skull). The fit leaves it at the end of the head's medial path, which wanders
+/// over a round skull's dome with the voxel grid (up to a tenth of the height forward or back
+/// between a figure and its Z-up copy). Nothing moves without a top above the head joint.
+fn head_end_above_head(
+    skeleton: &mut Skeleton,
+    rough: &Rough,
+    frame: &BodyFrame,
+    top: Option<f64>,
+) {
+    let (Some(head), Some(top)) = (rough.id(Canonical::Head), top) else {
+        return;
+    };
+    let joint = skeleton.joint(head).position;
+    if top <= frame.h(joint) {
+        return;
+    }
+    let end = skeleton
+        .children(head)
+        .into_iter()
+        .find(|c| skeleton.joint(*c).name == "head_end");
+    if let Some(end) = end {
+        skeleton.joints[end.0].position = frame.at_height(joint, top);
+    }
 }
 
 /// A head sitting on its trunk with no neck between ([`super::HeadJoint::on_trunk`]) has its
