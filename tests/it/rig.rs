@@ -1308,6 +1308,35 @@ fn the_head_end_tops_the_head_joint_whatever_the_voxel_grid() {
     }
 }
 
+/// The MakeHuman body (mh_male_young_average) turned Z-up: its wrists 0.8 mm from the Y-up
+/// rig's, the levels of the hand's contour tree fell so that ring and little finger did not
+/// part (4 digits a hand, 5 Y-up). A hand read with fewer than five digits is read again on
+/// levels half a step shifted: five digits, each joint within 1 % of the height of the Y-up
+/// rig's.
+#[test]
+fn a_shallow_web_parts_the_fingers_of_a_z_up_hand_too() {
+    let Some(dir) = common::model("humanoid/mh_male_young_average") else {
+        return;
+    };
+    let y_up = load(&dir.join("mesh.obj")).unwrap();
+    let keys: Vec<String> = ["L", "R"]
+        .iter()
+        .flat_map(|side| {
+            ["ring", "pinky"]
+                .iter()
+                .flat_map(move |f| (1..=3).map(move |k| format!("{f}_0{k}_{side}")))
+        })
+        .collect();
+    let keys: Vec<&str> = keys.iter().map(String::as_str).collect();
+    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &keys) {
+        assert!(
+            off < 0.01,
+            "{key} differs by {:.1} % of the height",
+            100.0 * off
+        );
+    }
+}
+
 /// The jointed figure (quaternius_cyberpunk_character) turned Z-up: the fit put the left
 /// elbow a third of the arm inward and the left shoulder high and forward, and the refined left
 /// shoulder, 0.127 m from that rough one, was refused as too far; symmetry then averaged the
