@@ -10,10 +10,12 @@
 //! within 45° of vertical, under it; otherwise every axis is scored and the best
 //! complete one wins, unless the opposite direction is complete too (a figure standing either way
 //! up, legs sprawling from a flat body, has no up to find) or its legs hang less plumb than the
-//! legs labelled under +Y do (an insect standing under +Y on one leg the labels found). When no axis gives a complete
-//! standing figure, +Y stays, with a warning.
+//! legs labelled under +Y do (an insect standing under +Y on one leg the labels found). A
+//! whole humanoid carries its body on legs no thinner than its arms and its head tops its arm
+//! roots, so a big-headed figure read upside down (long ears hanging like legs) is not whole.
+//! When no axis gives a complete standing figure, +Y stays, with a warning.
 
-use super::{label_graph, Draft, FigureClass, Frame, Label, LabelOptions, LevelTree};
+use super::{label_graph, Draft, FigureClass, Frame, Label, LabelOptions, LevelTree, Section};
 use crate::medial::MedialSurface;
 use crate::paths::PathOptions;
 use crate::voxel::Solid;
@@ -124,7 +126,9 @@ fn score(draft: &Draft, up: DVec3, name: &'static str) -> UpScore {
     };
     let whole = head
         && match draft.figure {
-            FigureClass::HumanLike => paired_legs == 2 && arms == 2 && legs_carry,
+            FigureClass::HumanLike => {
+                paired_legs == 2 && arms == 2 && legs_carry && head_on_top(draft, up)
+            }
             FigureClass::AnimalLike => paired_legs == 4 || (paired_legs == 2 && wings == 2),
             FigureClass::Unknown => false,
         };
@@ -147,6 +151,30 @@ fn score(draft: &Draft, up: DVec3, name: &'static str) -> UpScore {
         standing,
         hanging,
         score,
+    }
+}
+
+/// Whether the head's end lies above the mean root of the arms along `up` (true when either is
+/// missing): a humanoid's head tops its shoulders in any arm pose, while a figure read upside
+/// down (ears hanging like legs from a big head) finds its "head" in a bump below the arms.
+fn head_on_top(draft: &Draft, up: DVec3) -> bool {
+    let along = |label: Label, point: fn(&Section) -> DVec3| {
+        let (sum, n) = draft
+            .assignments
+            .iter()
+            .zip(&draft.sections)
+            .filter(|(a, _)| a.label == Some(label))
+            .fold((0.0, 0usize), |(t, n), (_, s)| {
+                (t + point(s).dot(up), n + 1)
+            });
+        (n > 0).then(|| sum / n as f64)
+    };
+    match (
+        along(Label::Head, |s| s.distal),
+        along(Label::Arm, |s| s.attachment),
+    ) {
+        (Some(head), Some(arms)) => head > arms,
+        _ => true,
     }
 }
 

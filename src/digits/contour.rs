@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 /// One contour: a connected component of the level set at one level.
 #[derive(Debug, Clone)]
 pub(super) struct Contour {
-    /// Level index (the level is `(level + 1) * step`).
+    /// Level index (the level is `(level + 1 - phase) * step`).
     pub level: usize,
     /// Length-weighted centroid of the contour's segments, mesh frame.
     pub centre: DVec3,
@@ -41,24 +41,30 @@ impl Branch {
     }
 }
 
-/// The leaf branches of the contour tree, shorter ones than `min_levels` pruned; only
-/// branches that part from a split are returned (a mitten gives none).
-pub(super) fn digit_branches(surface: &HandSurface, step: f64, min_levels: usize) -> Vec<Branch> {
+/// The leaf branches of the contour tree with levels `step` apart, the first at `(1 - phase)
+/// * step` (`phase` in [0, 1)), shorter ones than `min_levels` pruned; only branches that part
+/// from a split are returned (a mitten gives none).
+pub(super) fn digit_branches(
+    surface: &HandSurface,
+    step: f64,
+    phase: f64,
+    min_levels: usize,
+) -> Vec<Branch> {
     let far = surface.distance.iter().cloned().fold(0.0, f64::max);
-    let levels = ((far / step) as usize).min(10_000);
+    let levels = ((far / step + phase) as usize).min(10_000);
+    let level = |k: usize| (k as f64 + 1.0 - phase) * step;
     let edges = EdgeGroups::new(&surface.triangles);
     let mut contours: Vec<Contour> = Vec::new();
     let mut by_level: Vec<Vec<usize>> = Vec::with_capacity(levels);
     for k in 0..levels {
-        let t = (k + 1) as f64 * step;
-        let found = level_contours(surface, &edges, t, k);
+        let found = level_contours(surface, &edges, level(k), k);
         by_level.push((contours.len()..contours.len() + found.len()).collect());
         contours.extend(found);
     }
     let mut children = vec![Vec::new(); contours.len()];
     let mut parents = vec![Vec::new(); contours.len()];
     for k in 0..levels.saturating_sub(1) {
-        let (lo, hi) = ((k + 1) as f64 * step, (k + 2) as f64 * step);
+        let (lo, hi) = (level(k), level(k + 1));
         let mut uf = UnionFind::new(surface.triangles.len());
         edges.unite_within(surface, &mut uf, |a, b| a.min(b) <= hi && a.max(b) >= lo);
         for &a in &by_level[k] {

@@ -152,7 +152,17 @@ fn read_hand(
     ) else {
         return Err(DigitWarning::NoHand { side });
     };
-    let mut branches = separated_digits(mesh, &surface, options.level_step * forearm, options);
+    let step = options.level_step * forearm;
+    let mut branches = separated_digits(mesh, &surface, step, 0.0, options);
+    // A shallow web (ring and little finger) parts between two levels or not, with a sub-voxel
+    // shift of the wrist: fewer than five digits are read again on levels half a step shifted,
+    // and the reading with more digits, at most five, is kept.
+    if branches.len() < Finger::ALL.len() {
+        let shifted = separated_digits(mesh, &surface, step, 0.5, options);
+        if shifted.len() > branches.len() && shifted.len() <= Finger::ALL.len() {
+            branches = shifted;
+        }
+    }
     // Thumb first: the deepest web, at equal webs the thinner digit.
     branches.sort_by(|a, b| {
         (a.split_level, base_perimeter(a))
@@ -280,16 +290,17 @@ fn mean_width(b: &Branch) -> f64 {
 }
 
 /// The digits of a hand's or foot's `surface`: the contour tree's leaf branches (levels
-/// `step` apart) that stand out at least as long as they are wide (a shorter one is a bump of
+/// `step` apart, shifted by `phase` of a step: [`digit_branches`]) that stand out at least as long as they are wide (a shorter one is a bump of
 /// the palm or of another body part's surface in reach) and whose contour centres all lie
 /// inside the figure (a coarse or open surface can give branches whose centres do not).
 pub(super) fn separated_digits(
     mesh: &Mesh,
     surface: &HandSurface,
     step: f64,
+    phase: f64,
     options: &DigitOptions,
 ) -> Vec<Branch> {
-    let mut branches = digit_branches(surface, step, options.min_levels);
+    let mut branches = digit_branches(surface, step, phase, options.min_levels);
     branches.retain(|b| b.free_length() >= mean_width(b));
     let centres: Vec<DVec3> = branches
         .iter()

@@ -204,7 +204,7 @@ fn fit_paw(
         options.reach * length,
         options.wrist_band * length,
     )?;
-    let mut branches = separated_digits(mesh, &surface, options.level_step * length, options);
+    let mut branches = separated_digits(mesh, &surface, options.level_step * length, 0.0, options);
     // A foot's digits reach down to the ground the figure stands on: a branch whose tip is
     // higher than the root is another part within reach (a tail, the rump behind a hind foot).
     branches.retain(|b| b.path[0].dot(body.up) < r.dot(body.up));

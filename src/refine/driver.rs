@@ -214,7 +214,7 @@ fn refine_with(
     let mut found = Found::new();
 
     // 3.1 Head and body frame.
-    let on_trunk = head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
+    let (on_trunk, head_top) = head(mesh, &mut frame, &rough, options, &mut found, &mut warnings);
 
     // 3.2 Torso points.
     let head_point = found
@@ -269,7 +269,7 @@ fn refine_with(
     // 3.2 Spine and neck.
     let spine_result = spine_and_neck(&scene, torso.as_ref(), on_trunk, &mut found, &mut warnings);
 
-    let (mut targets, moved) = accepted(&rough, &found, &scene.frame, options, &mut warnings);
+    let (mut targets, moved) = accepted(&rough, &found, &scene, &mut warnings);
     let spine_ends_moved = moved.contains_key(Canonical::Pelvis.as_str())
         && moved.contains_key(Canonical::Neck.as_str());
     if let (Some(s), true) = (&spine_result, spine_ends_moved) {
@@ -277,7 +277,10 @@ fn refine_with(
             targets.insert(id, p);
         }
     }
-    let skeleton = carry(skeleton, &targets);
+    let mut skeleton = carry(skeleton, &targets);
+    if moved.contains_key(Canonical::Head.as_str()) {
+        head_end_above_head(&mut skeleton, &rough, &scene.frame, head_top);
+    }
     let mut canonical = canonical.clone();
     if let Some(rules) = trunk {
         assign_trunk_keys(&skeleton, &mut canonical, rules);
@@ -406,7 +409,7 @@ fn joints_on_balls(
 
 /// Places the head joint, and turns `frame` to the head's axes when the head slices give them
 /// (seed 004, 3.1). Returns whether the head sits on the trunk with no neck between
-/// ([`super::HeadJoint::on_trunk`]).
+/// ([`super::HeadJoint::on_trunk`]) and the height of the head's top slice.
 fn head(
     mesh: &Mesh,
     frame: &mut BodyFrame,
@@ -414,7 +417,7 @@ fn head(
     options: &RefineOptions,
     found: &mut Found,
     warnings: &mut Vec<RefineWarning>,
-) -> bool {
+) -> (bool, Option<f64>) {
     let near_head = rough
         .at(Canonical::Head)
         .unwrap_or_else(|| frame.at_height(DVec3::ZERO, frame.top));
@@ -425,17 +428,49 @@ fn head(
                 *frame = f;
             }
             let shoulders = rough.pair_height(frame, Canonical::Shoulder);
+            let top = slices
+                .slices
+                .first()
+                .and_then(|s| s.points.first())
+                .map(|p| frame.h(*p));
             match head_joint(mesh, frame, &slices, shoulders, options) {
                 Some(h) => {
                     found.insert(Canonical::Head, h.joint);
-                    return h.on_trunk;
+                    return (h.on_trunk, top);
                 }
                 None => warnings.push(RefineWarning::NoOccipitalCircle),
             }
         }
         None => warnings.push(RefineWarning::NoHead),
     }
-    false
+    (false, None)
+}
+
+/// Puts the head's end joint (`head_end`, the head bone's tip) straight above the refined head
+/// joint at `top`, the height of the head's top slice (seed 004, 3.1: the head's leaf at the
+/// top of the skull). The fit leaves it at the end of the head's medial path, which wanders
+/// over a round skull's dome with the voxel grid (up to a tenth of the height forward or back
+/// between a figure and its Z-up copy). Nothing moves without a top above the head joint.
+fn head_end_above_head(
+    skeleton: &mut Skeleton,
+    rough: &Rough,
+    frame: &BodyFrame,
+    top: Option<f64>,
+) {
+    let (Some(head), Some(top)) = (rough.id(Canonical::Head), top) else {
+        return;
+    };
+    let joint = skeleton.joint(head).position;
+    if top <= frame.h(joint) {
+        return;
+    }
+    let end = skeleton
+        .children(head)
+        .into_iter()
+        .find(|c| skeleton.joint(*c).name == "head_end");
+    if let Some(end) = end {
+        skeleton.joints[end.0].position = frame.at_height(joint, top);
+    }
 }
 
 /// A head sitting on its trunk with no neck between ([`super::HeadJoint::on_trunk`]) has its
@@ -467,7 +502,8 @@ fn spine_and_neck(
 ) -> Option<Spine> {
     let options = scene.options;
     let spine_result: Option<Spine> = match (torso, found.get(&Canonical::Head)) {
-        (Some(t), Some(&h)) => spine(&scene.frame, scene.centre, h, t, options),
+        (Some(t), Some(&h)) => spine(&scene.frame, scene.centre, h, t, options)
+            .filter(|s| lumbar_above_pelvis(&scene.frame, s, found.get(&Canonical::Pelvis))),
         _ => None,
     };
     match (&spine_result, torso) {
@@ -487,6 +523,18 @@ fn spine_and_neck(
     }
     neck_under_head(&scene.frame, found);
     spine_result
+}
+
+/// Whether the spine's lumbar control point (L3/L4) lies above the `pelvis` joint (true without
+/// one): the lumbar spine rises from the pelvis. Where clothing hides the crotch (a skirt), the
+/// median silhouette's lower back and buttocks can be folds of the skirt far below the hips;
+/// a curve through them is no spine, and the spine joints are carried along as when its
+/// control points are out of order.
+fn lumbar_above_pelvis(frame: &BodyFrame, spine: &Spine, pelvis: Option<&DVec3>) -> bool {
+    match (spine.control.get(3), pelvis) {
+        (Some(&lumbar), Some(&pelvis)) => frame.h(lumbar) > frame.h(pelvis),
+        _ => true,
+    }
 }
 
 /// The most the cervical column leans forward from C7 (the `neck` joint) up to the head
@@ -809,16 +857,41 @@ fn hips_from_arms(
     (h < shoulders && knees.is_none_or(|k| h > k)).then_some(h)
 }
 
+/// How near (fraction of the height) a refined joint's mirror image across the median plane
+/// must lie to its partner's accepted refined place for the joint to be accepted however far
+/// it moved from its rough place: the two sides, found independently on the surface, agree,
+/// so the rough one was wrong (a fit that put one elbow a third of the arm inward).
+const MIRROR_AGREEMENT: f64 = 0.02;
+
+/// The same joint on the other side (`shoulder_R` for `shoulder_L`); `None` for axial keys.
+fn partner(key: Canonical) -> Option<Canonical> {
+    let other = |s: Side| match s {
+        Side::Left => Side::Right,
+        Side::Right => Side::Left,
+    };
+    Some(match key {
+        Canonical::Shoulder(s) => Canonical::Shoulder(other(s)),
+        Canonical::Elbow(s) => Canonical::Elbow(other(s)),
+        Canonical::Wrist(s) => Canonical::Wrist(other(s)),
+        Canonical::Hip(s) => Canonical::Hip(other(s)),
+        Canonical::Knee(s) => Canonical::Knee(other(s)),
+        Canonical::Ankle(s) => Canonical::Ankle(other(s)),
+        _ => return None,
+    })
+}
+
 /// The refined positions that stay near the rough ones, as carry targets (every refined key's
-/// joint, at its rough position unless accepted), and the accepted moves. Joints that are not
-/// refined stay where they were (not carried by their neighbours).
+/// joint, at its rough position unless accepted), and the accepted moves. A refined joint far
+/// from its rough place is accepted when it mirrors its partner's accepted refined place
+/// across the median plane (within [`MIRROR_AGREEMENT`]). Joints that are not refined stay
+/// where they were (not carried by their neighbours).
 fn accepted(
     rough: &Rough,
     found: &Found,
-    frame: &BodyFrame,
-    options: &RefineOptions,
+    scene: &Scene,
     warnings: &mut Vec<RefineWarning>,
 ) -> (BTreeMap<JointId, DVec3>, BTreeMap<String, (DVec3, DVec3)>) {
+    let (frame, options) = (&scene.frame, scene.options);
     let height = frame.height();
     let mut targets: BTreeMap<JointId, DVec3> = REFINED
         .iter()
@@ -826,6 +899,20 @@ fn accepted(
         .map(|id| (id, rough.skeleton.joint(id).position))
         .collect();
     let mut moved = BTreeMap::new();
+    // The refined places near their rough ones, before any partner is consulted.
+    let near = |key: Canonical| {
+        let (id, &to) = (rough.id(key)?, found.get(&key)?);
+        let from = rough.skeleton.joint(id).position;
+        (to.is_finite() && shift(rough, frame, key, from, to) <= options.max_shift * height)
+            .then_some(to)
+    };
+    let mirrors_partner = |key: Canonical, to: DVec3| {
+        let mirrored = to - 2.0 * (to - scene.centre).dot(frame.left) * frame.left;
+        partner(key)
+            .filter(|p| !options.keep.iter().any(|k| k == p.as_str()))
+            .and_then(near)
+            .is_some_and(|other| mirrored.distance(other) <= MIRROR_AGREEMENT * height)
+    };
     for key in REFINED {
         if options.keep.iter().any(|k| k == key.as_str()) {
             continue;
@@ -837,7 +924,10 @@ fn accepted(
             continue;
         };
         let from = rough.skeleton.joint(id).position;
-        if !to.is_finite() || shift(rough, frame, key, from, to) > options.max_shift * height {
+        if !to.is_finite()
+            || (shift(rough, frame, key, from, to) > options.max_shift * height
+                && !mirrors_partner(key, to))
+        {
             warnings.push(RefineWarning::TooFar {
                 key,
                 distance: from.distance(to),

@@ -59,7 +59,8 @@ pub enum RefineWarning {
         /// Whether the leg ratio placed it.
         placed: bool,
     },
-    /// The spine curve's control points are out of order: the spine joints were carried along.
+    /// The spine curve's control points are out of order (or its lumbar point lies below the
+    /// pelvis): the spine joints were carried along.
     SpineOutOfOrder,
     /// No spine without the head joint and the torso silhouette.
     NoSpine,
