@@ -27,6 +27,9 @@ pub(super) struct Branch {
     pub perimeters: Vec<f64>,
     /// Level index of the contour it parted from.
     pub split_level: usize,
+    /// Contour centres from the one it parted from down to the lowest level (the palm's or
+    /// sole's centre line back towards the wrist, through each contour's longest parent).
+    pub stem: Vec<DVec3>,
 }
 
 impl Branch {
@@ -128,12 +131,30 @@ fn prune_and_collect(
                             path: path.iter().map(|&n| contours[n].centre).collect(),
                             perimeters: path.iter().map(|&n| contours[n].perimeter).collect(),
                             split_level: contours[split].level,
+                            stem: stem(contours, parents, &alive, split),
                         })
                     })
                     .collect()
             }
         }
     }
+}
+
+/// Contour centres from `from` down through each contour's longest live parent to one without
+/// any (the lowest level the tree reaches there).
+fn stem(contours: &[Contour], parents: &[Vec<usize>], alive: &[bool], from: usize) -> Vec<DVec3> {
+    let mut centres = vec![contours[from].centre];
+    let mut node = from;
+    while let Some(p) = parents[node]
+        .iter()
+        .copied()
+        .filter(|&p| alive[p])
+        .max_by(|&a, &b| contours[a].perimeter.total_cmp(&contours[b].perimeter))
+    {
+        centres.push(contours[p].centre);
+        node = p;
+    }
+    centres
 }
 
 /// The contours at level `t`: triangles crossing it joined across the edges crossing it.

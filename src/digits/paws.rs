@@ -164,20 +164,52 @@ fn phalanges_length(
 }
 
 /// One digit chain of a paw from its `root` (wrist, ankle) to the mean of its toes' `tips`,
-/// cut by the template's `digit` ratios (metapodial, proximal, middle, distal: 8.2); `None`
-/// without the ratios or when the tips are at the root.
-fn paw_digit(template: &Template, root: DVec3, tips: &[DVec3]) -> Option<DigitJoints> {
+/// cut by the template's `digit` ratios (metapodial, proximal, middle, distal: 8.2) along the
+/// foot's centre line: from the root down the `stem` (the contour centres from the lowest
+/// level up to where the toes part, those before the first one beyond the wrist plane through
+/// the root normal to `axis` left out) and on to the tips' mean. A plantigrade foot turns at
+/// the heel, and its digit follows the sole rather than cutting through the air from the
+/// ankle to the toes. `None` without the ratios or when the tips are at the root.
+fn paw_digit(
+    template: &Template,
+    root: DVec3,
+    axis: DVec3,
+    stem: &[DVec3],
+    tips: &[DVec3],
+) -> Option<DigitJoints> {
     let ratios = template.ratios.get("digit").filter(|r| r.len() >= 4)?;
     let total: f64 = ratios.iter().sum();
     let tip = tips.iter().sum::<DVec3>() / tips.len() as f64;
     if total <= 0.0 || tip.distance(root) <= 0.0 {
         return None;
     }
-    let at = |k: usize| root.lerp(tip, ratios[..k].iter().sum::<f64>() / total);
+    let beyond = stem
+        .iter()
+        .position(|&p| (p - root).dot(axis) > 0.0)
+        .unwrap_or(stem.len());
+    let line: Vec<DVec3> = std::iter::once(root)
+        .chain(stem[beyond..].iter().copied())
+        .chain(std::iter::once(tip))
+        .collect();
+    let length: f64 = line.windows(2).map(|w| w[0].distance(w[1])).sum();
+    let at = |k: usize| along(&line, length * ratios[..k].iter().sum::<f64>() / total);
     Some(DigitJoints {
         joints: [at(1), at(2), at(3)],
         tip,
     })
+}
+
+/// The point `s` along the polyline `line` (arc length from its first point; its last point
+/// past the end).
+fn along(line: &[DVec3], mut s: f64) -> DVec3 {
+    for w in line.windows(2) {
+        let d = w[0].distance(w[1]);
+        if s <= d && d > 0.0 {
+            return w[0].lerp(w[1], s / d);
+        }
+        s -= d;
+    }
+    line[line.len() - 1]
 }
 
 /// One foot: leaves the fit's chain when fewer than two digits separate.
@@ -211,15 +243,19 @@ fn fit_paw(
     // A digit holds its three phalanges: a branch standing free for less than
     // `min_paw_digit` of the length the template's ratios give them (from the shank's length)
     // is a scallop of the hoof's or paw's rim, not a toe that bends on its own.
-    let scallop_tips: Vec<DVec3> = branches.iter().map(|b| b.path[0]).collect();
+    let scallops = branches.clone();
     if let Some(phalanges) = phalanges_length(template, group, fit, joints.1, side, length) {
         branches.retain(|b| b.free_length() >= options.min_paw_digit * phalanges);
     }
-    if branches.is_empty() && scallop_tips.len() >= 2 {
+    if branches.is_empty() && scallops.len() >= 2 {
         // Toes all scalloped: a paw that bends as one, one digit (the third, as a single
-        // digit is numbered) from the root to the middle of the toes' tips; the fit's chain
-        // follows the labelled foot, which need not reach the toes.
-        let digit = paw_digit(template, r, &scallop_tips)?;
+        // digit is numbered) from the root along the sole to the middle of the toes' tips;
+        // the fit's chain follows the labelled foot, which need not reach the toes. The
+        // centre line up to the lowest split, where the toes start to part.
+        let tips: Vec<DVec3> = scallops.iter().map(|b| b.path[0]).collect();
+        let first = scallops.iter().min_by_key(|b| b.split_level)?;
+        let stem: Vec<DVec3> = first.stem.iter().rev().copied().collect();
+        let digit = paw_digit(template, r, axis, &stem, &tips)?;
         let sole = -(body.up + body.forward);
         let middle = [(Some(Finger::Middle), digit)];
         replace_hand(fit, group, joints.1, side, &middle, sole, fore);
@@ -295,7 +331,8 @@ mod tests {
         let template = Template::builtin("quadruped").unwrap();
         let root = DVec3::new(0.0, 1.0, 0.0);
         let tips = [DVec3::new(-0.1, 0.0, 1.0), DVec3::new(0.1, 0.0, 1.0)];
-        let d = paw_digit(&template, root, &tips).unwrap();
+        let down = DVec3::NEG_Y;
+        let d = paw_digit(&template, root, down, &[], &tips).unwrap();
         let tip = DVec3::new(0.0, 0.0, 1.0);
         assert!(d.tip.distance(tip) < 1e-12);
         // digit = [36, 25, 15, 10]: metapodial, proximal, middle, distal.
@@ -303,7 +340,41 @@ mod tests {
             let expected = root.lerp(tip, share / 86.0);
             assert!(joint.distance(expected) < 1e-12, "{joint:?} {expected:?}");
         }
-        assert!(paw_digit(&template, root, &[root, root]).is_none());
+        assert!(paw_digit(&template, root, down, &[], &[root, root]).is_none());
+    }
+
+    #[test]
+    fn a_plantigrade_paw_digit_follows_the_sole_round_the_heel() {
+        // An ankle one unit above the heel, the sole one unit forward along the ground: the
+        // centre line goes down then forward (a contour behind the wrist plane is skipped).
+        let template = Template::builtin("quadruped").unwrap();
+        let root = DVec3::new(0.0, 1.0, 0.0);
+        let stem = [
+            DVec3::new(0.0, 1.1, 0.0),
+            DVec3::new(0.0, 0.5, 0.0),
+            DVec3::new(0.0, 0.05, 0.0),
+            DVec3::new(0.0, 0.05, 0.5),
+        ];
+        let tips = [DVec3::new(-0.1, 0.0, 1.0), DVec3::new(0.1, 0.0, 1.0)];
+        let d = paw_digit(&template, root, DVec3::NEG_Y, &stem, &tips).unwrap();
+        // Line: root -> (0, .5, 0) -> (0, .05, 0) -> (0, .05, .5) -> (0, 0, 1); every joint
+        // on it, none on the chord from the ankle to the toes.
+        let line = [root, stem[1], stem[2], stem[3], DVec3::new(0.0, 0.0, 1.0)];
+        let length: f64 = line.windows(2).map(|w| w[0].distance(w[1])).sum();
+        for (joint, share) in d.joints.iter().zip([36.0, 61.0, 76.0]) {
+            let expected = super::along(&line, length * share / 86.0);
+            assert!(joint.distance(expected) < 1e-12, "{joint:?} {expected:?}");
+            assert!(
+                joint.y <= 0.05 + 1e-12 || joint.z.abs() < 1e-12,
+                "{joint:?} off the sole"
+            );
+        }
+        // The base joint is near the heel, not halfway along the chord.
+        assert!(
+            d.joints[0].distance(DVec3::new(0.0, 0.05, 0.0)) < 0.3,
+            "{:?}",
+            d.joints[0]
+        );
     }
 
     #[test]

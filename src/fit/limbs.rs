@@ -96,7 +96,11 @@ pub(crate) fn limb(
         }
     }
     if let Some(bend) = options.snap_to_bend {
+        let unsnapped = chain_s.clone();
         snap_to_bends(&path, &mut chain, &mut chain_s, s0, span, &bend);
+        if group.placement == Placement::Animal {
+            short_row(&path, group, &ratios, &unsnapped, &mut chain, &mut chain_s);
+        }
     }
     if let (Placement::Human, Some(root), Some(s_end)) = (
         group.placement,
@@ -296,6 +300,49 @@ fn snap_to_bends(
             chain[k] = Some(path.at(t));
             chain_s[k] = Some(t);
         }
+    }
+}
+
+/// The metapodial joint (`hand`, `foot`: the chain's `digit_row`) at most one carpal or
+/// tarsal row beyond the wrist or ankle when the bend snapping moved that joint but not this
+/// one (`unsnapped`: the arc lengths before the snapping): the row is at most the template's
+/// share of the forearm or shank (carpals over radius, tarsals over tibia, in arc length on
+/// the snapped joints), not a share of the path left below, so a hock snapped up to its bend
+/// does not leave the tarsometatarsal joint far down a long cannon bone. The short bones keep
+/// their size while the metapodials lengthen from paw to hoof (a deer's tarsus is about a
+/// sixth of its tibia, as a dog's). A row already shorter (a joint snapped towards it) is left
+/// alone. Animal-like limbs only: a human-like hand and foot are placed again by the
+/// refinement and the digit stage.
+fn short_row(
+    path: &Polyline,
+    group: &LimbGroup,
+    ratios: &[f64],
+    unsnapped: &[Option<f64>],
+    chain: &mut [Option<DVec3>],
+    chain_s: &mut [Option<f64>],
+) {
+    let row = group.digit_row;
+    let (Some(&shank_ratio), Some(&row_ratio)) = (
+        row.checked_sub(2).and_then(|k| ratios.get(k)),
+        row.checked_sub(1).and_then(|k| ratios.get(k)),
+    ) else {
+        return;
+    };
+    let (Some(top), Some(root), Some(here)) = (
+        chain_s[row - 2],
+        chain_s[row - 1],
+        chain_s.get(row).copied().flatten(),
+    ) else {
+        return;
+    };
+    let snapped = |k: usize| unsnapped[k] != chain_s[k];
+    if !snapped(row - 1) || snapped(row) || shank_ratio <= 0.0 || root <= top {
+        return;
+    }
+    let s = root + (root - top) * row_ratio / shank_ratio;
+    if s > root && s < here {
+        chain[row] = Some(path.at(s));
+        chain_s[row] = Some(s);
     }
 }
 
@@ -547,5 +594,47 @@ mod tests {
             "the corner at 0.3 takes the joint: {s}"
         );
         assert!(bend_turn(&bent, 0.3, h) > 40.0);
+    }
+
+    /// The tarsal row after the hock snapped up its straight path: the foot joint one row
+    /// (tarsals over tibia, 35/174 of the snapped shank) below the ankle, not left at its
+    /// Table 8.1 place far down the cannon; left alone when the ankle did not move, when the
+    /// foot itself snapped, or when the row is already shorter.
+    #[test]
+    fn a_snapped_ankle_takes_the_foot_joint_one_tarsal_row_along() {
+        let template = Template::builtin("quadruped").unwrap();
+        let group = template
+            .limbs
+            .iter()
+            .find(|g| g.name == "hind_leg")
+            .unwrap();
+        let ratios = &template.ratios[&group.ratios];
+        let path = Polyline::new(
+            (0..=100)
+                .map(|i| DVec3::new(0.0, -0.01 * i as f64, 0.0))
+                .collect(),
+        );
+        // hip, knee, ankle, foot, toe, toe_02, toe_03, toe_end.
+        let before = [0.0, 0.1, 0.5, 0.6, 0.8, 0.9, 0.95, 1.0].map(Some);
+        let run = |after: [Option<f64>; 8]| {
+            let mut chain_s = after.to_vec();
+            let mut chain: Vec<Option<DVec3>> =
+                chain_s.iter().map(|s| s.map(|s| path.at(s))).collect();
+            short_row(&path, group, ratios, &before, &mut chain, &mut chain_s);
+            (chain_s[3].unwrap(), chain[3].unwrap())
+        };
+        let mut snapped = before;
+        snapped[2] = Some(0.4);
+        let (s, p) = run(snapped);
+        let expected = 0.4 + 0.3 * 35.0 / 174.0;
+        assert!((s - expected).abs() < 1e-12, "{s} vs {expected}");
+        assert!(p.distance(path.at(expected)) < 1e-12);
+        assert_eq!(run(before).0, 0.6, "the ankle did not move");
+        let mut both = snapped;
+        both[3] = Some(0.55);
+        assert_eq!(run(both).0, 0.55, "the foot snapped too");
+        let mut down = before;
+        down[2] = Some(0.58);
+        assert_eq!(run(down).0, 0.6, "a row already shorter");
     }
 }

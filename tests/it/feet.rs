@@ -266,7 +266,10 @@ fn hooves_with_a_dewclaw_keep_one_digit_chain_and_no_hand_warnings() {
 /// A paw whose toes are only notches of its front rim (the rat's hind paws: four toes, each
 /// standing free for a few hundredths of the shank) bends as one: one digit chain from the
 /// ankle to the middle of the toes' tips, not four three-joint digits packed into the notches
-/// (rat CD-J2J 3.91 -> 3.35 %).
+/// (rat CD-J2J 3.91 -> 3.35 %). The chain follows the foot's centre line down the shank and
+/// round the heel along the sole, every joint inside the foot: the straight line from the
+/// ankle to the toes cut through the air in front of the heel (hind_digit_3_01 and _02 outside
+/// the mesh; rat CD-J2J 3.35 -> 3.20 %).
 #[test]
 fn a_paw_with_notched_toes_gets_one_digit_chain_to_the_toe_tips() {
     let Some(dir) = crate::common::model("quadruped/quaternius_rat") else {
@@ -299,6 +302,13 @@ fn a_paw_with_notched_toes_gets_one_digit_chain_to_the_toe_tips() {
                     .iter()
                     .all(|j| j.name != format!("hind_digit_2_{k}{s}")),
                 "{side:?}: a notch taken for a toe"
+            );
+            let id = sk.find(&format!("hind_digit_3_{k}{s}")).unwrap();
+            let at = sk.joint(id).position;
+            let w = winding_number(&mesh, at);
+            assert!(
+                w > 0.5,
+                "{side:?}: hind_digit_3_{k} at {at} outside the foot ({w:.2})"
             );
         }
     }

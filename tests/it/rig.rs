@@ -476,6 +476,36 @@ fn quadruped_knees_sit_at_the_flank_fold() {
     }
 }
 
+/// An animal's tarsometatarsal joint (`foot`) lies one tarsal row below its hock, not far
+/// down the cannon bone: when the bend snapping takes the ankle up to the hock, the row stays
+/// the template's share of the shank (tarsals over tibia, 35/174) instead of its share of the
+/// path left below. Before, the deer's, the stag's and the apatosaurus's foot joints lay a
+/// quarter of the hip-to-ankle distance below the ankle (0.25, 0.27, 0.25; CD-J2J deer 3.10,
+/// stag 3.06, apatosaurus 2.26 %), now 0.15–0.17 (3.06, 2.99, 2.24 %); the other quadrupeds,
+/// whose ankles stay at their Table 8.1 places, 0.08–0.19. Bound: twice the template's share
+/// of femur and tibia together (35/349) and some slack.
+#[test]
+fn quadruped_foot_joints_sit_one_tarsal_row_below_the_hock() {
+    // Every quadruped, the new ones (cow, husky, rat, apatosaurus, stag) among them.
+    for dir in models("quadruped") {
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        let (_, r) = rigged(&dir, &RigOptions::default());
+        let sk = &r.fit.skeleton;
+        for s in ["L", "R"] {
+            let at = |j: &str| sk.find(&format!("{j}_{s}")).map(|id| sk.joint(id).position);
+            let (Some(hip), Some(ankle), Some(foot)) = (at("hip"), at("ankle"), at("foot")) else {
+                continue;
+            };
+            let row = ankle.distance(foot) / hip.distance(ankle);
+            println!("{name} {s}: ankle to foot {row:.2} of hip to ankle");
+            assert!(
+                row < 0.22,
+                "{name} {s}: foot joint {row:.2} of the leg below the ankle"
+            );
+        }
+    }
+}
+
 /// An animal's elbows sit where the fore leg comes free of the chest floor
 /// (`FitOptions::limb_fold`), not where its medial piece leaves the trunk's. Measured with
 /// `../shared/refdata` against the fox's canonical elbows and the Quaternius rigs'
