@@ -921,9 +921,9 @@ mod tests {
             ("Foot.L", Some(0), [0.1, 0.0, 0.0]),
         ]);
         let region = joint_regions(&rig, &BTreeMap::new());
-        for j in 4..7 {
+        for (j, r) in region.iter().enumerate().take(7).skip(4) {
             assert_eq!(
-                region[j],
+                *r,
                 Some(Region::Hind(Some(Side::Left))),
                 "{}",
                 rig.joints[j].name

@@ -44,9 +44,9 @@ impl Branch {
     }
 }
 
-/// The leaf branches of the contour tree with levels `step` apart, the first at `(1 - phase)
-/// * step` (`phase` in [0, 1)), shorter ones than `min_levels` pruned; only branches that part
-/// from a split are returned (a mitten gives none).
+/// The leaf branches of the contour tree with levels `step` apart, the first at
+/// `(1 - phase) * step` (`phase` in [0, 1)), shorter ones than `min_levels` pruned; only
+/// branches that part from a split are returned (a mitten gives none).
 pub(super) fn digit_branches(
     surface: &HandSurface,
     step: f64,
