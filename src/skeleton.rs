@@ -268,6 +268,23 @@ impl Skeleton {
     }
 }
 
+/// A skeleton of `(name, parent index, position)` joints, all deforming (unit tests).
+#[cfg(test)]
+pub(crate) fn test_skeleton(joints: &[(&str, Option<usize>, [f64; 3])]) -> Skeleton {
+    Skeleton {
+        joints: joints
+            .iter()
+            .map(|&(name, parent, p)| Joint {
+                name: name.into(),
+                parent: parent.map(JointId),
+                position: DVec3::from_array(p),
+                deform: true,
+                ..Default::default()
+            })
+            .collect(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -843,22 +843,6 @@ mod tests {
         assert!(top.percent > best.percent);
     }
 
-    /// A skeleton of `(name, parent, position)` joints, all deforming.
-    fn rig_of(joints: &[(&str, Option<usize>, [f64; 3])]) -> Skeleton {
-        Skeleton {
-            joints: joints
-                .iter()
-                .map(|&(name, parent, p)| crate::skeleton::Joint {
-                    name: name.into(),
-                    parent: parent.map(JointId),
-                    position: DVec3::from_array(p),
-                    deform: true,
-                    ..Default::default()
-                })
-                .collect(),
-        }
-    }
-
     /// An insect's abdomen and thorax are its trunk (the wasp's `Abdomen` hangs from its
     /// `Neck` and took the head's region), and of its three unnamed leg pairs the one nearest
     /// the head is the fore pair, the others hind, as the labelling divides three leg pairs.
@@ -888,7 +872,7 @@ mod tests {
                 joints.push((b.as_str(), Some(root), [x * 2.0, 2.0, *z]));
             }
         }
-        let rig = rig_of(&joints);
+        let rig = crate::skeleton::test_skeleton(&joints);
         let region = joint_regions(&rig, &BTreeMap::new());
         let of = |name: &str| region[rig.find(name).unwrap().0];
         for name in ["Thorax", "Abdomen", "Abdomen2", "Sting"] {
@@ -911,7 +895,7 @@ mod tests {
     /// root) stay hind limbs: only more than two limb pairs are divided by place.
     #[test]
     fn two_unnamed_leg_chains_on_a_side_stay_hind_limbs() {
-        let rig = rig_of(&[
+        let rig = crate::skeleton::test_skeleton(&[
             ("Root", None, [0.0, 0.0, 0.0]),
             ("Hips", Some(0), [0.0, 1.0, 0.0]),
             ("Neck", Some(1), [0.0, 1.5, 0.0]),

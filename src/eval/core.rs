@@ -92,24 +92,12 @@ pub fn core_error(evaluation: &Evaluation) -> Option<CoreError> {
 mod tests {
     use super::*;
     use crate::eval::{evaluate, EvalOptions, ReferenceRig};
-    use crate::skeleton::{Joint, JointId, Skeleton};
-    use glam::DVec3;
+    use crate::skeleton::JointId;
 
     /// An upright stick figure: pelvis at 1, neck 1.5, head 1.7, arms and legs; every joint
     /// named by its canonical key.
     fn figure(keys: &[(&str, Option<usize>, [f64; 3])]) -> ReferenceRig {
-        let skeleton = Skeleton {
-            joints: keys
-                .iter()
-                .map(|&(name, parent, p)| Joint {
-                    name: name.into(),
-                    parent: parent.map(JointId),
-                    position: DVec3::from_array(p),
-                    deform: true,
-                    ..Default::default()
-                })
-                .collect(),
-        };
+        let skeleton = crate::skeleton::test_skeleton(keys);
         let mut rig = ReferenceRig::from_skeleton("figure", skeleton);
         rig.canonical = keys
             .iter()

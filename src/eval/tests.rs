@@ -987,3 +987,39 @@ fn a_coincidental_shared_name_does_not_make_a_per_joint_evaluation() {
     assert_eq!(e.method, MatchMethod::Name);
     assert_eq!(e.joints.len(), 1);
 }
+
+/// `arms_below_horizontal` (the pose study's re-posing): each arm turns about its shoulder to
+/// the angle below the horizontal, out to its own side; the rest stays.
+#[test]
+fn arms_go_down_out_to_their_sides_and_the_rest_stays() {
+    let skeleton = Skeleton {
+        joints: vec![
+            joint("chest", None, [0.0, 1.4, 0.0]),
+            joint("shoulder_L", Some(0), [0.2, 1.4, 0.0]),
+            joint("elbow_L", Some(1), [0.5, 1.4, 0.0]),
+            joint("wrist_L", Some(2), [0.8, 1.4, 0.0]),
+            joint("shoulder_R", Some(0), [-0.2, 1.4, 0.0]),
+            joint("elbow_R", Some(4), [-0.5, 1.4, 0.0]),
+        ],
+    };
+    let canonical: std::collections::BTreeMap<String, JointId> = skeleton
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(k, j)| (j.name.clone(), JointId(k)))
+        .collect();
+    let m = arms_below_horizontal(&skeleton, &canonical, 45.0, DVec3::Y, DVec3::Z);
+    assert_eq!(m[0], glam::DAffine3::IDENTITY);
+    let wrist = m[3].transform_point3(skeleton.joints[3].position);
+    let expected = DVec3::new(0.2, 1.4, 0.0) + 0.6 * DVec3::new(1.0, -1.0, 0.0).normalize();
+    assert!(wrist.distance(expected) < 1e-9, "{wrist}");
+    let elbow_r = m[5].transform_point3(skeleton.joints[5].position);
+    let expected_r = DVec3::new(-0.2, 1.4, 0.0) + 0.3 * DVec3::new(-1.0, -1.0, 0.0).normalize();
+    assert!(elbow_r.distance(expected_r) < 1e-9, "{elbow_r}");
+    // The shoulder is the pivot: it stays.
+    assert!(
+        m[1].transform_point3(skeleton.joints[1].position)
+            .distance(skeleton.joints[1].position)
+            < 1e-12
+    );
+}

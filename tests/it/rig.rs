@@ -1006,6 +1006,18 @@ fn turned_z_up(mesh: &Mesh) -> Mesh {
     z_up
 }
 
+/// Asserts that each of `keys` in the rig of `y_up` turned Z-up (default options) lies within
+/// `bound` of the height of its place in the Y-up rig ([`z_up_offsets`]).
+fn assert_z_up_within(y_up: &Mesh, keys: &[&str], bound: f64) {
+    for (key, off) in z_up_offsets(y_up, &RigOptions::default(), keys) {
+        assert!(
+            off < bound,
+            "{key} differs by {:.1} % of the height",
+            100.0 * off
+        );
+    }
+}
+
 /// Per key, how far (fraction of the height) the joint of `y_up`'s rig (default options) lies
 /// from the same joint of its Z-up turn rigged with `options`, turned back; panics naming a key
 /// either rig lacks.
@@ -1289,13 +1301,7 @@ fn a_jointed_figures_arms_turned_z_up_match_the_y_up_rig() {
     };
     let y_up = load(&dir.join("mesh.obj")).unwrap();
     let keys = ["elbow_L", "elbow_R", "wrist_L", "wrist_R"];
-    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &keys) {
-        assert!(
-            off < 0.05,
-            "{key} differs by {:.1} % of the height",
-            100.0 * off
-        );
-    }
+    assert_z_up_within(&y_up, &keys, 0.05);
 }
 
 /// The head's end joint (the head bone's tip) of MakeHuman bodies turned Z-up: the fit leaves
@@ -1358,13 +1364,7 @@ fn a_shallow_web_parts_the_fingers_of_a_z_up_hand_too() {
         })
         .collect();
     let keys: Vec<&str> = keys.iter().map(String::as_str).collect();
-    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &keys) {
-        assert!(
-            off < 0.01,
-            "{key} differs by {:.1} % of the height",
-            100.0 * off
-        );
-    }
+    assert_z_up_within(&y_up, &keys, 0.01);
 }
 
 /// The jointed figure (quaternius_cyberpunk_character) turned Z-up: the fit put the left
@@ -1380,13 +1380,7 @@ fn a_refined_shoulder_that_mirrors_its_partner_is_kept_far_from_a_wrong_rough_on
     };
     let y_up = load(&dir.join("mesh.obj")).unwrap();
     let keys = ["shoulder_L", "shoulder_R"];
-    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &keys) {
-        assert!(
-            off < 0.01,
-            "{key} differs by {:.1} % of the height",
-            100.0 * off
-        );
-    }
+    assert_z_up_within(&y_up, &keys, 0.01);
 }
 
 /// A figure in a skirt (quaternius_women_formal) turned Z-up: on the turned grid a fold of the
@@ -1424,13 +1418,7 @@ fn a_skirts_folds_make_no_spine_below_the_pelvis_of_a_z_up_figure() {
         return;
     };
     let y_up = load(&dir.join("mesh.obj")).unwrap();
-    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &["spine", "chest"]) {
-        assert!(
-            off < 0.05,
-            "{key} differs by {:.1} % of the height",
-            100.0 * off
-        );
-    }
+    assert_z_up_within(&y_up, &["spine", "chest"], 0.05);
     let found = rig(&turned_z_up(&y_up), &RigOptions::default()).unwrap();
     let at = |key: &str| found.fit.skeleton.joints[found.fit.canonical[key].0].position;
     assert!(
@@ -1452,13 +1440,7 @@ fn a_big_fists_rough_wrist_does_not_start_the_wrist_search_past_the_wrist() {
         return;
     };
     let y_up = load(&dir.join("mesh.obj")).unwrap();
-    for (key, off) in z_up_offsets(&y_up, &RigOptions::default(), &["wrist_L", "wrist_R"]) {
-        assert!(
-            off < 0.03,
-            "{key} differs by {:.1} % of the height",
-            100.0 * off
-        );
-    }
+    assert_z_up_within(&y_up, &["wrist_L", "wrist_R"], 0.03);
 }
 
 /// A big-headed bunny (quaternius_platformer_character) turned Z-up labels as a whole standing
