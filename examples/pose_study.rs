@@ -12,12 +12,9 @@
 #[path = "common/refdata.rs"]
 mod refdata;
 
-use glam::DVec3;
 use refdata::{artist_rig, ArtistRig};
-use skelfit::eval::{arms_below_horizontal, CORE_KEYS};
-use skelfit::mesh::Mesh;
+use skelfit::eval::CORE_KEYS;
 use skelfit::pipeline::{rig, RigOptions};
-use skelfit::skin::check::blend;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -42,6 +39,20 @@ struct Row {
     failure: Option<String>,
 }
 
+impl Row {
+    /// The mean core error as printed, `–` without one.
+    fn mean_cell(&self) -> String {
+        self.mean_percent.map_or("–".into(), |m| format!("{m:.2}"))
+    }
+
+    /// The worst core key and its error as printed, empty without one.
+    fn worst_cell(&self) -> String {
+        self.worst
+            .as_ref()
+            .map_or(String::new(), |(k, e)| format!("{k} {e:.2}"))
+    }
+}
+
 fn posed_row(name: &str, artist: &ArtistRig, angle: f64, meshes: Option<&std::path::Path>) -> Row {
     let mut row = Row {
         model: name.to_string(),
@@ -53,31 +64,19 @@ fn posed_row(name: &str, artist: &ArtistRig, angle: f64, meshes: Option<&std::pa
         missing: Vec::new(),
         failure: None,
     };
-    let matrices = arms_below_horizontal(
-        &artist.skeleton,
-        &artist.canonical,
-        angle,
-        DVec3::Y,
-        DVec3::Z,
-    );
-    let positions = blend(&artist.mesh.positions, &artist.weights, &matrices);
-    let mesh = match Mesh::new(positions, artist.mesh.triangles.clone()) {
-        Ok(m) => m,
+    let (mesh, posed) = match artist.with_arms_at(angle) {
+        Ok(posed) => posed,
         Err(e) => {
-            row.failure = Some(e.to_string());
+            row.failure = Some(e);
             return row;
         }
     };
     // The posed mesh and the artist's core joints in the pose, to rig again by hand.
     if let Some(dir) = meshes {
         let file = dir.join(format!("{name}_{angle}.obj"));
-        let posed: std::collections::BTreeMap<&str, [f64; 3]> = CORE_KEYS
+        let core: std::collections::BTreeMap<&str, [f64; 3]> = CORE_KEYS
             .iter()
-            .filter_map(|&key| {
-                let id = *artist.canonical.get(key)?;
-                let p = matrices[id.0].transform_point3(artist.skeleton.joint(id).position);
-                Some((key, p.to_array()))
-            })
+            .filter_map(|&key| Some((key, posed.get(key)?.to_array())))
             .collect();
         if let Err(e) = std::fs::create_dir_all(dir)
             .map_err(|e| e.to_string())
@@ -85,7 +84,7 @@ fn posed_row(name: &str, artist: &ArtistRig, angle: f64, meshes: Option<&std::pa
             .and_then(|()| {
                 std::fs::write(
                     file.with_extension("reference.json"),
-                    serde_json::to_string_pretty(&posed).unwrap_or_default(),
+                    serde_json::to_string_pretty(&core).unwrap_or_default(),
                 )
                 .map_err(|e| e.to_string())
             })
@@ -105,11 +104,10 @@ fn posed_row(name: &str, artist: &ArtistRig, angle: f64, meshes: Option<&std::pa
     };
     let mut errors = Vec::new();
     for key in CORE_KEYS {
-        let Some(&id) = artist.canonical.get(key) else {
+        let Some(&reference) = posed.get(key) else {
             continue;
         };
         row.mapped += 1;
-        let reference = matrices[id.0].transform_point3(artist.skeleton.joint(id).position);
         match fitted.fit.canonical.get(key) {
             Some(&p) => {
                 let error =
@@ -160,12 +158,10 @@ fn main() {
                 "{:32} {:>4}°  core {:>6}  paired {}/{}  worst {:<24} missing {:?} {}",
                 row.model,
                 row.angle,
-                row.mean_percent.map_or("–".into(), |m| format!("{m:.2}")),
+                row.mean_cell(),
                 row.paired,
                 row.mapped,
-                row.worst
-                    .as_ref()
-                    .map_or(String::new(), |(k, e)| format!("{k} {e:.2}")),
+                row.worst_cell(),
                 row.missing,
                 row.failure.as_deref().unwrap_or("")
             );
@@ -188,12 +184,10 @@ fn main() {
             "| {} | {}° | {} | {}/{} | {} | {} | {} |",
             r.model,
             r.angle,
-            r.mean_percent.map_or("–".into(), |m| format!("{m:.2}")),
+            r.mean_cell(),
             r.paired,
             r.mapped,
-            r.worst
-                .as_ref()
-                .map_or(String::new(), |(k, e)| format!("{k} {e:.2}")),
+            r.worst_cell(),
             r.missing.join(", "),
             r.failure.as_deref().unwrap_or("")
         );

@@ -6,7 +6,8 @@
 
 #![allow(dead_code)]
 
-use skelfit::eval::load_skeleton;
+use glam::DVec3;
+use skelfit::eval::{arms_below_horizontal, load_skeleton};
 use skelfit::mesh::{load_gltf_scene, Mesh};
 use skelfit::skeleton::{JointId, Skeleton};
 use skelfit::skin::check::{blend, check_deformation, sweep, DeformationCheck, SweepKind};
@@ -109,6 +110,25 @@ impl ArtistRig {
         self.mesh
             .bounding_box()
             .map_or(0.0, |(low, high)| (high - low).max_element())
+    }
+
+    /// The figure with both upper arms `degrees` below the horizontal (+Y up, +Z forward;
+    /// [`arms_below_horizontal`]), posed by linear blend skinning with the artist's weights:
+    /// the posed mesh and the artist's canonical joints in that pose.
+    pub fn with_arms_at(&self, degrees: f64) -> Result<(Mesh, BTreeMap<String, DVec3>), String> {
+        let matrices =
+            arms_below_horizontal(&self.skeleton, &self.canonical, degrees, DVec3::Y, DVec3::Z);
+        let positions = blend(&self.mesh.positions, &self.weights, &matrices);
+        let mesh = Mesh::new(positions, self.mesh.triangles.clone()).map_err(|e| e.to_string())?;
+        let joints = self
+            .canonical
+            .iter()
+            .map(|(key, &id)| {
+                let p = matrices[id.0].transform_point3(self.skeleton.joint(id).position);
+                (key.clone(), p)
+            })
+            .collect();
+        Ok((mesh, joints))
     }
 }
 

@@ -13,6 +13,7 @@
 //! arms branch off the head's section, between the trunk and the neck: [`chest_junction`]
 //! finds where, so that the trunk is carried on to it and the arms become sections.
 
+use super::rules::MedianPlane;
 use super::sections::section;
 use super::{Frame, LevelGraph, Section};
 use crate::medial::MedialSurface;
@@ -67,10 +68,11 @@ pub(super) fn hangs_or_reaches_sideways(section: &Section, from: DVec3, frame: &
 /// mean off the plane and on opposite sides by more than a third of the longer length, and `b`'s
 /// mean reflected across the plane within that third of `a`'s.
 pub(super) fn mirror_pair(a: &Section, b: &Section, frame: &Frame, centre: DVec3) -> bool {
-    let offset = |p: DVec3| (p - centre).dot(frame.left);
+    let plane = MedianPlane::new(frame, centre);
+    let offset = |p: DVec3| plane.offset(p);
     let longer = a.length.max(b.length);
     let tolerance = longer / 3.0;
-    let reflected = b.mean - frame.left * (2.0 * offset(b.mean));
+    let reflected = plane.reflect(b.mean);
     a.length.min(b.length) >= 0.5 * longer
         && offset(a.mean).abs() > tolerance
         && offset(b.mean).abs() > tolerance

@@ -55,16 +55,33 @@ pub struct Draft {
 /// The median plane a pair's two parts mirror each other across: through `centre`, normal
 /// `left`.
 #[derive(Debug, Clone, Copy)]
-struct MedianPlane {
-    centre: DVec3,
-    left: DVec3,
+pub(super) struct MedianPlane {
+    pub centre: DVec3,
+    pub left: DVec3,
 }
 
 impl MedianPlane {
+    /// The plane through `centre` across `frame`'s left.
+    pub fn new(frame: &Frame, centre: DVec3) -> Self {
+        Self {
+            centre,
+            left: frame.left,
+        }
+    }
+
+    /// How far `p` lies off the plane, signed (positive on the left).
+    pub fn offset(&self, p: DVec3) -> f64 {
+        (p - self.centre).dot(self.left)
+    }
+
+    /// The mirror image of `p` across the plane.
+    pub fn reflect(&self, p: DVec3) -> DVec3 {
+        p - self.left * (2.0 * self.offset(p))
+    }
+
     /// The distance of `a` from the mirror image of `b` (symmetric in `a` and `b`).
     fn mirror_distance(&self, a: DVec3, b: DVec3) -> f64 {
-        let reflected = b - self.left * (2.0 * (b - self.centre).dot(self.left));
-        a.distance(reflected)
+        a.distance(self.reflect(b))
     }
 }
 
@@ -160,16 +177,16 @@ fn mirrored(
     centre: DVec3,
 ) -> bool {
     let a = &sections[s];
-    let offset = |p: DVec3| (p - centre).dot(frame.left);
+    let plane = MedianPlane::new(frame, centre);
     candidates.iter().any(|&t| {
         let b = &sections[t];
         let longer = a.length.max(b.length);
         let tolerance = longer / 3.0;
         let comparable = comparable_length(a, b);
-        let reflected = b.mean - frame.left * (2.0 * offset(b.mean));
+        let reflected = plane.reflect(b.mean);
         t != s
             && comparable
-            && offset(a.mean).abs() > tolerance
+            && plane.offset(a.mean).abs() > tolerance
             && reflected.distance(a.mean) <= tolerance
     })
 }
@@ -388,10 +405,7 @@ impl Rules<'_> {
 
     /// The median plane through `centre`.
     fn median(&self, centre: DVec3) -> MedianPlane {
-        MedianPlane {
-            centre,
-            left: self.frame.left,
-        }
+        MedianPlane::new(self.frame, centre)
     }
 
     /// Labels both sections of a pair, left and right by [`sides`].
@@ -433,16 +447,15 @@ impl Rules<'_> {
         });
         // Paired limbs mirror each other: of comparable length, on either side of the median
         // plane (an arm hanging beside its own leg may join the trunk at the same place).
-        let left = self.frame.left;
+        let plane = self.median(centre);
         let across = |a: &Section, b: &Section| {
-            comparable_length(a, b)
-                && (a.mean - centre).dot(left) * (b.mean - centre).dot(left) < 0.0
+            comparable_length(a, b) && plane.offset(a.mean) * plane.offset(b.mean) < 0.0
         };
         let (mut pairs, mut single) = pair_up(
             &lateral,
             self.sections,
             self.graph,
-            self.median(centre),
+            plane,
             f64::INFINITY,
             &across,
         );
@@ -515,7 +528,8 @@ impl Rules<'_> {
     /// the plane by about the trunk's half-width on both sides; a median part mirrors onto
     /// itself. Never with no other section to compare with.
     fn on_median_plane(&self, s: usize, among: &[usize], centre: DVec3) -> bool {
-        let offset = |p: DVec3| (p - centre).dot(self.frame.left).abs();
+        let plane = self.median(centre);
+        let offset = |p: DVec3| plane.offset(p).abs();
         let apart = among
             .iter()
             .filter(|&&t| t != s)
@@ -616,6 +630,7 @@ impl Rules<'_> {
         };
         let h = &self.sections[head];
         let up = self.frame.up;
+        let plane = self.median(centre);
         let candidates = self.unlabelled();
         let jaw = candidates
             .iter()
@@ -627,7 +642,7 @@ impl Rules<'_> {
                     && section.distal.dot(up) < h.distal.dot(up)
                     && [section.mean, section.distal]
                         .iter()
-                        .all(|&p| ((p - centre).dot(self.frame.left)).abs() <= section.length / 3.0)
+                        .all(|&p| plane.offset(p).abs() <= section.length / 3.0)
             })
             .max_by(|&a, &b| {
                 self.sections[a]
@@ -719,7 +734,7 @@ impl Rules<'_> {
 
     /// Left or right of the trunk's centre line (through `centre`).
     fn side_of(&self, s: usize, centre: DVec3) -> Side {
-        if (self.sections[s].mean - centre).dot(self.frame.left) >= 0.0 {
+        if self.median(centre).offset(self.sections[s].mean) >= 0.0 {
             Side::Left
         } else {
             Side::Right

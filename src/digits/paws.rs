@@ -19,7 +19,7 @@ use super::hands::{replace_hand, separated_digits};
 use super::place::{place_digit, DigitJoints};
 use super::surface::hand_surface;
 use super::{DigitOptions, DigitWarning};
-use crate::fit::Fit;
+use crate::fit::{Fit, Polyline};
 use crate::mesh::Mesh;
 use crate::skeleton::canonical::{CanonicalJoints, Finger};
 use crate::skeleton::{Canonical, JointId, Side};
@@ -187,29 +187,17 @@ fn paw_digit(
         .iter()
         .position(|&p| (p - root).dot(axis) > 0.0)
         .unwrap_or(stem.len());
-    let line: Vec<DVec3> = std::iter::once(root)
-        .chain(stem[beyond..].iter().copied())
-        .chain(std::iter::once(tip))
-        .collect();
-    let length: f64 = line.windows(2).map(|w| w[0].distance(w[1])).sum();
-    let at = |k: usize| along(&line, length * ratios[..k].iter().sum::<f64>() / total);
+    let line = Polyline::new(
+        std::iter::once(root)
+            .chain(stem[beyond..].iter().copied())
+            .chain(std::iter::once(tip))
+            .collect(),
+    );
+    let at = |k: usize| line.at(line.length() * ratios[..k].iter().sum::<f64>() / total);
     Some(DigitJoints {
         joints: [at(1), at(2), at(3)],
         tip,
     })
-}
-
-/// The point `s` along the polyline `line` (arc length from its first point; its last point
-/// past the end).
-fn along(line: &[DVec3], mut s: f64) -> DVec3 {
-    for w in line.windows(2) {
-        let d = w[0].distance(w[1]);
-        if s <= d && d > 0.0 {
-            return w[0].lerp(w[1], s / d);
-        }
-        s -= d;
-    }
-    line[line.len() - 1]
 }
 
 /// One foot: leaves the fit's chain when fewer than two digits separate.
@@ -322,7 +310,7 @@ fn metapodial(
 
 #[cfg(test)]
 mod tests {
-    use super::{paw_digit, reduced_digits};
+    use super::{paw_digit, reduced_digits, Polyline};
     use crate::template::Template;
     use glam::DVec3;
 
@@ -359,10 +347,15 @@ mod tests {
         let d = paw_digit(&template, root, DVec3::NEG_Y, &stem, &tips).unwrap();
         // Line: root -> (0, .5, 0) -> (0, .05, 0) -> (0, .05, .5) -> (0, 0, 1); every joint
         // on it, none on the chord from the ankle to the toes.
-        let line = [root, stem[1], stem[2], stem[3], DVec3::new(0.0, 0.0, 1.0)];
-        let length: f64 = line.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let line = Polyline::new(vec![
+            root,
+            stem[1],
+            stem[2],
+            stem[3],
+            DVec3::new(0.0, 0.0, 1.0),
+        ]);
         for (joint, share) in d.joints.iter().zip([36.0, 61.0, 76.0]) {
-            let expected = super::along(&line, length * share / 86.0);
+            let expected = line.at(line.length() * share / 86.0);
             assert!(joint.distance(expected) < 1e-12, "{joint:?} {expected:?}");
             assert!(
                 joint.y <= 0.05 + 1e-12 || joint.z.abs() < 1e-12,

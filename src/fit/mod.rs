@@ -52,7 +52,7 @@ use assemble::assemble;
 use axial::Bounds;
 use glam::DVec3;
 use limbs::{GirdleSphere, LimbFit};
-use polyline::Polyline;
+pub(crate) use polyline::Polyline;
 use std::collections::BTreeMap;
 
 /// The figure's orthonormal body directions.

@@ -10,6 +10,7 @@ use super::joint_pieces::{joint_balls, place_on_balls};
 use super::legs::leg;
 use super::limb_joints::centre_in_depth;
 use super::spine::{spine, Spine};
+use super::symmetry::mirror;
 use super::torso::{
     hips, leg_split_height, legs_apart_below, split_flare, torso_points, TorsoBounds, TorsoPoints,
     HEM_FLARE,
@@ -863,23 +864,6 @@ fn hips_from_arms(
 /// so the rough one was wrong (a fit that put one elbow a third of the arm inward).
 const MIRROR_AGREEMENT: f64 = 0.02;
 
-/// The same joint on the other side (`shoulder_R` for `shoulder_L`); `None` for axial keys.
-fn partner(key: Canonical) -> Option<Canonical> {
-    let other = |s: Side| match s {
-        Side::Left => Side::Right,
-        Side::Right => Side::Left,
-    };
-    Some(match key {
-        Canonical::Shoulder(s) => Canonical::Shoulder(other(s)),
-        Canonical::Elbow(s) => Canonical::Elbow(other(s)),
-        Canonical::Wrist(s) => Canonical::Wrist(other(s)),
-        Canonical::Hip(s) => Canonical::Hip(other(s)),
-        Canonical::Knee(s) => Canonical::Knee(other(s)),
-        Canonical::Ankle(s) => Canonical::Ankle(other(s)),
-        _ => return None,
-    })
-}
-
 /// The refined positions that stay near the rough ones, as carry targets (every refined key's
 /// joint, at its rough position unless accepted), and the accepted moves. A refined joint far
 /// from its rough place is accepted when it mirrors its partner's accepted refined place
@@ -907,8 +891,8 @@ fn accepted(
             .then_some(to)
     };
     let mirrors_partner = |key: Canonical, to: DVec3| {
-        let mirrored = to - 2.0 * (to - scene.centre).dot(frame.left) * frame.left;
-        partner(key)
+        let mirrored = mirror(to, scene.centre, frame.left);
+        key.mirrored()
             .filter(|p| !options.keep.iter().any(|k| k == p.as_str()))
             .and_then(near)
             .is_some_and(|other| mirrored.distance(other) <= MIRROR_AGREEMENT * height)

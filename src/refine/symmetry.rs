@@ -36,7 +36,7 @@ pub struct Symmetry {
 }
 
 /// Mirrors `p` across the plane through `origin` with unit normal `left`.
-fn mirror(p: DVec3, origin: DVec3, left: DVec3) -> DVec3 {
+pub(super) fn mirror(p: DVec3, origin: DVec3, left: DVec3) -> DVec3 {
     p - 2.0 * (p - origin).dot(left) * left
 }
 

@@ -43,6 +43,14 @@ impl Side {
         }
     }
 
+    /// The other side.
+    pub fn opposite(self) -> Side {
+        match self {
+            Self::Left => Self::Right,
+            Self::Right => Self::Left,
+        }
+    }
+
     /// `+1` for left, `-1` for right.
     pub fn sign(self) -> f64 {
         match self {
@@ -385,6 +393,20 @@ impl Canonical {
             | Self::Digit(s, ..) => Some(s),
             _ => None,
         }
+    }
+
+    /// The same limb joint on the other side (`shoulder_R` for `shoulder_L`); `None` for axial
+    /// keys, toes and digits.
+    pub fn mirrored(self) -> Option<Canonical> {
+        Some(match self {
+            Self::Shoulder(s) => Self::Shoulder(s.opposite()),
+            Self::Elbow(s) => Self::Elbow(s.opposite()),
+            Self::Wrist(s) => Self::Wrist(s.opposite()),
+            Self::Hip(s) => Self::Hip(s.opposite()),
+            Self::Knee(s) => Self::Knee(s.opposite()),
+            Self::Ankle(s) => Self::Ankle(s.opposite()),
+            _ => return None,
+        })
     }
 
     /// The key without its side suffix, as a template names the joint it places (`elbow` for

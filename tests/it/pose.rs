@@ -7,10 +7,7 @@ mod refdata;
 
 use super::common::model;
 use glam::DVec3;
-use skelfit::eval::arms_below_horizontal;
-use skelfit::mesh::Mesh;
 use skelfit::pipeline::{rig, Rig, RigOptions};
-use skelfit::skin::check::blend;
 use std::collections::BTreeMap;
 
 /// The model re-posed with both upper arms `degrees` below the horizontal, rigged with the
@@ -18,24 +15,8 @@ use std::collections::BTreeMap;
 fn reposed(relative: &str, degrees: f64) -> Option<(Rig, BTreeMap<String, DVec3>, f64)> {
     let dir = model(relative)?;
     let artist = refdata::artist_rig(&dir)?.expect("artist rig");
-    let matrices = arms_below_horizontal(
-        &artist.skeleton,
-        &artist.canonical,
-        degrees,
-        DVec3::Y,
-        DVec3::Z,
-    );
-    let positions = blend(&artist.mesh.positions, &artist.weights, &matrices);
-    let mesh = Mesh::new(positions, artist.mesh.triangles.clone()).expect("posed mesh");
+    let (mesh, reference) = artist.with_arms_at(degrees).expect("posed mesh");
     let (low, high) = mesh.bounding_box().expect("bounds");
-    let reference = artist
-        .canonical
-        .iter()
-        .map(|(key, &id)| {
-            let p = matrices[id.0].transform_point3(artist.skeleton.joint(id).position);
-            (key.clone(), p)
-        })
-        .collect();
     let fitted = rig(&mesh, &RigOptions::default()).expect("rig");
     Some((fitted, reference, high.y - low.y))
 }
