@@ -95,3 +95,24 @@ pub fn makehuman_bodies() -> Option<Vec<PathBuf>> {
     );
     Some(dirs)
 }
+
+/// Proptest's settings for the integration tests: `cases` cases drawn from a fixed seed, so a
+/// run tests the same cases on every machine and CI cannot fail by the luck of the draw.
+/// `PROPTEST_CASES` and `PROPTEST_RNG_SEED` still override both, to explore further:
+/// `PROPTEST_RNG_SEED=$RANDOM PROPTEST_CASES=2000 cargo test --release --test it outline::`.
+pub fn proptest_config(cases: u32) -> proptest::test_runner::Config {
+    let from_environment = proptest::test_runner::Config::default();
+    let mut config = proptest::test_runner::Config {
+        cases,
+        failure_persistence: None,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5eed_f17e),
+        ..from_environment.clone()
+    };
+    if std::env::var_os("PROPTEST_CASES").is_some() {
+        config.cases = from_environment.cases;
+    }
+    if std::env::var_os("PROPTEST_RNG_SEED").is_some() {
+        config.rng_seed = from_environment.rng_seed;
+    }
+    config
+}

@@ -49,7 +49,7 @@ fn brute_force(solid: &Solid) -> Vec<u32> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(crate::common::proptest_config(200))]
     #[test]
     fn edt_equals_brute_force_on_random_grids(
         dims in [1usize..14, 1usize..14, 1usize..14],

@@ -192,7 +192,7 @@ fn random_simple_polygons_keep_every_invariant() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(crate::common::proptest_config(64))]
     #[test]
     fn straight_skeleton_invariants_hold_for_random_stars(seed in 1000u64..100_000, n in 4usize..40) {
         let polygon = random_polygon(seed, n);
@@ -341,7 +341,7 @@ fn arb_skeleton() -> impl Strategy<Value = Skeleton> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(crate::common::proptest_config(200))]
     #[test]
     fn raising_a_threshold_never_adds_joints(
         skeleton in arb_skeleton(),
@@ -591,7 +591,7 @@ fn orthogonal_polygons_with_simultaneous_events_keep_every_invariant() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(crate::common::proptest_config(48))]
     /// Random smooth blobs of 2,000 points: the whole pipeline gives a valid skeleton whose
     /// joints all lie inside the outline.
     #[test]
@@ -719,7 +719,7 @@ fn cli_skeleton_level_of_detail_gives_fewer_joints_and_a_valid_rig() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(crate::common::proptest_config(256))]
     /// Arbitrary point lists, valid or not, give a result or an error, never a panic or a hang.
     #[test]
     fn arbitrary_points_never_panic(
