@@ -262,7 +262,11 @@ fn wing_shift(
 /// Moves each inner chain joint (not the limb's root or tip) to the sharpest bend of the path
 /// within `bend.window * span` of its Table 8.1 place when that bend turns by at least
 /// `bend.min_angle` degrees, measured over the stencil and again over twice the stencil
-/// ([`bend_turn`]); joints keep their order.
+/// ([`bend_turn`]), and peaks inside the window; joints keep their order. A turn largest at
+/// the window's edge and still rising beyond it belongs to the neighbouring joint: an arm
+/// hanging 30 degrees below the horizontal bends at the shoulder, and its elbow's window
+/// reached the slope of that bend (quaternius_cyberpunk_character posed so: its elbows went
+/// there, 8 % of the height from the artist's).
 fn snap_to_bends(
     path: &Polyline,
     chain: &mut [Option<DVec3>],
@@ -292,11 +296,20 @@ fn snap_to_bends(
         if hi <= lo {
             continue;
         }
+        let d = (hi - lo) / STEPS as f64;
         let best = (0..=STEPS)
-            .map(|i| lo + (hi - lo) * i as f64 / STEPS as f64)
+            .map(|i| lo + d * i as f64)
             .map(|t| (turn(t), t))
             .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1)));
-        if let Some((_, t)) = best.filter(|&(_, t)| bend_turn(path, t, h) >= bend.min_angle) {
+        // A bend still rising past the window's edge peaks outside it: it is the neighbouring
+        // joint's (an A-posed arm's shoulder seen from its elbow's window), not this one's.
+        let peaks_here = |&(turn_at, t): &(f64, f64)| {
+            (t > lo || turn(t - d) <= turn_at) && (t < hi || turn(t + d) <= turn_at)
+        };
+        if let Some((_, t)) = best
+            .filter(peaks_here)
+            .filter(|&(_, t)| bend_turn(path, t, h) >= bend.min_angle)
+        {
             chain[k] = Some(path.at(t));
             chain_s[k] = Some(t);
         }
@@ -594,6 +607,42 @@ mod tests {
             "the corner at 0.3 takes the joint: {s}"
         );
         assert!(bend_turn(&bent, 0.3, h) > 40.0);
+    }
+
+    /// A corner just before the joint's window (at 0.17, the window starting at 0.18) turns
+    /// most at the window's edge over the stencil, but peaks outside it: the joint stays. The
+    /// same corner inside the window (at 0.24) still takes it.
+    #[test]
+    fn a_bend_peaking_outside_the_window_belongs_to_the_neighbouring_joint() {
+        let corner = |at: f64| {
+            Polyline::new(
+                (0..=60)
+                    .map(|i| {
+                        let x = i as f64 * 0.01;
+                        let beyond = (x - at).max(0.0);
+                        DVec3::new(
+                            x.min(at) + beyond * 0.5f64.sqrt(),
+                            -beyond * 0.5f64.sqrt(),
+                            0.0,
+                        )
+                    })
+                    .collect(),
+            )
+        };
+        let early = corner(0.17);
+        let h = 0.06 * early.length();
+        let edge = 0.27 - 0.15 * early.length();
+        assert!(
+            bend_turn(&early, edge, h) >= 20.0,
+            "the edge is on the corner's slope"
+        );
+        assert_eq!(
+            snapped(&early),
+            0.27,
+            "the shoulder's corner took the elbow"
+        );
+        let s = snapped(&corner(0.24));
+        assert!((s - 0.24).abs() < 0.01, "a corner inside the window: {s}");
     }
 
     /// The tarsal row after the hock snapped up its straight path: the foot joint one row

@@ -931,7 +931,8 @@ fn accepted(
 /// the same axis (a cartoon's head sitting on its trunk ends below the rough neck). Hips and pelvis likewise while they stay between the rough knees and
 /// shoulders, and knees between the rough ankles and shoulders: the rough ones sit where the
 /// leg labels begin, which a skirt, a coat or a backpack moves up or down the trunk, and the
-/// knee follows the hip.
+/// knee follows the hip. An elbow counts only its move off the rough shoulder-wrist line while
+/// it stays in the middle of it ([`ELBOW_SLIDE`]).
 fn shift(rough: &Rough, frame: &BodyFrame, key: Canonical, from: DVec3, to: DVec3) -> f64 {
     let across = |d: DVec3| (d - frame.up * d.dot(frame.up)).length();
     let shoulders = rough.pair_height(frame, Canonical::Shoulder);
@@ -953,9 +954,34 @@ fn shift(rough: &Rough, frame: &BodyFrame, key: Canonical, from: DVec3, to: DVec
                 _ => from.distance(to),
             }
         }
+        (Canonical::Elbow(side), _) => {
+            match (
+                rough.at(Canonical::Shoulder(side)),
+                rough.at(Canonical::Wrist(side)),
+            ) {
+                (Some(s), Some(w)) if (s - w).length() > 0.0 => {
+                    let axis = (w - s).normalize();
+                    let t = (to - s).dot(axis) / s.distance(w);
+                    let d = to - from;
+                    if (ELBOW_SLIDE.0..=ELBOW_SLIDE.1).contains(&t) {
+                        (d - axis * d.dot(axis)).length()
+                    } else {
+                        d.length()
+                    }
+                }
+                _ => from.distance(to),
+            }
+        }
         _ => from.distance(to),
     }
 }
+
+/// The part of the rough shoulder-to-wrist line (as fractions from the shoulder) along which a
+/// refined elbow may slide however far from its rough place: the fit spaces the elbow by
+/// template ratios and the path's bends, which a straight arm lacks and a jointed figure's
+/// seams fake, while the slices find the crease; an elbow outside the middle of the arm or
+/// off its line is still a misreading.
+const ELBOW_SLIDE: (f64, f64) = (0.3, 0.7);
 
 /// `mesh` split at edge midpoints until its mean edge is at most `max_edge` (at most three
 /// rounds), or `None` when it already is: plane and sphere slices cut triangles by their
