@@ -1,8 +1,9 @@
 //! Pose robustness of the anatomical rig on real characters: every humanoid with the artist's
 //! skinned `source.glb` is re-posed by the artist's own skin weights (linear blend skinning of
-//! the artist's skeleton) with both arms set at several angles below the horizontal (T-pose
-//! 0°, A-poses 30° and 45°, arms low 60°), then rigged by `skelfit rig`'s defaults (automatic
-//! orientation); the core joints are compared with the artist's joints in the same pose.
+//! the artist's skeleton) with both arms set at several angles below the horizontal (raised
+//! -20°, T-pose 0°, A-poses 15° to 45°, arms low 60° and 75°, at the sides 85°), then rigged by
+//! `skelfit rig`'s defaults (automatic orientation); the core joints are compared with the
+//! artist's joints in the same pose.
 //!
 //! `cargo run --release --example pose_study [REFDATA] [OUT] [--meshes]` (defaults
 //! `../shared/refdata`, `reports/pose`): prints a table and writes `pose.md` and `pose.json`
@@ -19,7 +20,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 /// Arm angles below the horizontal, degrees.
-const ANGLES: [f64; 4] = [0.0, 30.0, 45.0, 60.0];
+const ANGLES: [f64; 8] = [-20.0, 0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 85.0];
 
 /// One posed variant's result.
 #[derive(serde::Serialize)]
