@@ -573,7 +573,12 @@ impl Rules<'_> {
     /// Head: the unlabelled section reaching farthest up (human-like), forward (animal-like),
     /// else both; none without a major junction. The head is the figure's one median part: a
     /// section mirrored by another across the median plane (through `centre`) is one of a pair
-    /// (ears, horns, raised arms) and is not taken while an unpaired section remains.
+    /// (ears, horns, raised arms) and is not taken while an unpaired section remains. A
+    /// human-like figure's unpaired section standing off the plane is not taken while one on it
+    /// remains (mean and tip within a third of its length of the plane, as
+    /// [`jaw`](Self::jaw)'s): quaternius_platformer_character with its arms 45 degrees down had
+    /// one ear merged into its big head and took the other for the head (20 % of the height
+    /// off). An animal's head may turn to one side.
     fn head(&mut self, has_junction: bool, centre: DVec3) {
         let all = self
             .sections
@@ -601,6 +606,25 @@ impl Rules<'_> {
             candidates
         } else {
             unpaired
+        };
+        // An upright figure's head mirrors onto itself: an unpaired section standing off the
+        // median plane is one of a pair whose partner merged into the trunk (a big head's ear),
+        // not the head, while a section on the plane remains.
+        let plane = self.median(centre);
+        let on_plane: Vec<usize> = pool
+            .iter()
+            .copied()
+            .filter(|&s| {
+                let section = &self.sections[s];
+                [section.mean, section.distal]
+                    .iter()
+                    .all(|&p| plane.offset(p).abs() <= section.length / 3.0)
+            })
+            .collect();
+        let pool = if self.figure == FigureClass::HumanLike && !on_plane.is_empty() {
+            on_plane
+        } else {
+            pool
         };
         let head = pool
             .into_iter()
