@@ -756,11 +756,7 @@ const FLARE_GAP: f64 = 0.01;
 /// ends low but shows no legs apart), unless the legs' own sections leave the trunk at the
 /// silhouette's lowest point without a hem's flare ([`split_flare`] at most [`HEM_FLARE`]):
 /// there the crotch shows, and the rough knees are too high (short cartoon legs, whose rough
-/// knees the adult leg ratios put above the crotch). Where the legs part under a hem's flare
-/// the crotch is hidden however high the silhouette ends: a dress whose legs touch at the
-/// knees ends the median silhouette at the floor or at the hem as the median plane passes a
-/// hair's breadth to one side of the contact (quaternius_women_formal with its arms at its
-/// sides: hips at the hem, 17 % of the height low). `split` is [`crotch_split`] at the
+/// knees the adult leg ratios put above the crotch). `split` is [`crotch_split`] at the
 /// silhouette's lowest point.
 fn crotch_hidden(
     scene: &Scene,
@@ -780,11 +776,12 @@ fn crotch_hidden(
         return false;
     };
     let low = knees.is_some_and(|k| crotch < k && legs_apart_below(mesh, &frame, centre, k, reach));
-    let flare =
-        split.and_then(|split| split_flare(mesh, &frame, centre, split, FLARE_GAP * height, reach));
-    let shows = flare.is_some_and(|flare| flare <= HEM_FLARE);
-    let hem = flare.is_some_and(|flare| flare > HEM_FLARE);
-    (low && !shows) || hem
+    let shows = || {
+        split
+            .and_then(|split| split_flare(mesh, &frame, centre, split, FLARE_GAP * height, reach))
+            .is_some_and(|flare| flare <= HEM_FLARE)
+    };
+    low && !shows()
 }
 
 /// The top of the gap between the legs ([`leg_split_height`]) from 0.02 of height below the

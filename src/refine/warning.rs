@@ -33,9 +33,8 @@ pub enum RefineWarning {
     NoTorsoSilhouette,
     /// No transverse slice at hip height.
     NoHipSlice,
-    /// A skirt, robe or long coat hides the crotch (the median silhouette runs down past the
-    /// knees, or the legs part under a hem's flare): the hips' height comes from the arm length
-    /// when `placed`, else it stays rough.
+    /// The median silhouette runs down past the knees (a skirt, robe or long coat hides the
+    /// crotch): the hips' height comes from the arm length when `placed`, else it stays rough.
     CrotchHidden {
         /// Whether the arms gave the hips' height.
         placed: bool,
@@ -170,16 +169,14 @@ impl fmt::Display for RefineWarning {
             ),
             Self::CrotchHidden { placed: true } => write!(
                 f,
-                "hips: clothing hides the crotch (the median silhouette runs below the knees, or \
-                 the legs part under a hem); hips placed by proportion, {} times the arm's \
-                 length below the shoulders",
+                "hips: clothing hides the crotch (the median silhouette runs below the knees); \
+                 hips placed by proportion, {} times the arm's length below the shoulders",
                 super::driver::TRUNK_PER_ARM
             ),
             Self::CrotchHidden { placed: false } => write!(
                 f,
-                "hips: clothing hides the crotch (the median silhouette runs below the knees, or \
-                 the legs part under a hem) and the arms give no length; hips kept where the \
-                 legs' labels begin"
+                "hips: clothing hides the crotch (the median silhouette runs below the knees) \
+                 and the arms give no length; hips kept where the legs' labels begin"
             ),
             Self::NoHipSlice => write!(
                 f,
