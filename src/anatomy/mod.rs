@@ -38,6 +38,7 @@
 mod bone_labels;
 mod build;
 mod error;
+mod facing;
 mod fore_limbs;
 mod frame;
 mod level_graph;
@@ -58,6 +59,7 @@ mod warning;
 
 pub use bone_labels::label_vertices_by_bones;
 pub use error::AnatomyError;
+pub use facing::ForwardChoice;
 pub use frame::{parse_direction, Frame};
 pub use level_graph::{level_graph, LevelGraph, LevelTree, LevelVertex, Marks, Reach, NO_VERTEX};
 pub use options::{Forward, LabelOptions, LabelPipelineOptions, LevelOptions, RuleOptions, Up};
@@ -161,27 +163,39 @@ pub fn label_pieces(
             )?
         }
         Forward::Direction(_) | Forward::Auto => {
-            let first_guess = if up.normalize_or_zero().dot(DVec3::Z).abs() < 0.9 {
-                DVec3::Z
-            } else {
-                DVec3::Y
-            };
-            let frame = Frame::new(up, first_guess)?;
+            // The file's convention first (glTF's +Z, turned with the up found: -Y for a Z-up
+            // file), or an axis across a given up along it; then where the figure faces.
+            let prior = [
+                glam::DQuat::from_rotation_arc(DVec3::Y, up) * DVec3::Z,
+                DVec3::Z,
+                DVec3::Y,
+            ]
+            .into_iter()
+            .find(|f| f.cross(up).length_squared() > 0.01 * up.length_squared())
+            .unwrap_or(DVec3::X);
+            let frame = Frame::new(up, prior)?;
             let first =
                 label_in_frame(mesh, solid, surface, &tree, options, overrides, frame, true)?;
-            let (guess, note) = guess_forward(&first);
-            let frame = Frame::new(up, guess).unwrap_or(first.frame);
-            let mut second =
-                label_in_frame(mesh, solid, surface, &tree, options, overrides, frame, true)?;
-            let f = second.frame.forward;
-            second.warnings.push(
-                AnatomyWarning::ForwardGuessed {
-                    forward: f,
-                    reason: note,
-                }
-                .into(),
-            );
-            second
+            let choice = facing::find_forward(&first, mesh, prior);
+            let same = choice.forward.dot(first.frame.forward) > 1.0 - 1e-12;
+            let mut labelling = if same {
+                first
+            } else {
+                let frame = Frame::new(up, choice.forward).unwrap_or(first.frame);
+                label_in_frame(mesh, solid, surface, &tree, options, overrides, frame, true)?
+            };
+            if labelling.frame.forward.dot(choice.prior) < 1.0 - 1e-12 {
+                labelling.warnings.push(
+                    AnatomyWarning::ForwardGuessed {
+                        forward: labelling.frame.forward,
+                        confidence: choice.confidence,
+                        reason: choice.note.clone(),
+                    }
+                    .into(),
+                );
+            }
+            labelling.forward_found = Some(choice);
+            labelling
         }
     };
     // What the voxelization left out comes first, then how up was found.
@@ -199,49 +213,6 @@ pub fn label_pieces(
         solid.report.warnings().into_iter().map(Warning::Voxel),
     );
     Ok(labelling)
-}
-
-/// Forward from a first labelling: animal-like figures face from the tail (or the hind legs)
-/// to the head; human-like ones face where the feet point (the lowest leg voxels lie in front
-/// of the legs' mean).
-fn guess_forward(l: &Labelling) -> (DVec3, &'static str) {
-    let up = l.frame.up;
-    let flat = |v: DVec3| v - up * v.dot(up);
-    let head = l.part(Label::Head, None).map(|p| p.distal);
-    let trunk_centre = l.parts[0].attachment;
-    match l.figure {
-        FigureClass::HumanLike => {
-            let legs = l.find(Label::Leg);
-            let mut feet = DVec3::ZERO;
-            let mut mean = DVec3::ZERO;
-            for &i in &legs {
-                feet += flat(l.parts[i].distal);
-                let voxels = &l.parts[i].voxels;
-                let c = voxels
-                    .iter()
-                    .map(|&p| l.grid.centre(l.grid.coords(l.dms_voxels[p])))
-                    .sum::<DVec3>()
-                    / voxels.len().max(1) as f64;
-                mean += flat(c);
-            }
-            if let Some(f) = (feet - mean).try_normalize().filter(|_| !legs.is_empty()) {
-                return (f, "from where the feet point");
-            }
-        }
-        _ => {
-            let back = l
-                .part(Label::Tail, None)
-                .map(|p| p.distal)
-                .unwrap_or(trunk_centre);
-            if let Some(f) = head.and_then(|h| flat(h - back).try_normalize()) {
-                return (f, "from the tail (or trunk) towards the head");
-            }
-        }
-    }
-    (
-        l.frame.forward,
-        "(kept the initial direction: no head, tail or feet to go by)",
-    )
 }
 
 /// The level graph of `surface` in `frame`, with the marks measured over `solid`'s interior
@@ -350,6 +321,7 @@ fn label_in_frame(
         frame,
         forward_guessed,
         up_found: None,
+        forward_found: None,
         trunk_axis: draft.trunk_axis,
         trunk_angle: draft.trunk_angle,
         parts,

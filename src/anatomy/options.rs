@@ -12,8 +12,9 @@ use serde::Serialize;
 pub enum Forward {
     /// A given direction (need not be axis-aligned; its component along up is ignored).
     Direction(DVec3),
-    /// Guessed from the labelled head and tail (animal-like) or the feet (human-like): the
-    /// figure is labelled once facing +Z (or the trunk axis), then again facing the guess.
+    /// Found from the figure (see `facing`): labelled once facing the file's convention (+Z,
+    /// turned with the up found), then again facing the direction its paired limbs, feet or
+    /// head and tail show, when that is another one.
     Auto,
 }
 
@@ -170,7 +171,8 @@ pub struct LabelOptions {
     /// Up direction. Default [`Up::Auto`] (ch.7.1.2 has the user give it; the figure's labels
     /// find it when not given).
     pub up: Up,
-    /// Forward direction. Default +Z (refdata convention; ch.7.1.2 has the user give it).
+    /// Forward direction. Default [`Forward::Auto`] (ch.7.1.2 has the user give it; the figure's
+    /// labels find it when not given, the file's convention kept when they cannot tell).
     pub forward: Forward,
 }
 
@@ -180,7 +182,7 @@ impl Default for LabelOptions {
             level: LevelOptions::default(),
             rules: RuleOptions::default(),
             up: Up::Auto,
-            forward: Forward::Direction(DVec3::Z),
+            forward: Forward::Auto,
         }
     }
 }

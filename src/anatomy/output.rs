@@ -113,6 +113,7 @@ pub fn labels_json(l: &Labelling, source: Option<&[Option<u32>]>) -> Value {
         "left": point(l.frame.left),
         "forward_guessed": l.forward_guessed,
         "up_found": l.up_found,
+        "forward_found": l.forward_found,
         "trunk_angle_deg": if l.trunk_angle.is_finite() { json!(l.trunk_angle) } else { Value::Null },
         "heart_radius": l.level_graph.heart_radius,
         "parts": parts,

@@ -197,6 +197,8 @@ pub struct Labelling {
     pub forward_guessed: bool,
     /// How up was found (`Up::Auto`), `None` when it was given.
     pub up_found: Option<super::UpChoice>,
+    /// How forward was found (`Forward::Auto`), `None` when it was given.
+    pub forward_found: Option<super::ForwardChoice>,
     /// Principal axis of the trunk's DMS voxels (unit).
     pub trunk_axis: DVec3,
     /// Angle between the trunk axis and up, degrees.

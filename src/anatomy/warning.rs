@@ -17,12 +17,14 @@ pub enum AnatomyWarning {
         /// The sentence saying how ([`super::UpChoice::note`]).
         note: String,
     },
-    /// Forward was guessed from the first labelling.
+    /// Forward was found from the figure (`Forward::Auto`) and is not the file's convention.
     ForwardGuessed {
-        /// The direction guessed.
+        /// The direction found.
         forward: DVec3,
+        /// Confidence in [0, 1] ([`super::ForwardChoice::confidence`]).
+        confidence: f64,
         /// From what.
-        reason: &'static str,
+        reason: String,
     },
     /// The medial surface has several parts: only the largest is labelled.
     LargestPartOnly {
@@ -105,9 +107,13 @@ impl fmt::Display for AnatomyWarning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::UpFound { note, .. } => f.write_str(note),
-            Self::ForwardGuessed { forward, reason } => write!(
+            Self::ForwardGuessed {
+                forward,
+                confidence,
+                reason,
+            } => write!(
                 f,
-                "forward guessed as ({:.3}, {:.3}, {:.3}) {reason}",
+                "the figure faces ({:.3}, {:.3}, {:.3}), not the file's forward axis: {reason} (confidence {confidence:.2}); give --forward if it faces another way",
                 forward.x, forward.y, forward.z
             ),
             Self::LargestPartOnly { labelled, voxels } => write!(

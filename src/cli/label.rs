@@ -48,11 +48,13 @@ pub struct LabelArgs {
         allow_hyphen_values = true
     )]
     pub up: String,
-    /// Forward direction: an axis, a vector x,y,z, or `auto` (guessed from head/tail or feet).
+    /// Forward direction: an axis, a vector x,y,z, or `auto` (the file's convention, +Z turned
+    /// with the up found, unless the figure's paired limbs, feet or head and tail show it faces
+    /// another way; the choice and its confidence are reported).
     #[arg(
         long,
         value_name = "DIR",
-        default_value = "+Z",
+        default_value = "auto",
         allow_hyphen_values = true
     )]
     pub forward: String,

@@ -83,11 +83,13 @@ pub struct RigArgs {
         allow_hyphen_values = true
     )]
     pub up: String,
-    /// Forward direction: an axis, a vector x,y,z, or `auto` (guessed from head/tail or feet).
+    /// Forward direction: an axis, a vector x,y,z, or `auto` (the file's convention, +Z turned
+    /// with the up found, unless the figure's paired limbs, feet or head and tail show it faces
+    /// another way; the choice and its confidence are reported).
     #[arg(
         long,
         value_name = "DIR",
-        default_value = "+Z",
+        default_value = "auto",
         allow_hyphen_values = true
     )]
     pub forward: String,
@@ -374,6 +376,7 @@ pub fn run_info(mesh: &Path, rigged: &Rig, load_ms: f64) -> serde_json::Value {
         "figure": rigged.labelling.figure.name(),
         "missing_parts": rigged.missing,
         "up_found": rigged.labelling.up_found,
+        "forward_found": rigged.labelling.forward_found,
         "up": frame.up.to_array(),
         "forward": frame.forward.to_array(),
         "grid": grid.dims,

@@ -14,7 +14,7 @@
 //!      ankles (curvature), wrists (thickness/width minima), knees and elbows (smallest angle or
 //!      limb ratio + minimal perimeter), shoulders (armpit + half-rotated sagittal plane)
 //!   ─▶ spine: Catmull-Rom curve through head, C7/T1, T6/T7, L3/L4, sacrum; 24 inter-vertebral
-//!      joints + sacrum by equation (1) (argmin)
+//!      joints + sacrum by equation (1) (closed form)
 //!   ─▶ skeleton: refined joints moved, the rest carried along, frames turned
 //! ```
 //!

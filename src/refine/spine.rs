@@ -6,11 +6,7 @@
 use super::frame::BodyFrame;
 use super::torso::TorsoPoints;
 use super::RefineOptions;
-use argmin::core::{CostFunction, Executor, Gradient, State};
-use argmin::solver::linesearch::MoreThuenteLineSearch;
-use argmin::solver::quasinewton::LBFGS;
 use glam::DVec3;
-use nalgebra::DVector;
 
 /// Names of the spine joints from the top: the joint below each vertebra (`C1` joins C1 and
 /// C2, ..., `L5` joins L5 and the sacrum), then the sacrum centre.
@@ -153,97 +149,30 @@ impl CatmullRom {
     }
 }
 
-/// Equation (1) of seed 004 over the free joint parameters, the fixed ones held. The sum runs
-/// over the free joints only: with the fixed joints' terms included the optimum is a smooth
-/// sequence that can leave the interval between two control points when they are unevenly
-/// spaced (measured on the MakeHuman bodies: T7-T12 above T6/T7), which would reorder
-/// vertebrae. Without them the optimum spaces each region's vertebrae evenly, as the seed
-/// intends ("adjacent vertebrae having the same size").
-struct LengthDeviation {
-    fixed: Vec<f64>,
-}
-
-impl LengthDeviation {
-    /// All 26 parameters from the free ones.
-    fn full(&self, free: &DVector<f64>) -> Vec<f64> {
-        let mut out = Vec::with_capacity(26);
-        let mut f = free.iter();
-        for i in 0..26 {
-            match FIXED.iter().position(|&k| k == i) {
-                Some(k) => out.push(self.fixed[k]),
-                None => out.push(*f.next().unwrap_or(&0.0)),
-            }
-        }
-        out
-    }
-}
-
-impl CostFunction for LengthDeviation {
-    type Param = DVector<f64>;
-    type Output = f64;
-    fn cost(&self, free: &Self::Param) -> Result<f64, argmin::core::Error> {
-        let t = self.full(free);
-        Ok((1..t.len() - 1)
-            .filter(|i| !FIXED.contains(i))
-            .map(|i| (t[i] - (t[i - 1] + t[i + 1]) * 0.5).powi(2))
-            .sum())
-    }
-}
-
-impl Gradient for LengthDeviation {
-    type Param = DVector<f64>;
-    type Gradient = DVector<f64>;
-    fn gradient(&self, free: &Self::Param) -> Result<DVector<f64>, argmin::core::Error> {
-        let t = self.full(free);
-        let mut g = vec![0.0; t.len()];
-        for i in (1..t.len() - 1).filter(|i| !FIXED.contains(i)) {
-            let r = t[i] - (t[i - 1] + t[i + 1]) * 0.5;
-            g[i] += 2.0 * r;
-            g[i - 1] -= r;
-            g[i + 1] -= r;
-        }
-        Ok(DVector::from_iterator(
-            free.len(),
-            (0..t.len()).filter(|i| !FIXED.contains(i)).map(|i| g[i]),
-        ))
-    }
-}
-
-/// Minimises equation (1) for the parameters of the 26 joints (head, 24 inter-vertebral
-/// joints, sacrum centre) with the `fixed` parameters of [`FIXED`], starting from a uniform
-/// spacing between the ends. `None` when the solver fails.
+/// Minimises equation (1) of seed 004 for the parameters of the 26 joints (head, 24
+/// inter-vertebral joints, sacrum centre) with the `fixed` parameters of [`FIXED`] held. The
+/// sum runs over the free joints only (with the fixed joints' terms included the optimum is a
+/// smooth sequence that can leave the interval between two control points when they are
+/// unevenly spaced, which would reorder vertebrae), so its minimum, zero, is where every free
+/// joint's parameter is the mean of its neighbours': each region's vertebrae evenly spaced
+/// between its two fixed joints, as the seed intends ("adjacent vertebrae having the same
+/// size"). That is the closed form used here; an iterative solver (argmin's L-BFGS, before)
+/// reached the same answer and, on a corrupted mesh a thousand times the usual size, never
+/// left its line search. `None` for a non-finite parameter (a joint off the curve of a
+/// broken mesh).
 fn spacing(fixed: &[f64]) -> Option<Vec<f64>> {
-    // A non-finite parameter (a joint off the curve of a broken mesh) makes every cost NaN, and
-    // the line search never ends on NaN.
-    if !fixed.iter().all(|t| t.is_finite()) {
+    if fixed.len() != FIXED.len() || !fixed.iter().all(|t| t.is_finite()) {
         return None;
     }
-    let problem = LengthDeviation {
-        fixed: fixed.to_vec(),
-    };
-    // Start from an even spacing over the whole spine, ignoring the inner fixed joints.
-    let (first, last) = (fixed[0], fixed[fixed.len() - 1]);
-    let free = 26 - FIXED.len();
-    let init = DVector::from_iterator(
-        free,
-        (0..26)
-            .filter(|i| !FIXED.contains(i))
-            .map(|i| first + (last - first) * i as f64 / 25.0),
-    );
-    let solver = LBFGS::new(MoreThuenteLineSearch::new(), 7)
-        .with_tolerance_grad(1e-12)
-        .ok()?
-        .with_tolerance_cost(0.0)
-        .ok()?;
-    let result = Executor::new(problem, solver)
-        .configure(|state| state.param(init).max_iters(1000))
-        .run()
-        .ok()?;
-    let best = result.state().get_best_param()?.clone();
-    let problem = LengthDeviation {
-        fixed: fixed.to_vec(),
-    };
-    Some(problem.full(&best))
+    let mut t = vec![0.0; 26];
+    for (k, w) in FIXED.windows(2).enumerate() {
+        let (i0, i1) = (w[0], w[1]);
+        let (t0, t1) = (fixed[k], fixed[k + 1]);
+        for (i, v) in t.iter_mut().enumerate().take(i1 + 1).skip(i0) {
+            *v = t0 + (t1 - t0) * (i - i0) as f64 / (i1 - i0) as f64;
+        }
+    }
+    Some(t)
 }
 
 #[cfg(test)]
@@ -258,6 +187,36 @@ mod tests {
         }
         // 7 → 20 over 6 intervals.
         assert!((t[10] - (7.0 + 13.0 * 3.0 / 6.0)).abs() < 1e-6, "{t:?}");
+    }
+
+    /// Equation (1) over the free joints is zero, its minimum, at the spacing found, however
+    /// large or far from zero the parameters (a corrupted mesh at a thousand times the size,
+    /// far off the origin, once held an iterative solver here for ever).
+    #[test]
+    fn the_spacing_zeroes_equation_one_at_any_scale() {
+        for fixed in [
+            [0.0, 7.0, 20.0, 29.0, 35.0],
+            [
+                2.5e5,
+                2.5e5 + 3.1e3,
+                2.5e5 + 9.9e3,
+                2.5e5 + 1.4e4,
+                2.5e5 + 1.45e4,
+            ],
+            [1.0, 1.0, 1.0, 1.0, 1.0],
+        ] {
+            let t = spacing(&fixed).unwrap();
+            let deviation: f64 = (1..25)
+                .filter(|i| !FIXED.contains(i))
+                .map(|i| (t[i] - (t[i - 1] + t[i + 1]) * 0.5).powi(2))
+                .sum();
+            let scale = (fixed[4] - fixed[0]).abs().max(1.0);
+            assert!(deviation <= 1e-20 * scale * scale, "{deviation} {t:?}");
+            for (k, &i) in FIXED.iter().enumerate() {
+                assert_eq!(t[i], fixed[k]);
+            }
+            assert!(t.windows(2).all(|w| w[1] >= w[0]), "{t:?}");
+        }
     }
 
     #[test]

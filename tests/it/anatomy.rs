@@ -562,16 +562,18 @@ fn cli_label_writes_json_ply_and_svg_and_guesses_forward() {
     assert_eq!((count("head"), count("arm"), count("leg")), (1, 2, 2));
     let vertices = load(&mesh).unwrap().positions.len();
     assert_eq!(doc["vertex_labels"].as_array().unwrap().len(), vertices);
-    // The guessed forward is +Z (the feet point forward) and is reported.
+    // Forward is found from the feet: +Z, the file's convention, so no warning, but the
+    // choice and its confidence are in the JSON.
     let forward = doc["forward"].as_array().unwrap();
     assert!(forward[2].as_f64().unwrap() > 0.9, "{forward:?}");
-    assert!(doc["warnings"]
+    let found = &doc["forward_found"];
+    assert!(found["confidence"].as_f64().unwrap() > 0.3, "{found}");
+    assert!(found["note"].as_str().unwrap().contains("feet"), "{found}");
+    assert!(!doc["warnings"]
         .as_array()
         .unwrap()
         .iter()
-        .any(|w| w["code"] == "forward_guessed"
-            && w["severity"] == "info"
-            && w["message"].as_str().unwrap().contains("forward guessed")));
+        .any(|w| w["code"] == "forward_guessed"));
     let ply = std::fs::read_to_string(&ply).unwrap();
     assert!(ply.starts_with("ply\n") && ply.contains("property uchar red"));
     let svg = std::fs::read_to_string(&svg).unwrap();

@@ -1479,3 +1479,47 @@ fn a_figure_whose_ears_hang_like_legs_upside_down_is_found_z_up() {
         .expect("up was looked for");
     assert!(choice.up.distance(DVec3::Y) < 1e-9, "{choice:?}");
 }
+
+/// A figure that does not face the file's +Z (glTF's convention; some files face -Z or ±X) is
+/// rigged facing where it does with the default options (`--forward auto`): its feet show the
+/// way, its left arm's joints get the `_L` keys, the choice is reported, and the joints are
+/// where the unturned rig puts them, turned. A mirror mix-up would put `shoulder_L` a
+/// shoulder width off.
+#[test]
+fn a_body_facing_away_from_plus_z_is_rigged_facing_where_its_feet_point() {
+    use skelfit::anatomy::AnatomyWarning;
+    use skelfit::warning::Warning;
+    let dir = common::data_dir().join("humanoid/mh_neutral_default");
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    let base = rig(&mesh, &RigOptions::default()).unwrap();
+    let height = 1.7;
+    for (degrees, facing) in [(180.0f64, DVec3::NEG_Z), (90.0, DVec3::X)] {
+        let turn = glam::DQuat::from_rotation_y(degrees.to_radians());
+        let turned = Mesh::new(
+            mesh.positions.iter().map(|&p| turn * p).collect(),
+            mesh.triangles.clone(),
+        )
+        .unwrap();
+        let r = rig(&turned, &RigOptions::default()).unwrap();
+        assert!(
+            r.labelling.frame.forward.distance(facing) < 1e-9,
+            "turned {degrees}: forward {}",
+            r.labelling.frame.forward
+        );
+        assert!(
+            r.warnings.iter().any(|w| matches!(
+                w,
+                Warning::Anatomy(AnatomyWarning::ForwardGuessed { confidence, .. }) if *confidence > 0.3
+            )),
+            "turned {degrees}: the choice is not reported"
+        );
+        for key in ["shoulder_L", "wrist_L", "hip_L", "ankle_R"] {
+            let at = |r: &Rig| r.fit.skeleton.joints[r.fit.canonical[key].0].position;
+            let off = at(&r).distance(turn * at(&base));
+            assert!(
+                off < 0.02 * height,
+                "turned {degrees}: {key} {off:.3} m from the unturned rig's, turned"
+            );
+        }
+    }
+}

@@ -211,3 +211,26 @@ proptest! {
         check_in_time("human", &c)?;
     }
 }
+
+/// The corruption the watchdog caught (seed 220976873, case 380 of 6000): the horse at a
+/// thousand times its size, far off the origin, with junk beside it.
+fn caught_hang() -> Corruption {
+    Corruption {
+        seed: 10378506472400745894,
+        delete: 0.09737638290101638,
+        flip: 0.47067961476414677,
+        duplicate: 0.16760446252642155,
+        degenerate: 3,
+        jitter: 0.005276891292201375,
+        junk: true,
+        scale_exponent: 3,
+        offset: -250.0,
+    }
+}
+
+/// The case stuck in the vertebrae's spacing (an iterative solver's line search) before it
+/// was solved in closed form: it now rigs, or fails with a message, in time.
+#[test]
+fn the_messy_horse_that_once_hung_rigs_in_time() {
+    check_in_time("horse", &caught_hang()).unwrap();
+}
