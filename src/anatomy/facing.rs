@@ -15,8 +15,8 @@
 //!   (or the trunk's centre) to its head.
 //! * **Prior** — what the figure cannot tell keeps the convention: without a sign the forward
 //!   nearest the prior's is kept; a direction within [`SNAP_DEG`] of one of the file's axes is
-//!   that axis (figures are modelled square to the axes; a few degrees of asymmetry in the labels
-//!   must not tilt the frame).
+//!   that axis (figures are modelled square to the axes; the labels' asymmetry, a head turned or
+//!   a tail swung aside, must not tilt the frame).
 
 use super::{FigureClass, Label, Labelling, Side};
 use crate::mesh::Mesh;
@@ -24,7 +24,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 /// Angle (degrees) within which a found forward is taken to be the nearest file axis.
-pub const SNAP_DEG: f64 = 20.0;
+pub const SNAP_DEG: f64 = 30.0;
 
 /// A foot is a foot when its length along forward is at least this multiple of the shin's depth
 /// along forward (a human foot is about twice the shin's depth; a peg leg's end is less than one).
