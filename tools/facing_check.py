@@ -31,7 +31,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from zup_check import core_error, reference_canonical  # noqa: E402
+from zup_check import core_error, model_folders, reference_canonical  # noqa: E402
 
 TURNS = (0, 90, 180, 270)
 
@@ -88,11 +88,7 @@ def main():
     parser.add_argument("--limit", type=float, default=1.0)
     args = parser.parse_args()
 
-    root = os.path.join(args.refdata, "humanoid")
-    folders = [os.path.join(root, m) for m in sorted(os.listdir(root))
-               if os.path.exists(os.path.join(root, m, "mesh.obj"))] if os.path.isdir(root) else []
-    if args.models:
-        folders = [f for f in folders if os.path.basename(f) in args.models]
+    folders = model_folders(args.refdata, ("humanoid",), args.models)
     if not folders:
         print(f"no humanoid models under {args.refdata}")
         return 1

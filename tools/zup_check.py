@@ -103,6 +103,18 @@ def core_error(found, reference, height):
     return 100.0 * mean / height, [k for k in keys if k not in found]
 
 
+def model_folders(refdata, kinds, models):
+    """The model folders (with a mesh.obj) under REFDATA/KIND for each of `kinds`, sorted; only
+    those named in `models` when it is not empty."""
+    folders = []
+    for kind in kinds:
+        root = os.path.join(refdata, kind)
+        if os.path.isdir(root):
+            folders += [os.path.join(root, m) for m in sorted(os.listdir(root))
+                        if os.path.exists(os.path.join(root, m, "mesh.obj"))]
+    return [f for f in folders if not models or os.path.basename(f) in models]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("models", nargs="*", metavar="MODEL")
@@ -113,14 +125,7 @@ def main():
     parser.add_argument("--worst", type=int, default=3)
     args = parser.parse_args()
 
-    folders = []
-    for kind in ("humanoid", "robustness"):
-        root = os.path.join(args.refdata, kind)
-        if os.path.isdir(root):
-            folders += [os.path.join(root, m) for m in sorted(os.listdir(root))
-                        if os.path.exists(os.path.join(root, m, "mesh.obj"))]
-    if args.models:
-        folders = [f for f in folders if os.path.basename(f) in args.models]
+    folders = model_folders(args.refdata, ("humanoid", "robustness"), args.models)
     if not folders:
         print(f"no humanoid models under {args.refdata}")
         return 1
