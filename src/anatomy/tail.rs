@@ -26,13 +26,38 @@ impl TailRule<'_> {
         self.graph.vertices[self.sections[s].attachment_vertex].centroid
     }
 
+    /// For an upright figure with arms: whether section `t` leaves the trunk nearer the height
+    /// where its legs leave it than where its arms do, each measured where the section itself
+    /// leaves the trunk (its top vertex), not at the trunk vertex it joins. A trunk vertex can
+    /// span the whole lower back, so a backpack and the legs may join the same one; where they
+    /// leave the trunk still tells a tail (at the crotch) from a backpack (between the
+    /// shoulder blades). True for other figures.
+    fn roots_nearer_the_legs(&self, t: usize, assign: &[Assignment]) -> bool {
+        let up = self.frame.up;
+        let root = |s: usize| self.sections[s].attachment.dot(up);
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        let arms: Vec<f64> = (0..assign.len())
+            .filter(|&a| assign[a].label == Some(Label::Arm))
+            .map(root)
+            .collect();
+        match (self.figure, self.pairs.last()) {
+            (FigureClass::HumanLike, Some(&(a, b))) if !arms.is_empty() => {
+                let (legs, arms, at) = (mean(&[root(a), root(b)]), mean(&arms), root(t));
+                (at - legs).abs() < (at - arms).abs()
+            }
+            _ => true,
+        }
+    }
+
     /// The tail: of `candidates` (unlabelled sections) and the unpaired legs, the one reaching
     /// farthest back, when it extends rearward, is long enough, and roots at the pelvic end of
     /// the trunk: within the distance limit of the posterior pair's attachments and nearer to
     /// them than to the anterior end of the trunk (the fore pair's attachments, else the
     /// trunk's highest point for a human-like figure, its most forward point otherwise). A
     /// tail is the spine's continuation past the pelvis, so a protrusion from the upper back
-    /// (a backpack, a head leaning back) or a shoulder (a T-posed arm) is never one.
+    /// (a backpack, a head leaning back) or a shoulder (a T-posed arm) is never one; an upright
+    /// figure's also leaves the trunk nearer its legs' roots than its arms'
+    /// ([`Self::roots_nearer_the_legs`]).
     pub fn assign(
         &self,
         assign: &mut [Assignment],
@@ -81,7 +106,7 @@ impl TailRule<'_> {
         let pelvic_end = match (posterior, anterior) {
             (Some(p), Some(a)) => p.distance(attach) < a.distance(attach),
             _ => true,
-        };
+        } && self.roots_nearer_the_legs(t, assign);
         let long = s.length >= self.min_length;
         if s.extreme.backward && rearward && near && pelvic_end && long {
             assign[t] = Assignment {

@@ -1068,3 +1068,37 @@ fn the_dinosaurs_short_arms_are_their_fore_legs() {
         }
     }
 }
+
+/// The adventurer's backpack is no tail whichever way the figure faces. Turned to face -X, the
+/// backpack and the legs joined the trunk at one level-graph vertex spanning the lower back,
+/// so the backpack passed as rooted at the pelvic end and was labelled a tail (the pelvis then
+/// lost its hip slice). Where each section leaves the trunk tells them apart: the backpack
+/// between the shoulder blades, nearer the arms' roots than the legs'.
+#[test]
+fn a_backpack_is_no_tail_whichever_way_the_figure_faces() {
+    let Some(dir) = common::model("humanoid/quaternius_men_adventurer") else {
+        return;
+    };
+    let mesh = load(&dir.join("mesh.obj")).unwrap();
+    for degrees in [0.0f64, 90.0, 180.0, 270.0] {
+        let turn = DQuat::from_rotation_y(degrees.to_radians());
+        let turned = Mesh::new(
+            mesh.positions.iter().map(|&p| turn * p).collect(),
+            mesh.triangles.clone(),
+        )
+        .unwrap();
+        let labels = label(&turned, &stages(LabelOptions::default())).unwrap();
+        assert_eq!(
+            labels.count(Label::Tail),
+            0,
+            "turned {degrees}: {}",
+            labels.parts_summary()
+        );
+        assert_eq!(
+            (labels.count(Label::Arm), labels.count(Label::Leg)),
+            (2, 2),
+            "turned {degrees}: {}",
+            labels.parts_summary()
+        );
+    }
+}
