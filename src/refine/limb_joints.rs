@@ -83,6 +83,12 @@ pub fn on_axis(
 /// bodies).
 const HAND_FLATNESS: f64 = 1.6;
 
+/// The wrist lies at most this many palm widths (the hand's widest slice) before the slice
+/// where the hand turns flat ([`hand_flat_start`]): the wrist joint sits at the palm's root,
+/// where the hand flattens within about a quarter of its width (the reference rigs' wrists),
+/// so a narrowing farther back is the forearm's (a sleeve's cuff caught or missed by a slice).
+const WRIST_BEFORE_PALM: f64 = 0.5;
+
 /// Walking back from the hand's flat section towards the elbow, the narrowing before it ends
 /// where the perimeter has risen this fraction above its smallest value on the way (out of the
 /// valley, past the B-spline's ripples).
@@ -91,7 +97,7 @@ const VALLEY_RISE: f64 = 0.1;
 /// The wrist: among the local minima of the arm's thickness (minor diameter) beyond `from`
 /// (arc length), the one nearest the arm's last narrowing before the hand's flat section
 /// (`hand_flat_start`): the bottom of the perimeter's valley reached walking back from that
-/// section (`last_narrowing`). A forearm thinner in its middle than at the wrist (a jointed
+/// section (`last_narrowing`), at most [`WRIST_BEFORE_PALM`] palm widths back. A forearm thinner in its middle than at the wrist (a jointed
 /// mannequin's rod before its wrist piece) so keeps the wrist at the hand. Without a flat
 /// section (a fist or a mitten, or a trace that stops short of the hand), the narrowing is the
 /// narrowest width (major diameter) beyond `from` that a wider section follows
@@ -117,7 +123,18 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
         .collect();
     let flat = hand_flat_start(&dense).filter(|&i| i > 0);
     let narrowest = match flat {
-        Some(i) => last_narrowing(&dense[..=i])?.arc,
+        Some(i) => {
+            // The wrist is at the palm's root: walking back from where the hand turns flat,
+            // a narrowing farther than half the palm's width belongs to the forearm (a
+            // sleeve's cuff, a bracelet), however deep.
+            let palm = dense[i..].iter().map(|s| s.major).fold(0.0, f64::max);
+            let back_to = dense[i].arc - WRIST_BEFORE_PALM * palm;
+            let first = dense[..i]
+                .iter()
+                .position(|s| s.arc >= back_to)
+                .unwrap_or(i);
+            last_narrowing(&dense[first..=i])?.arc
+        }
         None => {
             narrowest_before_widening(&dense)
                 .or_else(|| dense.iter().min_by(|a, b| a.major.total_cmp(&b.major)))?
@@ -444,6 +461,24 @@ mod tests {
         });
         let w = wrist(&profile, 0.0, 0.25).unwrap();
         assert!((20.0..26.0).contains(&w.x), "wrist at {w}");
+    }
+
+    #[test]
+    fn wrist_is_at_the_palms_root_not_at_a_deeper_narrowing_up_the_forearm() {
+        // Forearm, a deep narrowing where a sleeve's cuff ends (or was missed by the slice),
+        // a sleeve barely wider than the wrist, the wrist's shallow narrowing, then the flat
+        // hand. Walking back from the hand, the perimeter never rose a tenth above the wrist's
+        // before the cuff, and the wrist went to the cuff, 10 units (more than a palm's width)
+        // short of the hand (quaternius_women_formal turned one degree: 4-5 % of its height).
+        let profile = arm(|x| match x {
+            x if x < 10.0 => (4.0, 4.0),
+            x if x < 13.0 => (2.6, 2.6),
+            x if x < 20.0 => (3.4, 3.4),
+            x if x < 22.0 => (3.2, 3.2),
+            _ => (8.0, 2.5),
+        });
+        let w = wrist(&profile, 0.0, 0.25).unwrap();
+        assert!((18.0..23.0).contains(&w.x), "wrist at {w}");
     }
 
     /// A trace along the arm reaches a rough joint off its axis (in the top of a big hand) as
