@@ -97,7 +97,9 @@ const VALLEY_RISE: f64 = 0.1;
 /// The wrist: among the local minima of the arm's thickness (minor diameter) beyond `from`
 /// (arc length), the one nearest the arm's last narrowing before the hand's flat section
 /// (`hand_flat_start`): the bottom of the perimeter's valley reached walking back from that
-/// section (`last_narrowing`), at most [`WRIST_BEFORE_PALM`] palm widths back. A forearm thinner in its middle than at the wrist (a jointed
+/// section (`last_narrowing`), at most `WRIST_BEFORE_PALM` palm widths back; a minimum more
+/// than the narrowing's width from it is none of the wrist's (a hand thinning to its
+/// fingertips has its only one there), and the narrowing itself is taken. A forearm thinner in its middle than at the wrist (a jointed
 /// mannequin's rod before its wrist piece) so keeps the wrist at the hand. Without a flat
 /// section (a fist or a mitten, or a trace that stops short of the hand), the narrowing is the
 /// narrowest width (major diameter) beyond `from` that a wider section follows
@@ -141,8 +143,16 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
                 .arc
         }
     };
+    // The thickness minimum refines the narrowing's place within the wrist's own width; a
+    // forearm thinning all the way to the fingertips (an A-posed arm sliced obliquely, a
+    // mitten) has its only minimum out at the tip, which is no wrist.
+    let reach = dense
+        .iter()
+        .find(|s| s.arc == narrowest)
+        .map_or(0.0, |s| s.major);
     let minima = (1..dense.len().saturating_sub(1))
-        .filter(|&i| dense[i].minor <= dense[i - 1].minor && dense[i].minor <= dense[i + 1].minor);
+        .filter(|&i| dense[i].minor <= dense[i - 1].minor && dense[i].minor <= dense[i + 1].minor)
+        .filter(|&i| (dense[i].arc - narrowest).abs() <= reach);
     let best = minima
         .min_by(|&i, &j| {
             (dense[i].arc - narrowest)
@@ -479,6 +489,21 @@ mod tests {
         });
         let w = wrist(&profile, 0.0, 0.25).unwrap();
         assert!((18.0..23.0).contains(&w.x), "wrist at {w}");
+    }
+
+    #[test]
+    fn wrist_stays_at_the_narrowing_when_the_only_thickness_minimum_is_at_the_fingertips() {
+        // A forearm, the wrist's narrowing, then a hand thinning all the way to the tip (an
+        // A-posed arm sliced obliquely): the only local minimum of the thickness lies at the
+        // fingertips, and taking the minimum nearest the narrowing put the wrist there
+        // (gltf_cesium_man turned three degrees: 15 % of its height out along the hand).
+        let profile = arm(|x| match x {
+            x if x < 22.0 => (7.0 - 0.05 * x, 6.0 - 0.04 * x),
+            x if x < 39.0 => (9.0, 5.0 - 0.2 * (x - 22.0)),
+            _ => (9.0, 2.0),
+        });
+        let w = wrist(&profile, 0.0, 0.25).unwrap();
+        assert!((18.0..24.0).contains(&w.x), "wrist at {w}");
     }
 
     /// A trace along the arm reaches a rough joint off its axis (in the top of a big hand) as
