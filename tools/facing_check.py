@@ -21,7 +21,11 @@ than the unturned rig; the exit code is 1 when there is one.
 Standard-library Python only. Usage (from the repository, after `cargo build --release`):
 
     python3 tools/facing_check.py [--refdata ../shared/refdata] [--skelfit target/release/skelfit]
-                                  [--work /tmp/facing_check] [--limit 1.0] [MODEL ...]
+                                  [--work /tmp/facing_check] [--limit 1.0] [--turns=90,180,270]
+                                  [MODEL ...]
+
+`--turns=-3,-1,1,3` measures figures a few degrees off the file's axes instead (forward snaps to
+the axis; what changes is how the voxels fall on the figure).
 """
 import argparse
 import json
@@ -33,7 +37,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from zup_check import core_error, model_folders, reference_canonical  # noqa: E402
 
-TURNS = (0, 90, 180, 270)
+TURNS = "90,180,270"
 
 
 def turn(p, degrees):
@@ -86,7 +90,11 @@ def main():
     parser.add_argument("--skelfit", default="target/release/skelfit")
     parser.add_argument("--work", default="/tmp/facing_check")
     parser.add_argument("--limit", type=float, default=1.0)
+    parser.add_argument("--turns", default=TURNS,
+                        help="comma-separated angles in degrees (default 90,180,270; e.g. "
+                             "--turns=-3,-1,1,3 for figures a little off the file's axes)")
     args = parser.parse_args()
+    turns = [0.0] + [float(t) for t in args.turns.split(",") if float(t) != 0.0]
 
     folders = model_folders(args.refdata, ("humanoid",), args.models)
     if not folders:
@@ -100,19 +108,19 @@ def main():
         if not reference:
             continue
         cells, base = [], None
-        for degrees in TURNS:
-            mesh = os.path.join(args.work, f"{model}_{degrees}.obj")
+        for degrees in turns:
+            mesh = os.path.join(args.work, f"{model}_{degrees:g}.obj")
             height = turned_obj(os.path.join(folder, "mesh.obj"), mesh, degrees)
             skeleton = rig(args.skelfit, mesh, mesh[:-4] + ".json")
             if skeleton is None:
-                cells.append(f"{degrees}: failed")
+                cells.append(f"{degrees:g}: failed")
                 failing.append((model, degrees, "rig failed"))
                 continue
             by_name = {j["name"]: turn(j["position"], -degrees) for j in skeleton["joints"]}
             found = {k: by_name[v] for k, v in skeleton.get("canonical", {}).items() if v in by_name}
             error, missing = core_error(found, reference, height)
             text = "-" if error is None else f"{error:.2f} %"
-            cells.append(f"{degrees}: {text} {how(skeleton)}"
+            cells.append(f"{degrees:g}: {text} {how(skeleton)}"
                          + (f" (missing {len(missing)})" if missing else ""))
             if degrees == 0:
                 base = error
@@ -123,7 +131,7 @@ def main():
     if failing:
         print(f"{len(failing)} turns more than {args.limit} % of height worse than unturned:")
         for model, degrees, why in failing:
-            print(f"  {model} turned {degrees}: {why}")
+            print(f"  {model} turned {degrees:g}: {why}")
         return 1
     print(f"all {len(folders)} models: every turn within {args.limit} % of height of the unturned rig")
     return 0
