@@ -322,7 +322,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     if options.refine.symmetry {
         let head = fit.canonical.get(Canonical::Head.as_str()).copied();
         let left = input.up.cross(input.forward);
-        let symmetry = symmetrize(&fit.skeleton, head, mesh, &solid, left);
+        let symmetry = symmetrize(&fit.skeleton, head, mesh, &solid, left, input.up);
         if symmetry.applied {
             fit.skeleton = symmetry.skeleton;
         }

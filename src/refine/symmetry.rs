@@ -61,15 +61,26 @@ fn symmetric_share(solid: &Solid, origin: DVec3, left: DVec3) -> f64 {
     mirrored as f64 / inside.max(1) as f64
 }
 
+/// Turns (degrees) of the median plane about up tried beside the frame's own: the body frame
+/// snaps to the file's axes ([`crate::anatomy::Forward::Auto`]), and a figure modelled a few
+/// degrees off them mirrors itself across a plane turned as much.
+const PLANE_TURNS_DEG: [f64; 10] = [-1.0, 1.0, -2.0, 2.0, -3.0, 3.0, -4.0, 4.0, -5.0, 5.0];
+
+/// A turned plane replaces the frame's when this much larger a share of the interior voxels
+/// mirrors across it (voxel noise moves the share by less).
+const TURNED_PLANE_GAIN: f64 = 0.02;
+
 /// Makes the paired joints of `skeleton` (names ending `_L` and `_R`) mirror each other across
-/// the median plane of `mesh` (voxelized into `solid`), whose normal is `left`, and puts `head`
-/// and its ancestors on that plane (see the module docs).
+/// the median plane of `mesh` (voxelized into `solid`), whose normal is `left` (or `left` turned
+/// about `up` by up to five degrees, when the figure mirrors itself clearly better across that:
+/// `PLANE_TURNS_DEG`), and puts `head` and its ancestors on that plane (see the module docs).
 pub fn symmetrize(
     skeleton: &Skeleton,
     head: Option<JointId>,
     mesh: &Mesh,
     solid: &Solid,
     left: DVec3,
+    up: DVec3,
 ) -> Symmetry {
     let unchanged = |share| Symmetry {
         share,
@@ -80,6 +91,33 @@ pub fn symmetrize(
     let Some(left) = left.try_normalize() else {
         return unchanged(0.0);
     };
+    let Some((origin, share)) = median_plane(mesh, solid, left) else {
+        return unchanged(0.0);
+    };
+    let (left, origin, share) = match up.try_normalize().filter(|u| u.dot(left).abs() < 0.5) {
+        Some(up) => PLANE_TURNS_DEG
+            .iter()
+            .filter_map(|&deg| {
+                let turned = glam::DQuat::from_axis_angle(up, deg.to_radians()) * left;
+                median_plane(mesh, solid, turned).map(|(o, s)| (turned, o, s))
+            })
+            .filter(|&(_, _, s)| s >= share + TURNED_PLANE_GAIN)
+            .fold(
+                (left, origin, share),
+                |best, c| if c.2 > best.2 { c } else { best },
+            ),
+        None => (left, origin, share),
+    };
+    if share < SYMMETRIC_SHARE {
+        return unchanged(share);
+    }
+    mirror_pairs(skeleton, head, left, origin, share)
+}
+
+/// The median plane across `left` (its point halfway between the figure's extremes along
+/// `left`: its mesh vertices in the voxel grid) and the share of `solid`'s interior voxels that
+/// mirror across it; `None` when no vertex lies in the grid.
+fn median_plane(mesh: &Mesh, solid: &Solid, left: DVec3) -> Option<(DVec3, f64)> {
     // The figure's vertices: those in the grid (loose pieces left out of the voxels are not).
     let (lo, hi) = mesh
         .triangles
@@ -95,13 +133,20 @@ pub fn symmetrize(
         .partial_cmp(&hi)
         .is_none_or(|o| o == std::cmp::Ordering::Greater)
     {
-        return unchanged(0.0);
+        return None;
     }
     let origin = left * (lo + hi) / 2.0;
-    let share = symmetric_share(solid, origin, left);
-    if share < SYMMETRIC_SHARE {
-        return unchanged(share);
-    }
+    Some((origin, symmetric_share(solid, origin, left)))
+}
+
+/// [`symmetrize`]'s moves across the plane (`origin`, `left`).
+fn mirror_pairs(
+    skeleton: &Skeleton,
+    head: Option<JointId>,
+    left: DVec3,
+    origin: DVec3,
+    share: f64,
+) -> Symmetry {
     let mut targets: BTreeMap<JointId, DVec3> = BTreeMap::new();
     let mut pairs = Vec::new();
     for (l, joint) in skeleton.joints.iter().enumerate() {
@@ -198,6 +243,7 @@ mod tests {
             &figure(false),
             &solid,
             DVec3::X,
+            DVec3::Y,
         );
         assert!(s.applied && s.share >= SYMMETRIC_SHARE, "{}", s.share);
         let (l, r) = (s.skeleton.joints[1].position, s.skeleton.joints[2].position);
@@ -212,7 +258,14 @@ mod tests {
         // An axial joint off the plane moves onto it, along `left` only.
         let mut leaning = skeleton();
         leaning.joints[0].position = DVec3::new(0.07, 0.2, 0.01);
-        let s = symmetrize(&leaning, Some(JointId(0)), &figure(false), &solid, DVec3::X);
+        let s = symmetrize(
+            &leaning,
+            Some(JointId(0)),
+            &figure(false),
+            &solid,
+            DVec3::X,
+            DVec3::Y,
+        );
         let p = s.skeleton.joints[0].position;
         assert!(p.distance(DVec3::new(0.0, 0.2, 0.01)) < 1e-9, "{p}");
 
@@ -223,8 +276,40 @@ mod tests {
             &figure(true),
             &raised,
             DVec3::X,
+            DVec3::Y,
         );
         assert!(!s.applied && s.share < SYMMETRIC_SHARE, "{}", s.share);
         assert_eq!(s.skeleton, skeleton());
+    }
+
+    /// A symmetric figure turned four degrees about up (its frame snapped to the file's axes)
+    /// mirrors itself across the plane turned with it, not across the frame's: its pairs mirror
+    /// each other across that plane.
+    #[test]
+    fn a_figure_a_few_degrees_off_the_axes_mirrors_across_its_own_plane() {
+        let turn = glam::DQuat::from_rotation_y(4f64.to_radians());
+        let mut mesh = figure(false);
+        for p in &mut mesh.positions {
+            *p = turn * *p;
+        }
+        let mut bones = skeleton();
+        for j in &mut bones.joints {
+            j.position = turn * j.position;
+        }
+        let solid = voxelize(&mesh, &VoxelOptions::default()).unwrap();
+        let frame = median_plane(&mesh, &solid, DVec3::X).unwrap().1;
+        let s = symmetrize(&bones, Some(JointId(0)), &mesh, &solid, DVec3::X, DVec3::Y);
+        assert!(
+            s.applied && s.share > frame + TURNED_PLANE_GAIN,
+            "{} vs {frame}",
+            s.share
+        );
+        let (l, r) = (s.skeleton.joints[1].position, s.skeleton.joints[2].position);
+        let (l, r) = (turn.inverse() * l, turn.inverse() * r);
+        // Within the one-degree steps tried (across the frame's plane they would be 0.07 apart).
+        assert!(
+            (l.x + r.x).abs() < 0.01 && (l.z - r.z).abs() < 0.03,
+            "{l} {r}"
+        );
     }
 }
