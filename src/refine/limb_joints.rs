@@ -84,9 +84,10 @@ pub fn on_axis(
 const HAND_FLATNESS: f64 = 1.6;
 
 /// The wrist lies at most this many palm widths (the hand's widest slice) before the slice
-/// where the hand turns flat ([`hand_flat_start`]): the wrist joint sits at the palm's root,
-/// where the hand flattens within about a quarter of its width (the reference rigs' wrists),
-/// so a narrowing farther back is the forearm's (a sleeve's cuff caught or missed by a slice).
+/// where the hand turns flat ([`hand_flat_start`]): the wrist joint sits at the palm's root
+/// (quaternius_women_formal's artist put it a quarter of the palm's width before the flat
+/// section), so a narrowing farther back is the forearm's (a sleeve's cuff caught or missed
+/// by a slice).
 const WRIST_BEFORE_PALM: f64 = 0.5;
 
 /// Walking back from the hand's flat section towards the elbow, the narrowing before it ends
@@ -99,7 +100,8 @@ const VALLEY_RISE: f64 = 0.1;
 /// (`hand_flat_start`): the bottom of the perimeter's valley reached walking back from that
 /// section (`last_narrowing`), at most `WRIST_BEFORE_PALM` palm widths back; a minimum more
 /// than the narrowing's width from it is none of the wrist's (a hand thinning to its
-/// fingertips has its only one there), and the narrowing itself is taken. A forearm thinner in its middle than at the wrist (a jointed
+/// fingertips has its only one there), and the narrowing itself is taken. A forearm thinner
+/// in its middle than at the wrist (a jointed
 /// mannequin's rod before its wrist piece) so keeps the wrist at the hand. Without a flat
 /// section (a fist or a mitten, or a trace that stops short of the hand), the narrowing is the
 /// narrowest width (major diameter) beyond `from` that a wider section follows
