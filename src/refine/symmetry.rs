@@ -40,25 +40,53 @@ pub(super) fn mirror(p: DVec3, origin: DVec3, left: DVec3) -> DVec3 {
     p - 2.0 * (p - origin).dot(left) * left
 }
 
-/// Share of `solid`'s interior voxels whose mirror image across the plane (`origin`, `left`)
-/// is inside.
-fn symmetric_share(solid: &Solid, origin: DVec3, left: DVec3) -> f64 {
-    let (mut inside, mut mirrored) = (0usize, 0usize);
-    for (i, &v) in solid.inside.iter().enumerate() {
-        if !v {
-            continue;
+/// Share of the interior voxel centres `interior` (of `solid`) whose mirror image across the
+/// plane (`origin`, `left`) is inside.
+fn symmetric_share(solid: &Solid, interior: &[DVec3], origin: DVec3, left: DVec3) -> f64 {
+    let mirrored = interior
+        .iter()
+        .filter(|&&c| {
+            solid
+                .grid
+                .voxel_at(mirror(c, origin, left))
+                .is_some_and(|v| solid.inside[solid.grid.index(v)])
+        })
+        .count();
+    mirrored as f64 / interior.len().max(1) as f64
+}
+
+/// What [`median_plane`] measures, gathered once for every plane tried: the figure's mesh
+/// vertices in the voxel grid (loose pieces left out of the voxels are not the figure) and its
+/// interior voxel centres.
+struct Figure<'a> {
+    solid: &'a Solid,
+    vertices: Vec<DVec3>,
+    interior: Vec<DVec3>,
+}
+
+impl<'a> Figure<'a> {
+    fn new(mesh: &Mesh, solid: &'a Solid) -> Self {
+        let mut used = vec![false; mesh.positions.len()];
+        for &i in mesh.triangles.iter().flatten() {
+            used[i as usize] = true;
         }
-        inside += 1;
-        let m = mirror(solid.grid.centre(solid.grid.coords(i)), origin, left);
-        if solid
-            .grid
-            .voxel_at(m)
-            .is_some_and(|c| solid.inside[solid.grid.index(c)])
-        {
-            mirrored += 1;
+        let vertices = mesh
+            .positions
+            .iter()
+            .zip(&used)
+            .filter(|&(&p, &u)| u && solid.grid.voxel_at(p).is_some())
+            .map(|(&p, _)| p)
+            .collect();
+        let interior = (0..solid.inside.len())
+            .filter(|&i| solid.inside[i])
+            .map(|i| solid.grid.centre(solid.grid.coords(i)))
+            .collect();
+        Self {
+            solid,
+            vertices,
+            interior,
         }
     }
-    mirrored as f64 / inside.max(1) as f64
 }
 
 /// Turns (degrees) of the median plane about up tried beside the frame's own: the body frame
@@ -91,7 +119,8 @@ pub fn symmetrize(
     let Some(left) = left.try_normalize() else {
         return unchanged(0.0);
     };
-    let Some((origin, share)) = median_plane(mesh, solid, left) else {
+    let figure = Figure::new(mesh, solid);
+    let Some((origin, share)) = median_plane(&figure, left) else {
         return unchanged(0.0);
     };
     let (left, origin, share) = match up.try_normalize().filter(|u| u.dot(left).abs() < 0.5) {
@@ -99,7 +128,7 @@ pub fn symmetrize(
             .iter()
             .filter_map(|&deg| {
                 let turned = glam::DQuat::from_axis_angle(up, deg.to_radians()) * left;
-                median_plane(mesh, solid, turned).map(|(o, s)| (turned, o, s))
+                median_plane(&figure, turned).map(|(o, s)| (turned, o, s))
             })
             .filter(|&(_, _, s)| s >= share + TURNED_PLANE_GAIN)
             .fold(
@@ -115,16 +144,12 @@ pub fn symmetrize(
 }
 
 /// The median plane across `left` (its point halfway between the figure's extremes along
-/// `left`: its mesh vertices in the voxel grid) and the share of `solid`'s interior voxels that
+/// `left`, its mesh vertices in the voxel grid) and the share of its interior voxels that
 /// mirror across it; `None` when no vertex lies in the grid.
-fn median_plane(mesh: &Mesh, solid: &Solid, left: DVec3) -> Option<(DVec3, f64)> {
-    // The figure's vertices: those in the grid (loose pieces left out of the voxels are not).
-    let (lo, hi) = mesh
-        .triangles
+fn median_plane(figure: &Figure, left: DVec3) -> Option<(DVec3, f64)> {
+    let (lo, hi) = figure
+        .vertices
         .iter()
-        .flatten()
-        .map(|&i| mesh.positions[i as usize])
-        .filter(|&p| solid.grid.voxel_at(p).is_some())
         .map(|p| p.dot(left))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
             (lo.min(t), hi.max(t))
@@ -136,7 +161,10 @@ fn median_plane(mesh: &Mesh, solid: &Solid, left: DVec3) -> Option<(DVec3, f64)>
         return None;
     }
     let origin = left * (lo + hi) / 2.0;
-    Some((origin, symmetric_share(solid, origin, left)))
+    Some((
+        origin,
+        symmetric_share(figure.solid, &figure.interior, origin, left),
+    ))
 }
 
 /// [`symmetrize`]'s moves across the plane (`origin`, `left`).
@@ -297,7 +325,9 @@ mod tests {
             j.position = turn * j.position;
         }
         let solid = voxelize(&mesh, &VoxelOptions::default()).unwrap();
-        let frame = median_plane(&mesh, &solid, DVec3::X).unwrap().1;
+        let frame = median_plane(&Figure::new(&mesh, &solid), DVec3::X)
+            .unwrap()
+            .1;
         let s = symmetrize(&bones, Some(JointId(0)), &mesh, &solid, DVec3::X, DVec3::Y);
         assert!(
             s.applied && s.share > frame + TURNED_PLANE_GAIN,
