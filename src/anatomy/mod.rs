@@ -158,9 +158,7 @@ pub fn label_pieces(
     let mut labelling = match forward {
         Forward::Direction(f) if f.cross(up).length_squared() > 1e-6 * f.length_squared() => {
             let frame = Frame::new(up, f)?;
-            label_in_frame(
-                mesh, solid, surface, &tree, options, overrides, frame, false,
-            )?
+            label_in_frame(mesh, solid, surface, &tree, options, overrides, frame)?
         }
         Forward::Direction(_) | Forward::Auto => {
             // The file's convention first (glTF's +Z, turned with the up found: -Y for a Z-up
@@ -174,15 +172,14 @@ pub fn label_pieces(
             .find(|f| f.cross(up).length_squared() > 0.01 * up.length_squared())
             .unwrap_or(DVec3::X);
             let frame = Frame::new(up, prior)?;
-            let first =
-                label_in_frame(mesh, solid, surface, &tree, options, overrides, frame, true)?;
+            let first = label_in_frame(mesh, solid, surface, &tree, options, overrides, frame)?;
             let choice = facing::find_forward(&first, mesh, prior);
             let same = choice.forward.dot(first.frame.forward) > 1.0 - 1e-12;
             let mut labelling = if same {
                 first
             } else {
                 let frame = Frame::new(up, choice.forward).unwrap_or(first.frame);
-                label_in_frame(mesh, solid, surface, &tree, options, overrides, frame, true)?
+                label_in_frame(mesh, solid, surface, &tree, options, overrides, frame)?
             };
             if labelling.frame.forward.dot(choice.prior) < 1.0 - 1e-12 {
                 labelling.warnings.push(
@@ -238,7 +235,6 @@ fn graph_in_frame(
     tree.in_frame(surface, frame, up, fw)
 }
 
-#[allow(clippy::too_many_arguments)]
 fn label_in_frame(
     mesh: &Mesh,
     solid: &Solid,
@@ -247,7 +243,6 @@ fn label_in_frame(
     options: &LabelOptions,
     overrides: Option<&Overrides>,
     frame: Frame,
-    forward_guessed: bool,
 ) -> Result<Labelling, AnatomyError> {
     let graph = graph_in_frame(solid, surface, tree, &frame);
     let mut draft = label_graph(&graph, surface, &frame, &options.rules);
@@ -319,7 +314,6 @@ fn label_in_frame(
     Ok(Labelling {
         figure: draft.figure,
         frame,
-        forward_guessed,
         up_found: None,
         forward_found: None,
         trunk_axis: draft.trunk_axis,

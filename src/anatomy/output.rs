@@ -111,7 +111,7 @@ pub fn labels_json(l: &Labelling, source: Option<&[Option<u32>]>) -> Value {
         "up": point(l.frame.up),
         "forward": point(l.frame.forward),
         "left": point(l.frame.left),
-        "forward_guessed": l.forward_guessed,
+        "forward_guessed": l.forward_found.is_some(),
         "up_found": l.up_found,
         "forward_found": l.forward_found,
         "trunk_angle_deg": if l.trunk_angle.is_finite() { json!(l.trunk_angle) } else { Value::Null },

@@ -193,8 +193,6 @@ pub struct Labelling {
     pub figure: FigureClass,
     /// The body frame used (up, forward, left).
     pub frame: Frame,
-    /// Whether forward was guessed (`Forward::Auto`).
-    pub forward_guessed: bool,
     /// How up was found (`Up::Auto`), `None` when it was given.
     pub up_found: Option<super::UpChoice>,
     /// How forward was found (`Forward::Auto`), `None` when it was given.

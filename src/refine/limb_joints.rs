@@ -137,32 +137,21 @@ pub fn wrist(profile: &LimbProfile, from: f64, step: f64) -> Option<DVec3> {
                 .iter()
                 .position(|s| s.arc >= back_to)
                 .unwrap_or(i);
-            last_narrowing(&dense[first..=i])?.arc
+            last_narrowing(&dense[first..=i])?
         }
-        None => {
-            narrowest_before_widening(&dense)
-                .or_else(|| dense.iter().min_by(|a, b| a.major.total_cmp(&b.major)))?
-                .arc
-        }
+        None => narrowest_before_widening(&dense)
+            .or_else(|| dense.iter().min_by(|a, b| a.major.total_cmp(&b.major)))?,
     };
     // The thickness minimum refines the narrowing's place within the wrist's own width; a
     // forearm thinning all the way to the fingertips (an A-posed arm sliced obliquely, a
     // mitten) has its only minimum out at the tip, which is no wrist.
-    let reach = dense
-        .iter()
-        .find(|s| s.arc == narrowest)
-        .map_or(0.0, |s| s.major);
-    let minima = (1..dense.len().saturating_sub(1))
+    let off = |i: usize| (dense[i].arc - narrowest.arc).abs();
+    (1..dense.len().saturating_sub(1))
         .filter(|&i| dense[i].minor <= dense[i - 1].minor && dense[i].minor <= dense[i + 1].minor)
-        .filter(|&i| (dense[i].arc - narrowest).abs() <= reach);
-    let best = minima
-        .min_by(|&i, &j| {
-            (dense[i].arc - narrowest)
-                .abs()
-                .total_cmp(&(dense[j].arc - narrowest).abs())
-        })
-        .map(|i| dense[i].centre);
-    best.or_else(|| dense.iter().find(|s| s.arc == narrowest).map(|s| s.centre))
+        .filter(|&i| off(i) <= narrowest.major)
+        .min_by(|&i, &j| off(i).total_cmp(&off(j)))
+        .map(|i| dense[i].centre)
+        .or(Some(narrowest.centre))
 }
 
 /// The slice of least width (major diameter) among those that a slice further on exceeds in
