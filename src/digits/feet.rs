@@ -13,6 +13,7 @@ use crate::template::{Posture, Template};
 use glam::DVec3;
 use nalgebra::{Matrix3, Vector3};
 use std::collections::BTreeMap;
+use std::f64::consts::FRAC_1_SQRT_2;
 
 /// Where one foot's joints go.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,7 +30,8 @@ pub(super) struct FootJoints {
 /// [`super`]); the joints between the ankle and the toe and between the toe and its end keep
 /// their share of the way, frames turn with their segments. Upright templates only (a
 /// horizontal figure's paws and hooves keep the fit's single digit chain). Does nothing when
-/// `options.feet` is off.
+/// `options.feet` is off. `facing` is the figure's forward: a foot whose footprint shows no
+/// direction, or was read from the heel, points there (within 45° of it).
 ///
 /// Returns a warning per foot whose surface could not be read (it keeps the fit's chain).
 pub fn fit_feet(
@@ -37,10 +39,11 @@ pub fn fit_feet(
     template: &Template,
     fit: &mut Fit,
     up: DVec3,
+    facing: DVec3,
     options: &DigitOptions,
 ) -> Vec<DigitWarning> {
-    let readings = read_feet(mesh, template, fit, up, options);
-    place_feet(mesh, template, fit, up, options, readings)
+    let readings = read_feet(mesh, template, fit, up, facing, options);
+    place_feet(mesh, template, fit, up, facing, options, readings)
 }
 
 /// One foot read before any foot is placed: the knee and ankle positions it was read from and
@@ -82,6 +85,7 @@ pub(super) fn read_feet(
     template: &Template,
     fit: &Fit,
     up: DVec3,
+    facing: DVec3,
     options: &DigitOptions,
 ) -> Vec<FootReading> {
     if !options.feet || template.posture != Posture::Upright {
@@ -95,7 +99,7 @@ pub(super) fn read_feet(
         Some(FootReading {
             side,
             from,
-            foot: find_foot(mesh, from.0, from.1, up, options),
+            foot: find_foot(mesh, from.0, from.1, up, facing, options),
         })
     };
     let (left, right) = rayon::join(|| read(Side::Left), || read(Side::Right));
@@ -112,6 +116,7 @@ pub(super) fn place_feet(
     template: &Template,
     fit: &mut Fit,
     up: DVec3,
+    facing: DVec3,
     options: &DigitOptions,
     readings: Vec<FootReading>,
 ) -> Vec<DigitWarning> {
@@ -129,7 +134,7 @@ pub(super) fn place_feet(
         };
         let foot = match readings.next_if(|r| r.side == side) {
             Some(r) if r.from == from => r.foot,
-            _ => find_foot(mesh, from.0, from.1, up, options),
+            _ => find_foot(mesh, from.0, from.1, up, facing, options),
         };
         match foot {
             Some(foot) => place_foot(&mut fit.skeleton, &chain, foot),
@@ -187,17 +192,20 @@ fn place_foot(skeleton: &mut Skeleton, chain: &FootChain, foot: FootJoints) {
 }
 
 /// The ball and tip of the foot below `ankle` (`knee` above it gives the shank's direction
-/// and length), from the foot's surface: the tip is the surface's extreme point along the
-/// foot's direction (its lateral and vertical place the mean of the surface within a small
-/// cap there); the ball is the centre of the widest cross-section normal to the foot's
-/// direction between the ankle and the tip (the middle of the stretch of sections at least
-/// `ball_plateau` of the widest: the forefoot is about as wide across all metatarsal heads).
-/// `None` when the surface below the ankle is not found or does not reach ahead of it.
+/// and length), from the foot's surface below the ankle's height: the foot's direction is its
+/// footprint's long axis, kept within 45° of `facing` ([`towards_facing`]); the tip is the
+/// surface's extreme point along it (its lateral and vertical place the mean of the surface
+/// within a small cap there); the ball is the centre of the widest cross-section normal to
+/// the foot's direction between the ankle and the tip (the middle of the stretch of sections
+/// at least `ball_plateau` of the widest: the forefoot is about as wide across all metatarsal
+/// heads). `None` when the surface below the ankle is not found or does not reach ahead of
+/// it.
 pub(super) fn find_foot(
     mesh: &Mesh,
     knee: DVec3,
     ankle: DVec3,
     up: DVec3,
+    facing: DVec3,
     options: &DigitOptions,
 ) -> Option<FootJoints> {
     let shank = ankle.distance(knee);
@@ -209,24 +217,23 @@ pub(super) fn find_foot(
         options.foot_reach * shank,
         options.wrist_band * shank,
     )?;
-    let forward = foot_direction(&surface, ankle, up)?;
+    let forward = towards_facing(foot_direction(&surface, ankle, up)?, up, facing);
+    // The foot is what lies below the ankle: a coarse mesh's triangles crossing the ankle's
+    // plane come whole, and a boot's shaft reaches far above it.
+    let sole: Vec<DVec3> = surface
+        .positions
+        .iter()
+        .copied()
+        .filter(|&p| (p - ankle).dot(up) <= 0.0)
+        .collect();
     let along = |p: DVec3| (p - ankle).dot(forward);
-    let front = surface
-        .positions
-        .iter()
-        .map(|&p| along(p))
-        .fold(f64::MIN, f64::max);
-    let back = surface
-        .positions
-        .iter()
-        .map(|&p| along(p))
-        .fold(f64::MAX, f64::min);
+    let front = sole.iter().map(|&p| along(p)).fold(f64::MIN, f64::max);
+    let back = sole.iter().map(|&p| along(p)).fold(f64::MAX, f64::min);
     let length = front - back;
-    if front < MIN_FOOT_REACH * shank || length <= 0.0 {
+    if sole.is_empty() || front < MIN_FOOT_REACH * shank || length <= 0.0 {
         return None;
     }
-    let cap: Vec<DVec3> = surface
-        .positions
+    let cap: Vec<DVec3> = sole
         .iter()
         .copied()
         .filter(|&p| along(p) >= front - options.toe_cap * length)
@@ -274,6 +281,27 @@ fn foot_direction(surface: &HandSurface, ankle: DVec3, up: DVec3) -> Option<DVec
     })
 }
 
+/// `direction` (horizontal, unit) turned to where an upright figure's feet point: within 45°
+/// of `facing` (the figure's forward) it stands; pointing more than 45° backwards it is turned
+/// round (the footprint's axis is right, its sign was read from the heel: a boot's shaft or a
+/// heel can reach farther from the ankle than the toes); more across than along the figure
+/// (a round or boxy foot, a stub) the footprint shows no direction, and the foot points where
+/// the figure faces. Feet turned out by more than 45° are not a rest pose; `direction` is
+/// kept when `facing` has no horizontal part.
+fn towards_facing(direction: DVec3, up: DVec3, facing: DVec3) -> DVec3 {
+    let Some(facing) = (facing - up * facing.dot(up)).try_normalize() else {
+        return direction;
+    };
+    let cos = direction.dot(facing);
+    if cos >= FRAC_1_SQRT_2 {
+        direction
+    } else if cos <= -FRAC_1_SQRT_2 {
+        -direction
+    } else {
+        facing
+    }
+}
+
 /// How far ahead of the ankle a foot reaches at least, fraction of the shank (knee to ankle):
 /// a human foot reaches about 0.45 shank ahead of the ankle, a stylised one more; a leg that
 /// ends at the ankle (a peg, a stump) reaches only its own radius ahead.
@@ -284,7 +312,7 @@ const SECTIONS: usize = 64;
 
 /// The centre of the widest cross-section of the foot (see [`find_foot`]): sections normal to
 /// `forward` from the ankle to `front`, each's width across (`up × forward`) and length-
-/// weighted centroid; the middle of the stretch around the widest one where every section is
+/// weighted centroid, both over the part of the section below the ankle; the middle of the stretch around the widest one where every section is
 /// at least `plateau` of its width.
 fn widest_section(
     surface: &HandSurface,
@@ -303,15 +331,24 @@ fn widest_section(
         .map(|k| {
             let at = ankle + forward * (front * k as f64 / SECTIONS as f64);
             let loops = slice_plane(&mesh, at, forward);
-            let points = loops.iter().flat_map(|l| l.points.iter());
-            let (lo, hi) = points.fold((f64::MAX, f64::MIN), |(lo, hi), p| {
-                let x = p.dot(across);
-                (lo.min(x), hi.max(x))
+            // The section's segments below the ankle (a boot's shaft is no foot), each by
+            // its midpoint and length.
+            let segments = loops.iter().flat_map(|l| {
+                let n = l.points.len();
+                let count = if l.closed { n } else { n.saturating_sub(1) };
+                (0..count).map(move |i| (l.points[i], l.points[(i + 1) % n]))
             });
-            let (sum, weight) = loops.iter().fold((DVec3::ZERO, 0.0), |(s, w), l| {
-                let p = l.perimeter();
-                (s + l.centroid().unwrap_or(at) * p, w + p)
-            });
+            let (mut lo, mut hi, mut sum, mut weight) = (f64::MAX, f64::MIN, DVec3::ZERO, 0.0);
+            for (a, b) in segments {
+                let mid = (a + b) * 0.5;
+                if (mid - ankle).dot(up) > 0.0 {
+                    continue;
+                }
+                let x = mid.dot(across);
+                (lo, hi) = (lo.min(x), hi.max(x));
+                let length = a.distance(b);
+                (sum, weight) = (sum + mid * length, weight + length);
+            }
             (weight > 0.0).then(|| (hi - lo, sum / weight))
         })
         .collect();
@@ -331,4 +368,30 @@ fn widest_section(
     }
     // The section at the middle of the stretch (or the nearer of its two middle ones).
     sections[(first + last) / 2].map(|s| s.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_foot_points_where_the_figure_faces() {
+        let (up, facing) = (DVec3::Y, DVec3::Z);
+        let turned = |deg: f64| {
+            let r = deg.to_radians();
+            DVec3::new(r.sin(), 0.0, r.cos())
+        };
+        // Turned out 20°: kept.
+        assert!(towards_facing(turned(20.0), up, facing).distance(turned(20.0)) < 1e-12);
+        // Read from the heel (pointing backwards, 10° out): turned round.
+        let back = -turned(10.0);
+        assert!(towards_facing(back, up, facing).distance(turned(10.0)) < 1e-12);
+        // Across the figure (a boxy or round foot): the figure's forward.
+        assert!(towards_facing(turned(80.0), up, facing).distance(facing) < 1e-12);
+        // A facing with a vertical part counts only its horizontal one.
+        let tilted = DVec3::new(0.0, 0.3, 1.0);
+        assert!(towards_facing(turned(-70.0), up, tilted).distance(facing) < 1e-12);
+        // No horizontal facing: the footprint's own direction.
+        assert_eq!(towards_facing(turned(100.0), up, up), turned(100.0));
+    }
 }

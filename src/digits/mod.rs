@@ -60,13 +60,15 @@ use crate::mesh::Mesh;
 use crate::template::{Posture, Template};
 use glam::DVec3;
 
-/// The digit stage: [`fit_hands`], then [`fit_feet`] (`up`: the figure's up); a horizontal
-/// figure's (an animal's) feet [`fit_paws`] instead. Their warnings.
+/// The digit stage: [`fit_hands`], then [`fit_feet`] (`up`: the figure's up, `facing`: its
+/// forward, where an upright figure's feet point); a horizontal figure's (an animal's) feet
+/// [`fit_paws`] instead. Their warnings.
 pub fn fit_digits(
     mesh: &Mesh,
     template: &Template,
     fit: &mut Fit,
     up: DVec3,
+    facing: DVec3,
     options: &DigitOptions,
 ) -> Vec<DigitWarning> {
     if template.posture != Posture::Upright {
@@ -76,10 +78,12 @@ pub fn fit_digits(
     // joints); then the hands are rebuilt and the feet placed in order, as one after another.
     let (hands, feet) = rayon::join(
         || hands::read_hands(mesh, template, fit, options),
-        || feet::read_feet(mesh, template, fit, up, options),
+        || feet::read_feet(mesh, template, fit, up, facing, options),
     );
     let mut warnings = hands::place_hands(mesh, template, fit, options, hands);
-    warnings.extend(feet::place_feet(mesh, template, fit, up, options, feet));
+    warnings.extend(feet::place_feet(
+        mesh, template, fit, up, facing, options, feet,
+    ));
     warnings
 }
 pub use warning::DigitWarning;

@@ -328,7 +328,14 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         }
         lap.lap("symmetry", &mut timings);
     }
-    let digits = fit_digits(mesh, &template, &mut fit, input.up, &options.digits);
+    let digits = fit_digits(
+        mesh,
+        &template,
+        &mut fit,
+        input.up,
+        input.forward,
+        &options.digits,
+    );
     warnings.extend(digits.into_iter().map(Warning::Digits));
     lap.lap("digits", &mut timings);
     fit.realign_frames();

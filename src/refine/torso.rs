@@ -103,10 +103,13 @@ pub fn torso_points(
         false,
     )?;
     let lumbar = pick(&back, bounds.hips, h(back_point), true)?;
-    // A back without a lumbar hollow (a cartoon's straight or convex back) has its forward
-    // maximum at the window's lower end, on the hips, which leaves no room for the sacrum
-    // below: the lumbar point is then the back's point halfway up the window.
-    let lumbar = if h(lumbar) <= bounds.hips + 2.0 * step {
+    // A back without a lumbar hollow has its forward maximum at an end of the window: at the
+    // lower end, on the hips, for a cartoon's straight or convex back, which leaves no room for
+    // the sacrum below; at the upper end, on the back point itself, for a back that flares out
+    // downwards all the way (a cape, a tunic, a coat's skirt), which leaves no curve between
+    // the two. The lumbar point is then the back's point halfway up the window.
+    let at_end = |i: usize| h(i) <= bounds.hips + 2.0 * step || h(i) >= h(back_point) - 2.0 * step;
+    let lumbar = if at_end(lumbar) {
         let mid = 0.5 * (bounds.hips + h(back_point));
         back.iter()
             .copied()
@@ -332,4 +335,65 @@ fn loops_near(
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A prism across the figure (x from -0.2 to 0.2) of the median profile `(forward, up)`,
+    /// fanned from its centroid.
+    fn prism(profile: &[(f64, f64)]) -> Mesh {
+        let n = profile.len();
+        let c = profile
+            .iter()
+            .fold((0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1));
+        let c = (c.0 / n as f64, c.1 / n as f64);
+        let mut positions = Vec::new();
+        for x in [-0.2, 0.2] {
+            positions.push(DVec3::new(x, c.1, c.0));
+            positions.extend(profile.iter().map(|&(z, y)| DVec3::new(x, y, z)));
+        }
+        let (a, b) = (0u32, n as u32 + 1);
+        let mut triangles = Vec::new();
+        for i in 0..n as u32 {
+            let j = (i + 1) % n as u32;
+            triangles.push([a, a + 1 + j, a + 1 + i]);
+            triangles.push([b, b + 1 + i, b + 1 + j]);
+            triangles.push([a + 1 + i, a + 1 + j, b + 1 + j]);
+            triangles.push([a + 1 + i, b + 1 + j, b + 1 + i]);
+        }
+        Mesh::new(positions, triangles).unwrap()
+    }
+
+    #[test]
+    fn a_back_flaring_out_downwards_gets_its_lumbar_point_between_hips_and_back() {
+        // Facing +z; the back runs straight from the neck (z -0.1 at 1.5) out to a cape's
+        // hem (z -0.4 at 0.5), so the back point (its rearmost point above the waist) sits at
+        // the window's lower end and the lumbar window's forward maximum on it.
+        let mesh = prism(&[
+            (0.15, 0.0),
+            (0.15, 1.5),
+            (0.05, 1.7),
+            (-0.1, 1.7),
+            (-0.1, 1.5),
+            (-0.4, 0.5),
+            (-0.4, 0.0),
+        ]);
+        let frame = BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap();
+        let bounds = TorsoBounds {
+            head: 1.65,
+            shoulders: 1.4,
+            hips: 0.6,
+        };
+        let options = RefineOptions::default();
+        let t = torso_points(&mesh, &frame, DVec3::ZERO, &bounds, &options).unwrap();
+        let step = options.silhouette_step * frame.height();
+        let (back, lumbar, sacrum) = (t.back.y, t.lumbar.y, t.sacroiliac.y);
+        assert!(
+            lumbar < back - 2.0 * step && lumbar > bounds.hips + 2.0 * step,
+            "back {back}, lumbar {lumbar}"
+        );
+        assert!(sacrum < lumbar, "lumbar {lumbar}, sacroiliac {sacrum}");
+    }
 }

@@ -151,6 +151,67 @@ fn real_humanoid_toes_lie_in_the_forefoot() {
     }
 }
 
+/// Every humanoid in the reference data, whatever its feet (shoes, a knight's boxy boots whose
+/// shaft a coarse mesh's triangles carry far above the ankle, a cartoon's round stubs): each
+/// joint of the toe chain lies no higher than the ankle and no nearer the heel, along the
+/// figure's forward, and the chain's end lies ahead of the ankle unless the leg has no foot
+/// (a peg leg, with its warning). The knight's toes once ran up
+/// the back of its boot, to 0.34 of its leg's height above the ankle.
+#[test]
+fn toes_lie_below_the_ankle_and_point_where_the_figure_faces() {
+    let Some(root) = crate::common::refdata() else {
+        return;
+    };
+    let mut seen = 0;
+    for entry in std::fs::read_dir(root.join("humanoid")).unwrap() {
+        let dir = entry.unwrap().path();
+        let Ok(mesh) = load(&dir.join("mesh.obj")) else {
+            continue;
+        };
+        let name = dir.file_name().unwrap().to_string_lossy().to_string();
+        let r = rig(&mesh, &RigOptions::default()).unwrap();
+        let (up, forward) = (r.input.up, r.input.forward);
+        let h = height(&mesh);
+        for side in Side::BOTH {
+            let (Some(&ankle), Some(&toe)) = (
+                r.fit.canonical.get(Canonical::Ankle(side).as_str()),
+                r.fit.canonical.get(Canonical::Toe(side).as_str()),
+            ) else {
+                continue;
+            };
+            let a = r.fit.skeleton.joint(ankle).position;
+            let mut at = toe;
+            loop {
+                let p = r.fit.skeleton.joint(at).position;
+                let name_at = &r.fit.skeleton.joint(at).name;
+                assert!(
+                    (p - a).dot(up) <= 0.01 * h,
+                    "{name} {side:?}: {name_at} at {p} above the ankle {a}"
+                );
+                assert!(
+                    (p - a).dot(forward) >= -0.01 * h,
+                    "{name} {side:?}: {name_at} at {p} behind the ankle {a}"
+                );
+                match r.fit.skeleton.children(at).as_slice() {
+                    [only] => at = *only,
+                    _ => break,
+                }
+            }
+            let end = r.fit.skeleton.joint(at).position;
+            // A peg leg has no foot (and says so): its chain keeps the fit's, straight down.
+            let no_foot = foot_warnings(&r)
+                .iter()
+                .any(|w| matches!(w, DigitWarning::NoFoot { side: s } if *s == side));
+            assert!(
+                no_foot || (end - a).dot(forward) > 0.03 * h,
+                "{name} {side:?}: toe end {end} not ahead of the ankle {a}"
+            );
+        }
+        seen += 1;
+    }
+    println!("{seen} humanoids checked");
+}
+
 /// Bending the toes 40° up and 40° down at the ball of the foot (about the toe joint's x axis)
 /// stretches no edge of the bundled body past 2×.
 #[test]
