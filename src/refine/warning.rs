@@ -169,14 +169,14 @@ impl fmt::Display for RefineWarning {
             ),
             Self::CrotchHidden { placed: true } => write!(
                 f,
-                "hips: clothing hides the crotch (the median silhouette runs below the knees); \
-                 hips placed by proportion, {} times the arm's length below the shoulders",
+                "hips: clothing hides the crotch (the median silhouette runs below the knees, or \
+                 ends on a hem); hips placed by proportion, {} times the arm's length below the shoulders",
                 super::driver::TRUNK_PER_ARM
             ),
             Self::CrotchHidden { placed: false } => write!(
                 f,
-                "hips: clothing hides the crotch (the median silhouette runs below the knees) \
-                 and the arms give no length; hips kept where the legs' labels begin"
+                "hips: clothing hides the crotch (the median silhouette runs below the knees, or \
+                 ends on a hem) and the arms give no length; hips kept where the legs' labels begin"
             ),
             Self::NoHipSlice => write!(
                 f,
