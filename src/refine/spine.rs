@@ -45,6 +45,17 @@ pub fn spine(
     let height = frame.height();
     let median = |p: DVec3| p - frame.left * (p - centre).dot(frame.left);
     let c7 = torso.neck.lerp(torso.throat, options.neck_depth);
+    // The body's back: no deeper behind the silhouette's front than the trunk is wide
+    // ([`MAX_DEPTH_PER_WIDTH`]); a deeper silhouette carries something on its back.
+    let body_back = |p: DVec3, width: Option<f64>| {
+        let d = trunk_depth(frame, &torso.silhouette, p);
+        match width {
+            Some(w) if d.is_finite() && d > MAX_DEPTH_PER_WIDTH * w => {
+                p + frame.forward * (d - MAX_DEPTH_PER_WIDTH * w)
+            }
+            _ => p,
+        }
+    };
     let depth = |p: DVec3| trunk_depth(frame, &torso.silhouette, p);
     // Fractions of the height, or of the trunk's depth there when that is more: a stylised
     // figure's trunk is deep for its height (big ears or hats count in the height), and the
@@ -54,9 +65,22 @@ pub fn spine(
         let by_depth = if d.is_finite() { share * d } else { 0.0 };
         p + frame.forward * (of_height * height).max(by_depth)
     };
-    let t6 = inset(torso.back, options.thoracic_depth, THORACIC_SHARE);
-    let l3 = inset(torso.lumbar, options.lumbar_depth, LUMBAR_SHARE);
-    let sacrum = inset(torso.sacroiliac, options.sacral_depth, SACRAL_SHARE);
+    let [back, lumbar, sacral] = torso.widths;
+    let t6 = inset(
+        body_back(torso.back, back),
+        options.thoracic_depth,
+        THORACIC_SHARE,
+    );
+    let l3 = inset(
+        body_back(torso.lumbar, lumbar),
+        options.lumbar_depth,
+        LUMBAR_SHARE,
+    );
+    let sacrum = inset(
+        body_back(torso.sacroiliac, sacral),
+        options.sacral_depth,
+        SACRAL_SHARE,
+    );
     let end = frame.at_height(sacrum, frame.h(torso.crotch));
     let control: Vec<DVec3> = [head, c7, t6, l3, sacrum, end]
         .into_iter()
@@ -79,6 +103,13 @@ pub fn spine(
         .collect();
     Some(Spine { control, joints })
 }
+
+/// The deepest a trunk is for its width: its median silhouette's depth from front to back at
+/// most this many times its width across at the same height. The reference humanoids measure
+/// 0.6-0.85 where the spine's control points lie (MakeHuman bodies, the knight's and the
+/// platformer character's stylised trunks); the adventurer's backpack made its chest 1.23 times
+/// as deep as wide, and its spine bowed back into the pack.
+const MAX_DEPTH_PER_WIDTH: f64 = 1.0;
 
 /// The least share of the trunk's front-to-back depth at the back point that T6/T7 lies in
 /// front of it: the thoracic vertebral body sits about a quarter to a third of the chest's
@@ -252,6 +283,7 @@ mod tests {
                 sacroiliac: DVec3::new(0.0, 0.8, 0.0),
                 throat: DVec3::new(0.0, 1.45, 0.9 * depth),
                 crotch: DVec3::new(0.0, 0.5, 0.5 * depth),
+                widths: [None; 3],
                 silhouette,
             }
         };
@@ -269,6 +301,61 @@ mod tests {
         let slim = spine(&frame, DVec3::ZERO, head, &torso(0.2), &options).unwrap();
         assert!((slim.control[2].z - options.thoracic_depth * 2.0).abs() < 1e-9);
         assert!((slim.control[3].z - options.lumbar_depth * 2.0).abs() < 1e-9);
+    }
+
+    /// A median silhouette deeper than the trunk is wide (a backpack on the back): the spine's
+    /// control points are inset from a back one width behind the front, not from the pack's
+    /// rear; a trunk as wide as it is deep keeps its own back.
+    #[test]
+    fn a_backpack_is_not_the_back_the_spine_is_inset_from() {
+        let frame = BodyFrame {
+            up: DVec3::Y,
+            forward: DVec3::Z,
+            left: DVec3::X,
+            top: 2.0,
+            bottom: 0.0,
+        };
+        let (depth, width) = (0.66, 0.4);
+        let mut silhouette = Vec::new();
+        for k in 0..=100 {
+            let y = 0.5 + k as f64 * 0.01;
+            silhouette.push(DVec3::new(0.0, y, 0.0));
+            silhouette.push(DVec3::new(0.0, y, depth));
+        }
+        let torso = |widths: [Option<f64>; 3]| TorsoPoints {
+            neck: DVec3::new(0.0, 1.45, 0.1 * depth),
+            back: DVec3::new(0.0, 1.3, 0.0),
+            lumbar: DVec3::new(0.0, 1.0, 0.0),
+            sacroiliac: DVec3::new(0.0, 0.8, 0.0),
+            throat: DVec3::new(0.0, 1.45, 0.9 * depth),
+            crotch: DVec3::new(0.0, 0.5, 0.5 * depth),
+            widths,
+            silhouette: silhouette.clone(),
+        };
+        let options = RefineOptions::default();
+        let head = DVec3::new(0.0, 1.7, 0.1);
+        let packed = spine(
+            &frame,
+            DVec3::ZERO,
+            head,
+            &torso([Some(width); 3]),
+            &options,
+        )
+        .unwrap();
+        let back = depth - width;
+        for (k, share) in [(2, THORACIC_SHARE), (3, LUMBAR_SHARE), (4, SACRAL_SHARE)] {
+            let z = packed.control[k].z;
+            assert!((z - (back + share * width)).abs() < 1e-9, "{k}: {z}");
+        }
+        let wide = spine(
+            &frame,
+            DVec3::ZERO,
+            head,
+            &torso([Some(depth); 3]),
+            &options,
+        )
+        .unwrap();
+        assert!((wide.control[2].z - THORACIC_SHARE * depth).abs() < 1e-9);
     }
 
     #[test]

@@ -35,6 +35,10 @@ pub struct TorsoPoints {
     pub throat: DVec3,
     /// Lowest point of the silhouette.
     pub crotch: DVec3,
+    /// The trunk's width across the body at the heights of `back`, `lumbar` and `sacroiliac`:
+    /// the widest closed loop of the transverse slice there that crosses the median plane
+    /// (`None` where none does).
+    pub widths: [Option<f64>; 3],
     /// The smoothed silhouette (closed), for pictures and checks.
     pub silhouette: Vec<DVec3>,
 }
@@ -119,7 +123,11 @@ pub fn torso_points(
     };
     let sacroiliac = pick(&back, h(crotch), h(lumbar), false)?;
     let throat = pick(&front, h(back_point), neck_top, false)?;
+    let slicer = PlaneSlicer::once(mesh, frame.up);
+    let widths = [back_point, lumbar, sacroiliac]
+        .map(|i| trunk_width(&slicer, frame, frame.at_height(centre, h(i))));
     Some(TorsoPoints {
+        widths,
         neck: silhouette[neck],
         back: silhouette[back_point],
         lumbar: silhouette[lumbar],
@@ -128,6 +136,25 @@ pub fn torso_points(
         crotch: silhouette[crotch],
         silhouette,
     })
+}
+
+/// The trunk's width across the body (along `frame.left`) in the transverse slice through
+/// `at` (a point of the median plane): the widest closed outer loop whose extent across holds
+/// `at`. An arm touching the trunk there widens it; `None` when no loop crosses the median
+/// plane.
+pub fn trunk_width(slicer: &PlaneSlicer, frame: &BodyFrame, at: DVec3) -> Option<f64> {
+    let middle = at.dot(frame.left);
+    slicer
+        .slice_outer(at)
+        .iter()
+        .filter(|l| l.closed)
+        .filter_map(|l| {
+            let (lo, hi) = l.points.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+                (lo.min(p.dot(frame.left)), hi.max(p.dot(frame.left)))
+            });
+            (lo <= middle && middle <= hi).then_some(hi - lo)
+        })
+        .max_by(f64::total_cmp)
 }
 
 /// Closed uniform cubic B-spline with `points` as control points, evaluated once per control
@@ -364,6 +391,18 @@ mod tests {
             triangles.push([a + 1 + i, b + 1 + j, b + 1 + i]);
         }
         Mesh::new(positions, triangles).unwrap()
+    }
+
+    #[test]
+    fn the_trunk_width_is_the_loop_across_the_median_plane() {
+        let mesh = prism(&[(0.1, 0.0), (0.1, 1.0), (-0.1, 1.0), (-0.1, 0.0)]);
+        let frame = BodyFrame::new(&mesh, DVec3::Y, DVec3::Z).unwrap();
+        let slicer = PlaneSlicer::new(&mesh, frame.up);
+        let width = trunk_width(&slicer, &frame, DVec3::new(0.0, 0.5, 0.0)).unwrap();
+        assert!((width - 0.4).abs() < 1e-9, "{width}");
+        // A median point beside the trunk (or above it) has none.
+        assert!(trunk_width(&slicer, &frame, DVec3::new(0.5, 0.5, 0.0)).is_none());
+        assert!(trunk_width(&slicer, &frame, DVec3::new(0.0, 1.5, 0.0)).is_none());
     }
 
     #[test]
