@@ -156,7 +156,7 @@ fn real_humanoid_toes_lie_in_the_forefoot() {
 /// joint of the toe chain lies no higher than the ankle and no nearer the heel, along the
 /// figure's forward, and the chain's end lies ahead of the ankle unless the leg has no foot
 /// (a peg leg, with its warning). The knight's toes once ran up
-/// the back of its boot, to 0.34 of its leg's height above the ankle.
+/// the back of its boot, its end 6 % of the height above the ankle.
 #[test]
 fn toes_lie_below_the_ankle_and_point_where_the_figure_faces() {
     let Some(root) = crate::common::refdata() else {
