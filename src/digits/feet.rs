@@ -312,8 +312,8 @@ const SECTIONS: usize = 64;
 
 /// The centre of the widest cross-section of the foot (see [`find_foot`]): sections normal to
 /// `forward` from the ankle to `front`, each's width across (`up × forward`) and length-
-/// weighted centroid, both over the part of the section below the ankle; the middle of the stretch around the widest one where every section is
-/// at least `plateau` of its width.
+/// weighted centroid, both over the part of the section below the ankle; the middle of the
+/// stretch around the widest one where every section is at least `plateau` of its width.
 fn widest_section(
     surface: &HandSurface,
     ankle: DVec3,

@@ -723,8 +723,8 @@ fn hips_and_pelvis(
     };
     let crotch_hidden = crotch_hidden(scene, torso, split, knees, reach, hem_too_low);
     let hip_height = match torso {
-        // The median silhouette runs down past the knees: a skirt, robe or long coat hides
-        // the crotch, and the hips go where the arm's length puts them.
+        // A skirt, robe or long coat hides the crotch ([`crotch_hidden`]): the hips go where
+        // the arm's length puts them.
         Some(_) if crotch_hidden => {
             warnings.push(RefineWarning::CrotchHidden {
                 placed: from_arms.is_some(),
@@ -798,10 +798,11 @@ fn crotch_hidden(
 
 /// How far (fraction of the height) the hips the crotch gives may lie below the hips the arms
 /// give ([`TRUNK_PER_ARM`]) before a hem's flare where the legs part counts as clothing hiding
-/// the crotch. The two agree within 0.04 of the height on the reference humanoids, the
-/// platformer character's cartoon proportions included; a jointed robot's pelvis piece
-/// flares over its thighs like a hem, but its arms put the hips lower, not higher. The
-/// women_formal dress turned 3° ended on its hem at 0.15 of the height below.
+/// the crotch. On the reference humanoids the arms put the hips at most 0.045 of the height
+/// above the crotch's, the platformer character's cartoon proportions included; a jointed
+/// robot's pelvis piece flares over its thighs like a hem, but its arms put the hips lower
+/// (0.08 of the height), not higher. The women_formal dress turned 3° ended on its hem at
+/// 0.15 of the height below.
 const HEM_HIPS_BELOW_ARMS: f64 = 0.08;
 
 /// The top of the gap between the legs ([`leg_split_height`]) from 0.02 of height below the

@@ -45,42 +45,26 @@ pub fn spine(
     let height = frame.height();
     let median = |p: DVec3| p - frame.left * (p - centre).dot(frame.left);
     let c7 = torso.neck.lerp(torso.throat, options.neck_depth);
-    // The body's back: no deeper behind the silhouette's front than the trunk is wide
-    // ([`MAX_DEPTH_PER_WIDTH`]); a deeper silhouette carries something on its back.
-    let body_back = |p: DVec3, width: Option<f64>| {
-        let d = trunk_depth(frame, &torso.silhouette, p);
-        match width {
-            Some(w) if d.is_finite() && d > MAX_DEPTH_PER_WIDTH * w => {
-                p + frame.forward * (d - MAX_DEPTH_PER_WIDTH * w)
-            }
-            _ => p,
-        }
-    };
-    let depth = |p: DVec3| trunk_depth(frame, &torso.silhouette, p);
     // Fractions of the height, or of the trunk's depth there when that is more: a stylised
     // figure's trunk is deep for its height (big ears or hats count in the height), and the
-    // spine stays inside the trunk in proportion, not at an adult's 6 cm from the back.
-    let inset = |p: DVec3, of_height: f64, share: f64| {
-        let d = depth(p);
+    // spine stays inside the trunk in proportion, not at an adult's 6 cm from the back. The
+    // back inset from lies no deeper behind the silhouette's front than the trunk is wide
+    // (`width`, [`MAX_DEPTH_PER_WIDTH`]): a deeper silhouette carries something on its back.
+    let inset = |p: DVec3, width: Option<f64>, of_height: f64, share: f64| {
+        let d = trunk_depth(frame, &torso.silhouette, p);
+        let deepest = width.map_or(f64::INFINITY, |w| MAX_DEPTH_PER_WIDTH * w);
+        let (back, d) = if d.is_finite() && d > deepest {
+            (p + frame.forward * (d - deepest), deepest)
+        } else {
+            (p, d)
+        };
         let by_depth = if d.is_finite() { share * d } else { 0.0 };
-        p + frame.forward * (of_height * height).max(by_depth)
+        back + frame.forward * (of_height * height).max(by_depth)
     };
     let [back, lumbar, sacral] = torso.widths;
-    let t6 = inset(
-        body_back(torso.back, back),
-        options.thoracic_depth,
-        THORACIC_SHARE,
-    );
-    let l3 = inset(
-        body_back(torso.lumbar, lumbar),
-        options.lumbar_depth,
-        LUMBAR_SHARE,
-    );
-    let sacrum = inset(
-        body_back(torso.sacroiliac, sacral),
-        options.sacral_depth,
-        SACRAL_SHARE,
-    );
+    let t6 = inset(torso.back, back, options.thoracic_depth, THORACIC_SHARE);
+    let l3 = inset(torso.lumbar, lumbar, options.lumbar_depth, LUMBAR_SHARE);
+    let sacrum = inset(torso.sacroiliac, sacral, options.sacral_depth, SACRAL_SHARE);
     let end = frame.at_height(sacrum, frame.h(torso.crotch));
     let control: Vec<DVec3> = [head, c7, t6, l3, sacrum, end]
         .into_iter()
@@ -256,40 +240,54 @@ mod tests {
         assert!(spacing(&[0.0, 7.0, f64::INFINITY, 29.0, 35.0]).is_none());
     }
 
-    /// A trunk as deep as a third of the figure's height (a cartoon body): the spine's back
-    /// control points move in by their share of that depth, more than the adult's fraction of
-    /// the height; a slim trunk keeps the height-based inset.
-    #[test]
-    fn a_deep_trunk_keeps_its_spine_in_proportion() {
-        let frame = BodyFrame {
+    /// A frame with +Y up and +Z forward, 2 units tall.
+    fn upright() -> BodyFrame {
+        BodyFrame {
             up: DVec3::Y,
             forward: DVec3::Z,
             left: DVec3::X,
             top: 2.0,
             bottom: 0.0,
-        };
-        let torso = |depth: f64| {
-            // The median silhouette: a rectangle from the back (z = 0) to z = depth.
-            let mut silhouette = Vec::new();
-            for k in 0..=100 {
-                let y = 0.5 + k as f64 * 0.01;
-                silhouette.push(DVec3::new(0.0, y, 0.0));
-                silhouette.push(DVec3::new(0.0, y, depth));
-            }
-            TorsoPoints {
-                neck: DVec3::new(0.0, 1.45, 0.1 * depth),
-                back: DVec3::new(0.0, 1.3, 0.0),
-                lumbar: DVec3::new(0.0, 1.0, 0.0),
-                sacroiliac: DVec3::new(0.0, 0.8, 0.0),
-                throat: DVec3::new(0.0, 1.45, 0.9 * depth),
-                crotch: DVec3::new(0.0, 0.5, 0.5 * depth),
-                widths: [None; 3],
-                silhouette,
-            }
-        };
+        }
+    }
+
+    /// Torso points on a median silhouette that is a rectangle from the back (z = 0) to
+    /// z = `depth`, with the trunk's `widths` at the back points.
+    fn box_torso(depth: f64, widths: [Option<f64>; 3]) -> TorsoPoints {
+        let mut silhouette = Vec::new();
+        for k in 0..=100 {
+            let y = 0.5 + k as f64 * 0.01;
+            silhouette.push(DVec3::new(0.0, y, 0.0));
+            silhouette.push(DVec3::new(0.0, y, depth));
+        }
+        TorsoPoints {
+            neck: DVec3::new(0.0, 1.45, 0.1 * depth),
+            back: DVec3::new(0.0, 1.3, 0.0),
+            lumbar: DVec3::new(0.0, 1.0, 0.0),
+            sacroiliac: DVec3::new(0.0, 0.8, 0.0),
+            throat: DVec3::new(0.0, 1.45, 0.9 * depth),
+            crotch: DVec3::new(0.0, 0.5, 0.5 * depth),
+            widths,
+            silhouette,
+        }
+    }
+
+    /// A trunk as deep as a third of the figure's height (a cartoon body): the spine's back
+    /// control points move in by their share of that depth, more than the adult's fraction of
+    /// the height; a slim trunk keeps the height-based inset.
+    #[test]
+    fn a_deep_trunk_keeps_its_spine_in_proportion() {
+        let frame = upright();
         let options = RefineOptions::default();
         let head = DVec3::new(0.0, 1.7, 0.1);
-        let deep = spine(&frame, DVec3::ZERO, head, &torso(0.66), &options).unwrap();
+        let deep = spine(
+            &frame,
+            DVec3::ZERO,
+            head,
+            &box_torso(0.66, [None; 3]),
+            &options,
+        )
+        .unwrap();
         // control: head, c7, t6, l3, sacrum, end.
         assert!(
             (deep.control[2].z - THORACIC_SHARE * 0.66).abs() < 1e-9,
@@ -298,7 +296,14 @@ mod tests {
         );
         assert!((deep.control[3].z - LUMBAR_SHARE * 0.66).abs() < 1e-9);
         assert!((deep.control[4].z - SACRAL_SHARE * 0.66).abs() < 1e-9);
-        let slim = spine(&frame, DVec3::ZERO, head, &torso(0.2), &options).unwrap();
+        let slim = spine(
+            &frame,
+            DVec3::ZERO,
+            head,
+            &box_torso(0.2, [None; 3]),
+            &options,
+        )
+        .unwrap();
         assert!((slim.control[2].z - options.thoracic_depth * 2.0).abs() < 1e-9);
         assert!((slim.control[3].z - options.lumbar_depth * 2.0).abs() < 1e-9);
     }
@@ -308,53 +313,19 @@ mod tests {
     /// rear; a trunk as wide as it is deep keeps its own back.
     #[test]
     fn a_backpack_is_not_the_back_the_spine_is_inset_from() {
-        let frame = BodyFrame {
-            up: DVec3::Y,
-            forward: DVec3::Z,
-            left: DVec3::X,
-            top: 2.0,
-            bottom: 0.0,
-        };
+        let frame = upright();
         let (depth, width) = (0.66, 0.4);
-        let mut silhouette = Vec::new();
-        for k in 0..=100 {
-            let y = 0.5 + k as f64 * 0.01;
-            silhouette.push(DVec3::new(0.0, y, 0.0));
-            silhouette.push(DVec3::new(0.0, y, depth));
-        }
-        let torso = |widths: [Option<f64>; 3]| TorsoPoints {
-            neck: DVec3::new(0.0, 1.45, 0.1 * depth),
-            back: DVec3::new(0.0, 1.3, 0.0),
-            lumbar: DVec3::new(0.0, 1.0, 0.0),
-            sacroiliac: DVec3::new(0.0, 0.8, 0.0),
-            throat: DVec3::new(0.0, 1.45, 0.9 * depth),
-            crotch: DVec3::new(0.0, 0.5, 0.5 * depth),
-            widths,
-            silhouette: silhouette.clone(),
-        };
         let options = RefineOptions::default();
         let head = DVec3::new(0.0, 1.7, 0.1);
-        let packed = spine(
-            &frame,
-            DVec3::ZERO,
-            head,
-            &torso([Some(width); 3]),
-            &options,
-        )
-        .unwrap();
+        let packed = box_torso(depth, [Some(width); 3]);
+        let packed = spine(&frame, DVec3::ZERO, head, &packed, &options).unwrap();
         let back = depth - width;
         for (k, share) in [(2, THORACIC_SHARE), (3, LUMBAR_SHARE), (4, SACRAL_SHARE)] {
             let z = packed.control[k].z;
             assert!((z - (back + share * width)).abs() < 1e-9, "{k}: {z}");
         }
-        let wide = spine(
-            &frame,
-            DVec3::ZERO,
-            head,
-            &torso([Some(depth); 3]),
-            &options,
-        )
-        .unwrap();
+        let wide = box_torso(depth, [Some(depth); 3]);
+        let wide = spine(&frame, DVec3::ZERO, head, &wide, &options).unwrap();
         assert!((wide.control[2].z - THORACIC_SHARE * depth).abs() < 1e-9);
     }
 
