@@ -45,7 +45,8 @@ pub struct TorsoPoints {
 
 /// Slices the mesh with the median plane (through `centre`, normal `frame.left`), smooths the
 /// torso's loop with a closed cubic B-spline and finds the characteristic points. `None` when
-/// no loop spans from the hips to the shoulders or a point is missing.
+/// no loop spans from below the waist (halfway between the rough hips and shoulders) to the
+/// shoulders or a point is missing.
 pub fn torso_points(
     mesh: &Mesh,
     frame: &BodyFrame,
@@ -54,6 +55,9 @@ pub fn torso_points(
     options: &RefineOptions,
 ) -> Option<TorsoPoints> {
     let loops = slice_plane_outer(mesh, centre, frame.left);
+    // The torso's loop spans the shoulders and reaches below the waist. Not necessarily below
+    // the rough hips: clothing that joins the thighs' tops to the trunk (a cape's or coat's
+    // hem behind the legs) starts the legs' labels, and the rough hips, lower than the crotch.
     let torso = loops
         .iter()
         .filter(|l| l.closed)
@@ -61,7 +65,7 @@ pub fn torso_points(
             let (lo, hi) = l.points.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
                 (lo.min(frame.h(*p)), hi.max(frame.h(*p)))
             });
-            lo < bounds.hips && hi > bounds.shoulders
+            lo < 0.5 * (bounds.hips + bounds.shoulders) && hi > bounds.shoulders
         })
         .max_by(|a, b| a.perimeter().total_cmp(&b.perimeter()))?;
     let step = options.silhouette_step * frame.height();
