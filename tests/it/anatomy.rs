@@ -1081,12 +1081,7 @@ fn a_backpack_is_no_tail_whichever_way_the_figure_faces() {
     };
     let mesh = load(&dir.join("mesh.obj")).unwrap();
     for degrees in [0.0f64, 90.0, 180.0, 270.0] {
-        let turn = DQuat::from_rotation_y(degrees.to_radians());
-        let turned = Mesh::new(
-            mesh.positions.iter().map(|&p| turn * p).collect(),
-            mesh.triangles.clone(),
-        )
-        .unwrap();
+        let turned = common::turned_about_up(&mesh, degrees);
         let labels = label(&turned, &stages(LabelOptions::default())).unwrap();
         assert_eq!(
             labels.count(Label::Tail),

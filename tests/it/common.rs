@@ -37,6 +37,17 @@ pub fn data_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data")
 }
 
+/// `mesh` turned about +Y by `degrees` (a figure facing another way, or a few degrees off the
+/// file's axes), with the same triangles.
+pub fn turned_about_up(mesh: &skelfit::mesh::Mesh, degrees: f64) -> skelfit::mesh::Mesh {
+    let turn = glam::DQuat::from_rotation_y(degrees.to_radians());
+    skelfit::mesh::Mesh::new(
+        mesh.positions.iter().map(|&p| turn * p).collect(),
+        mesh.triangles.clone(),
+    )
+    .expect("a turned mesh is as valid as the mesh")
+}
+
 /// True for the real game characters added to the reference data on 2026-11-24 (their
 /// `provenance.json` names the glTF converter that made them).
 pub fn is_real_character(dir: &std::path::Path) -> bool {

@@ -814,11 +814,7 @@ fn a_dress_turned_off_the_axes_still_hides_the_crotch() {
     let height = hi - lo;
     for degrees in [-3.0f64, 3.0] {
         let turn = DQuat::from_rotation_y(degrees.to_radians());
-        let turned = Mesh::new(
-            mesh.positions.iter().map(|&p| turn * p).collect(),
-            mesh.triangles.clone(),
-        )
-        .unwrap();
+        let turned = crate::common::turned_about_up(&mesh, degrees);
         let r = rig(&turned, &RigOptions::default()).unwrap();
         assert!(
             r.warnings

@@ -1495,11 +1495,7 @@ fn a_body_facing_away_from_plus_z_is_rigged_facing_where_its_feet_point() {
     let height = 1.7;
     for (degrees, facing) in [(180.0f64, DVec3::NEG_Z), (90.0, DVec3::X)] {
         let turn = glam::DQuat::from_rotation_y(degrees.to_radians());
-        let turned = Mesh::new(
-            mesh.positions.iter().map(|&p| turn * p).collect(),
-            mesh.triangles.clone(),
-        )
-        .unwrap();
+        let turned = common::turned_about_up(&mesh, degrees);
         let r = rig(&turned, &RigOptions::default()).unwrap();
         assert!(
             r.labelling.frame.forward.distance(facing) < 1e-9,
