@@ -347,6 +347,10 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         // Fingers are thinner than the voxels: their weights again over the hand's surface.
         let roots = digit_roots(&fit);
         skin.engine = digit_weights(mesh, &fit.skeleton, &roots, &mut skin.weights);
+        // The hand's digit weights may reach a held prop's grip: bound again to it.
+        if crate::skin::bind_props(mesh, &solid, &solid.report.props, &mut skin.weights) > 0 {
+            skin.engine = crate::skin::engine_weights(&skin.weights).0;
+        }
     }
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);

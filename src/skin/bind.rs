@@ -1,5 +1,6 @@
 //! The skinning stage driver and its result.
 
+use super::bind_props;
 use super::coarse::{coarse_grid, coarse_segments, coarsening};
 use super::geodesic::geodesic_weights;
 use super::weights::{nearest_segment, segment_distance};
@@ -202,7 +203,10 @@ fn anchor_skin(
 }
 
 /// Skins `mesh` to `skeleton` with segments derived from its bones ([`bone_segments`]), for
-/// skeletons without path-tree chains. See [`skin`] for the arguments.
+/// skeletons without path-tree chains. See [`skin`] for the arguments. The held props the
+/// voxelization left out ([`crate::voxel::Prop`]) are then bound wholly to the joint weighing
+/// most at their grip (the vertex nearest the interior): they move rigidly with the joint
+/// holding them.
 ///
 /// # Errors
 /// As [`skin`]; [`SkinError::NoInfluence`] when no bone passes inside the figure.
@@ -220,15 +224,31 @@ pub fn skin_from_bones(
     }
     // The geodesic weights of a rig on a grid finer than the default are computed at the
     // default resolution (`coarse.rs`): the bones' segments are found on that grid directly.
-    if options.method == SkinMethod::Geodesic {
-        if let Some(factor) = coarsening(solid) {
-            let (coarse, distance) = coarse_grid(solid, factor);
-            let segments = bone_segments(skeleton, &coarse, &distance, options);
-            return skin(mesh, skeleton, &coarse, &distance, &segments, options);
+    let mut bound = if options.method == SkinMethod::Geodesic {
+        match coarsening(solid) {
+            Some(factor) => {
+                let (coarse, distance) = coarse_grid(solid, factor);
+                let segments = bone_segments(skeleton, &coarse, &distance, options);
+                skin(mesh, skeleton, &coarse, &distance, &segments, options)?
+            }
+            None => skin(
+                mesh,
+                skeleton,
+                solid,
+                distance,
+                &bone_segments(skeleton, solid, distance, options),
+                options,
+            )?,
         }
+    } else {
+        let segments = bone_segments(skeleton, solid, distance, options);
+        skin(mesh, skeleton, solid, distance, &segments, options)?
+    };
+    // Held props move rigidly with the joint that holds them.
+    if bind_props(mesh, solid, &solid.report.props, &mut bound.weights) > 0 {
+        bound.engine = engine_weights(&bound.weights).0;
     }
-    let segments = bone_segments(skeleton, solid, distance, options);
-    skin(mesh, skeleton, solid, distance, &segments, options)
+    Ok(bound)
 }
 
 /// Rejects empty, invalid or too large skeletons.

@@ -55,6 +55,7 @@ mod influence;
 mod neighbourhood;
 mod options;
 mod placement;
+mod props;
 mod segments;
 mod weights;
 
@@ -66,5 +67,6 @@ pub use given::{skin_skeleton, SkeletonSkinOptions, SkinnedSkeleton};
 pub use influence::{influence, Influence};
 pub use options::{SkinMethod, SkinOptions};
 pub use placement::{placement, Placement, PlacementOptions};
+pub(crate) use props::bind_props;
 pub use segments::{bone_segments, SegmentVoxels};
 pub use weights::{anchor_weights, engine_weights, EngineWeights, MAX_ENGINE_INFLUENCES};

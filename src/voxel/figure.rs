@@ -4,6 +4,8 @@
 
 use crate::mesh::Mesh;
 use glam::DVec3;
+use nalgebra::{Matrix3, SymmetricEigen};
+use serde::Serialize;
 
 /// Share of the surface area the figure (the pieces around the largest one) must hold before
 /// anything is left out (two figures of about one size far apart keep every piece).
@@ -13,25 +15,157 @@ const MAIN_SHARE: f64 = 0.6;
 /// fraction of the largest piece's longest side on every side.
 const MARGIN: f64 = 0.1;
 
+/// A held prop is at least this fraction of the mesh's longest side long...
+const PROP_MIN_LENGTH: f64 = 0.2;
+/// ...at most this fraction of it wide (a blade or a shaft; a limb of the slimmest adult is
+/// 5 % of the height across, a finger is short)...
+const PROP_MAX_WIDTH: f64 = 0.04;
+/// ...and at least this many times as long as it is wide.
+const PROP_MIN_ELONGATION: f64 = 8.0;
+/// Two pieces whose principal extents agree within this fraction are twins: mirrored parts of
+/// the figure (a pair of peg legs, antennae), not something one hand holds.
+const TWIN_TOLERANCE: f64 = 0.15;
+/// Props may hold at most this share of the surface area: a figure built of rods is rods.
+const PROP_MAX_SHARE: f64 = 0.25;
+
+/// A thin, long, rigid piece the figure holds (a sword, a staff, a spear): left out of the
+/// voxels, so that it makes no limb, and bound rigidly to the joint it touches when skinned.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Prop {
+    /// The mesh vertices of the piece, ascending (not serialized; `vertex_count` is).
+    #[serde(skip)]
+    pub vertices: Vec<u32>,
+    /// How many vertices the piece has.
+    pub vertex_count: usize,
+    /// Its largest principal extent, mesh units.
+    pub length: f64,
+    /// Its second principal extent (the width of a blade), mesh units.
+    pub width: f64,
+    /// The mean of its vertices, mesh units.
+    pub centre: [f64; 3],
+}
+
 /// What [`figure_mesh`] left out.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub(super) struct LeftOut {
-    /// Connected pieces left out.
+    /// Connected pieces left out (props not counted).
     pub pieces: usize,
     /// Their triangles.
     pub triangles: usize,
     /// Their share of the surface area.
     pub area_share: f64,
+    /// The held props left out ([`Prop`]).
+    pub props: Vec<Prop>,
+}
+
+/// The principal extents of `points` (largest first): the spread of their projections on the
+/// eigenvectors of their covariance.
+fn extents(points: &[DVec3]) -> [f64; 3] {
+    let n = points.len().max(1) as f64;
+    let mean = points.iter().copied().sum::<DVec3>() / n;
+    let mut cov = Matrix3::<f64>::zeros();
+    for p in points {
+        let d = *p - mean;
+        let v = nalgebra::Vector3::new(d.x, d.y, d.z);
+        cov += v * v.transpose();
+    }
+    let eigen = SymmetricEigen::new(cov / n);
+    let mut out = [0.0; 3];
+    for (k, e) in out.iter_mut().enumerate() {
+        let axis = eigen.eigenvectors.column(k);
+        let axis = DVec3::new(axis[0], axis[1], axis[2]);
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                let t = (*p - mean).dot(axis);
+                (lo.min(t), hi.max(t))
+            });
+        *e = if hi >= lo { hi - lo } else { 0.0 };
+    }
+    out.sort_by(|a, b| b.total_cmp(a));
+    out
+}
+
+/// Which of the `count` pieces (`component` of every triangle) are held props: at least
+/// [`PROP_MIN_LENGTH`] of the mesh's longest side `longest` long, at most [`PROP_MAX_WIDTH`]
+/// of it wide and [`PROP_MIN_ELONGATION`] times longer than wide, not the largest piece
+/// (`main`), and with no twin (another piece whose three principal extents agree within
+/// [`TWIN_TOLERANCE`]: the figure's parts come in mirrored pairs, a held sword alone). None
+/// when they would hold more than [`PROP_MAX_SHARE`] of the area.
+fn prop_pieces(
+    mesh: &Mesh,
+    component: &[u32],
+    count: usize,
+    main: usize,
+    area: &[f64],
+    longest: f64,
+) -> Vec<Option<Prop>> {
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for (t, &c) in component.iter().enumerate() {
+        members[c as usize].extend_from_slice(&mesh.triangles[t]);
+    }
+    let shapes: Vec<(Vec<u32>, [f64; 3])> = members
+        .into_iter()
+        .map(|mut v| {
+            v.sort_unstable();
+            v.dedup();
+            let points: Vec<DVec3> = v.iter().map(|&i| mesh.positions[i as usize]).collect();
+            let e = extents(&points);
+            (v, e)
+        })
+        .collect();
+    let twins = |a: &[f64; 3], b: &[f64; 3]| {
+        a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() <= TWIN_TOLERANCE * x.max(*y) + 1e-9 * longest)
+    };
+    let mut props: Vec<Option<Prop>> = vec![None; count];
+    for (c, (vertices, e)) in shapes.iter().enumerate() {
+        let [length, width, _] = *e;
+        if c == main
+            || length < PROP_MIN_LENGTH * longest
+            || width > PROP_MAX_WIDTH * longest
+            || length < PROP_MIN_ELONGATION * width
+            || shapes
+                .iter()
+                .enumerate()
+                .any(|(d, (_, f))| d != c && twins(e, f))
+        {
+            continue;
+        }
+        let centre = vertices
+            .iter()
+            .map(|&i| mesh.positions[i as usize])
+            .sum::<DVec3>()
+            / vertices.len().max(1) as f64;
+        props[c] = Some(Prop {
+            vertices: vertices.clone(),
+            vertex_count: vertices.len(),
+            length,
+            width,
+            centre: centre.to_array(),
+        });
+    }
+    let total: f64 = area.iter().sum();
+    let held: f64 = (0..count)
+        .filter(|&c| props[c].is_some())
+        .map(|c| area[c])
+        .sum();
+    if held > PROP_MAX_SHARE * total {
+        return vec![None; count];
+    }
+    props
 }
 
 /// The mesh to voxelize: `mesh` with only the connected pieces (triangles sharing vertices)
 /// that make the figure, `None` when nothing is left out.
 ///
-/// The figure grows from the largest piece (by area): a piece joins when its bounding box
-/// meets the figure's, enlarged on every side by [`MARGIN`] of the largest piece's longest
-/// side, until no more piece joins (so a figure made of many pieces, a body with separate
-/// head, hands and clothes, stays whole). The rest is left out when the figure holds at least
-/// [`MAIN_SHARE`] of the area.
+/// Held props ([`prop_pieces`]: a sword, a staff) are left out first. The figure grows from
+/// the largest piece (by area): a piece joins when its bounding box meets the figure's,
+/// enlarged on every side by [`MARGIN`] of the largest piece's longest side, until no more
+/// piece joins (so a figure made of many pieces, a body with separate head, hands and clothes,
+/// stays whole). The rest is left out when the figure holds at least [`MAIN_SHARE`] of the
+/// area that is not props.
 pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     let (component, count) = mesh.triangle_components();
     if count < 2 {
@@ -54,6 +188,15 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     if total.is_nan() || total <= 0.0 || area[main] <= 0.0 {
         return None;
     }
+    let longest = (0..count).fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), c| {
+        (a.min(lo[c]), b.max(hi[c]))
+    });
+    let longest = (longest.1 - longest.0).max_element();
+    let mut props = prop_pieces(mesh, &component, count, main, &area, longest);
+    let prop_area: f64 = (0..count)
+        .filter(|&c| props[c].is_some())
+        .map(|c| area[c])
+        .sum();
     let margin = DVec3::splat(MARGIN * (hi[main] - lo[main]).max_element());
     let (mut box_lo, mut box_hi) = (lo[main] - margin, hi[main] + margin);
     let mut keep = vec![false; count];
@@ -62,7 +205,11 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     loop {
         let mut grown = false;
         for c in 0..count {
-            if !keep[c] && lo[c].cmple(box_hi).all() && hi[c].cmpge(box_lo).all() {
+            if !keep[c]
+                && props[c].is_none()
+                && lo[c].cmple(box_hi).all()
+                && hi[c].cmpge(box_lo).all()
+            {
                 keep[c] = true;
                 kept_area += area[c];
                 box_lo = box_lo.min(lo[c] - margin);
@@ -74,13 +221,25 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
             break;
         }
     }
-    if keep.iter().all(|&k| k) || kept_area < MAIN_SHARE * total {
+    // Two figures of about one size far apart keep every piece but the props.
+    if kept_area < MAIN_SHARE * (total - prop_area) {
+        for c in 0..count {
+            keep[c] = props[c].is_none();
+        }
+    }
+    if keep.iter().all(|&k| k) {
         return None;
     }
+    let is_prop: Vec<bool> = props.iter().map(Option::is_some).collect();
     let mut left_out = LeftOut::default();
     for c in (0..count).filter(|&c| !keep[c]) {
-        left_out.pieces += 1;
-        left_out.area_share += area[c] / total;
+        match props[c].take() {
+            Some(prop) => left_out.props.push(prop),
+            None => {
+                left_out.pieces += 1;
+                left_out.area_share += area[c] / total;
+            }
+        }
     }
     let triangles: Vec<[u32; 3]> = mesh
         .triangles
@@ -89,7 +248,10 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
         .filter(|(_, &c)| keep[c as usize])
         .map(|(t, _)| *t)
         .collect();
-    left_out.triangles = mesh.triangles.len() - triangles.len();
+    left_out.triangles = component
+        .iter()
+        .filter(|&&c| !keep[c as usize] && !is_prop[c as usize])
+        .count();
     let figure = Mesh {
         positions: mesh.positions.clone(),
         triangles,
@@ -152,5 +314,45 @@ mod tests {
         assert!(figure_mesh(&many).is_none());
         // One piece: nothing to do.
         assert!(figure_mesh(&Mesh::capsule(DVec3::ZERO, 0.2, 1.0, 8, 16)).is_none());
+    }
+
+    /// A body capsule 1.8 tall with `pieces` added.
+    fn body_with(pieces: &[Mesh]) -> Mesh {
+        let mut m = Mesh::capsule(DVec3::new(0.0, 0.9, 0.0), 0.2, 0.7, 8, 16);
+        for piece in pieces {
+            let base = m.positions.len() as u32;
+            m.positions.extend(&piece.positions);
+            m.triangles
+                .extend(piece.triangles.iter().map(|t| t.map(|i| i + base)));
+        }
+        m
+    }
+
+    #[test]
+    fn a_thin_long_piece_without_a_twin_is_a_held_prop_and_left_out() {
+        let blade = |x: f64| {
+            Mesh::cuboid(
+                DVec3::new(x - 0.025, 0.1, -0.006),
+                DVec3::new(x + 0.025, 1.1, 0.006),
+            )
+        };
+        // A sword beside the body: a prop, left out, and named with its length and width.
+        let armed = body_with(&[blade(0.3)]);
+        let (kept, left_out) = figure_mesh(&armed).unwrap();
+        assert_eq!((left_out.pieces, left_out.props.len()), (0, 1));
+        let prop = &left_out.props[0];
+        assert_eq!(prop.vertex_count, 8);
+        assert!((prop.length - 1.0).abs() < 1e-9 && (prop.width - 0.05).abs() < 1e-9);
+        assert_eq!(kept.triangles.len() + 12, armed.triangles.len());
+        // Two mirrored blades (peg legs, antennae): twins, part of the figure.
+        assert!(figure_mesh(&body_with(&[blade(0.3), blade(-0.3)])).is_none());
+        // A thick piece as long (an arm) is no prop; nor is a short thin one (a finger).
+        let arm = Mesh::cuboid(DVec3::new(0.25, 0.4, -0.05), DVec3::new(0.35, 1.3, 0.05));
+        assert!(figure_mesh(&body_with(&[arm])).is_none());
+        let finger = Mesh::cuboid(DVec3::new(0.25, 0.4, -0.01), DVec3::new(0.27, 0.55, 0.01));
+        assert!(figure_mesh(&body_with(&[finger])).is_none());
+        // A figure whose largest piece is itself a rod keeps it.
+        let rod = Mesh::cuboid(DVec3::new(-0.02, 0.0, -0.02), DVec3::new(0.02, 2.0, 0.02));
+        assert!(figure_mesh(&rod).is_none());
     }
 }

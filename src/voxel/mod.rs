@@ -19,6 +19,7 @@ mod winding;
 
 pub use boundary::boundary_mesh;
 pub use error::VoxelError;
+pub use figure::Prop;
 pub use grid::{Connectivity, Grid, Neighbour, NEIGHBOURS_26};
 pub use join::DroppedPiece;
 pub use options::{VoxelOptions, VoxelSize};

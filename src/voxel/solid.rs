@@ -1,6 +1,6 @@
 //! The voxelized figure.
 
-use super::{DroppedPiece, Grid, VoxelWarning};
+use super::{DroppedPiece, Grid, Prop, VoxelWarning};
 use serde::Serialize;
 
 /// A voxelized figure: which voxels of a [`Grid`] are inside the mesh.
@@ -54,6 +54,9 @@ pub struct VoxelReport {
     /// Triangles left out of the inside/outside vote because they repeat another one (same
     /// three vertices; see [`voxelize`](super::voxelize)).
     pub duplicate_triangles: usize,
+    /// Thin, long pieces the figure holds (a sword, a staff), left out of the voxels so that
+    /// they make no limb ([`Prop`]); the skin binds each rigidly to the joint it touches.
+    pub props: Vec<Prop>,
 }
 
 /// Dropped interior components are worth a warning from this share of the interior on (a
@@ -78,6 +81,11 @@ impl VoxelReport {
                 pieces: self.dropped_pieces.clone(),
                 dropped_voxels: self.dropped_voxels,
                 interior_voxels: all,
+            });
+        }
+        if !self.props.is_empty() {
+            out.push(VoxelWarning::HeldProps {
+                props: self.props.clone(),
             });
         }
         if self.duplicate_triangles > 0 {

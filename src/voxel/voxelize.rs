@@ -75,8 +75,8 @@ pub fn voxelize_figure(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, Vox
 /// [`VoxelError::EmptyInterior`] when no voxel centre is inside otherwise.
 pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError> {
     let figure = figure_mesh(mesh);
-    let (mesh, left_out) = match &figure {
-        Some((figure, left_out)) => (figure, *left_out),
+    let (mesh, left_out) = match figure {
+        Some((ref figure, ref left_out)) => (figure, left_out.clone()),
         None => (mesh, LeftOut::default()),
     };
     let grid = grid_of(mesh, options)?;
@@ -158,6 +158,7 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
         left_out_area_share: left_out.area_share,
         refined_from: None,
         duplicate_triangles,
+        props: left_out.props,
     };
     Ok(Solid {
         grid,

@@ -34,6 +34,12 @@ pub enum VoxelWarning {
         /// Voxels whose votes disagreed.
         ambiguous_voxels: usize,
     },
+    /// Thin, long pieces the figure holds (a sword, a staff) were left out of the voxels and
+    /// are bound rigidly to the joint each touches.
+    HeldProps {
+        /// The pieces.
+        props: Vec<super::Prop>,
+    },
     /// Triangles repeating another one (the same three vertices) were counted once by the
     /// inside/outside vote.
     DuplicateTriangles {
@@ -47,7 +53,9 @@ impl VoxelWarning {
     pub fn severity(&self) -> Severity {
         match self {
             Self::LooseMeshPieces { .. } | Self::DroppedInterior { .. } => Severity::PartMissing,
-            Self::OpenMesh { .. } | Self::DuplicateTriangles { .. } => Severity::Info,
+            Self::OpenMesh { .. } | Self::DuplicateTriangles { .. } | Self::HeldProps { .. } => {
+                Severity::Info
+            }
         }
     }
 
@@ -58,6 +66,7 @@ impl VoxelWarning {
             Self::DroppedInterior { .. } => "dropped_interior",
             Self::OpenMesh { .. } => "open_mesh",
             Self::DuplicateTriangles { .. } => "duplicate_triangles",
+            Self::HeldProps { .. } => "held_props",
         }
     }
 }
@@ -136,6 +145,28 @@ impl fmt::Display for VoxelWarning {
                 f,
                 "the mesh is not closed ({boundary_edges} boundary, {non_manifold_edges} non-manifold edges): inside/outside was decided by a six-direction winding-number vote ({ambiguous_voxels} voxels had disagreeing votes)"
             ),
+            Self::HeldProps { props } => {
+                let named: Vec<String> = props
+                    .iter()
+                    .map(|p| {
+                        format!(
+                            "{:.3} long and {:.3} wide around ({:.3}, {:.3}, {:.3})",
+                            p.length, p.width, p.centre[0], p.centre[1], p.centre[2]
+                        )
+                    })
+                    .collect();
+                write!(
+                    f,
+                    "{} thin rigid piece{} held by the figure (a sword, a staff: a separate piece at least \
+                     8 times as long as wide with no mirrored twin) {} out of the skeleton fit and \
+                     bound rigidly to the joint {} touches: {}",
+                    props.len(),
+                    number(props.len(), "", "s"),
+                    number(props.len(), "is left", "are left"),
+                    number(props.len(), "it", "each"),
+                    named.join("; ")
+                )
+            }
             Self::DuplicateTriangles { triangles } => write!(
                 f,
                 "{} triangle{} repeat{} another one (the same three vertices): counted once for \
