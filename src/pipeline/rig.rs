@@ -311,6 +311,7 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         mesh,
         one_shell,
         &solid,
+        &labelling,
         &template,
         &input,
         &options.refine,
@@ -376,6 +377,7 @@ fn refine_stage(
     mesh: &Mesh,
     one_shell: bool,
     solid: &Solid,
+    labelling: &Labelling,
     template: &Template,
     input: &FitInput,
     options: &RefineOptions,
@@ -388,7 +390,7 @@ fn refine_stage(
     let joined = template
         .refinement
         .is_some()
-        .then(|| refine_surface(one_shell, solid, options))
+        .then(|| refine_surface(one_shell, solid, labelling, options))
         .flatten();
     let surface = joined.as_ref().unwrap_or(mesh);
     let Some(refined) = refine_fit(
@@ -431,11 +433,39 @@ fn refine_stage(
 }
 
 /// The surface the slicing refinement cuts: the input itself when it is one closed shell
-/// (`one_shell`, [`Mesh::is_one_closed_shell`]), else the smoothed boundary of the joined voxel
-/// solid ([`boundary_mesh`]). Slices through a figure of many shells (head, hands, eyes,
-/// clothes over a body) are many loops per plane, and the refinement's loop for a body part
-/// would be one piece of clothing; the joined solid has one loop per part.
-fn refine_surface(one_shell: bool, solid: &Solid, options: &RefineOptions) -> Option<Mesh> {
+/// (`one_shell`, [`Mesh::is_one_closed_shell`]) with no tail, else the smoothed boundary of
+/// the joined voxel solid ([`boundary_mesh`]). Slices through a figure of many shells (head,
+/// hands, eyes, clothes over a body) are many loops per plane, and the refinement's loop for a
+/// body part would be one piece of clothing; the joined solid has one loop per part. A tail
+/// ([`Label::Tail`], a humanoid's: a lizardfolk's, a cat person's) is taken out of that solid
+/// first (its interior voxels, [`Labelling::interior_parts`]): in the median plane it
+/// continues the torso's outline down past the crotch, and the hips followed it 9 % of the
+/// height low.
+fn refine_surface(
+    one_shell: bool,
+    solid: &Solid,
+    labelling: &Labelling,
+    options: &RefineOptions,
+) -> Option<Mesh> {
+    let tails: Vec<u32> = labelling
+        .find(Label::Tail)
+        .into_iter()
+        .map(|p| p as u32)
+        .collect();
+    let cut = !tails.is_empty()
+        && labelling.grid == solid.grid
+        && labelling.interior_parts.len() == solid.inside.len();
+    if cut {
+        let mut body = solid.clone();
+        for (inside, part) in body.inside.iter_mut().zip(&labelling.interior_parts) {
+            if tails.contains(part) {
+                *inside = false;
+            }
+        }
+        if body.inside.iter().any(|&b| b) {
+            return Some(boundary_mesh(&body, options.joined_smoothing));
+        }
+    }
     (!one_shell).then(|| boundary_mesh(solid, options.joined_smoothing))
 }
 

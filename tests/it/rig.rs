@@ -1578,3 +1578,62 @@ fn a_sword_held_down_beside_the_leg_is_a_prop_bound_to_the_hand_not_a_leg() {
         assert_eq!(w, &vec![(hand, 1.0)], "blade vertex {v}");
     }
 }
+
+/// A humanoid with a tail (a lizardfolk, a cat person): a tail leaving the sacrum backwards
+/// and curving down. In the median plane it continues the torso's outline down past the
+/// crotch, and the hips followed it 9 % of the height low, with no warning. The refinement
+/// slices the body without the tail (its interior voxels taken out of the joined solid): the
+/// core joints stay where the tailless body has them.
+#[test]
+fn a_humanoids_tail_does_not_pull_its_hips_down() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
+    let (body, alone) = rigged(&dir, &RigOptions::default());
+    let at = |r: &Rig, k: &str| r.fit.skeleton.joint(r.fit.canonical[k]).position;
+    let pelvis = at(&alone, "pelvis");
+    let points: Vec<DVec3> = (0..=8)
+        .map(|i| {
+            let t = i as f64 / 8.0;
+            DVec3::new(
+                0.0,
+                pelvis.y + 0.02 - 0.45 * t.powf(1.3),
+                pelvis.z - 0.08 - 0.7 * t,
+            )
+        })
+        .collect();
+    let mut parts = vec![body.clone()];
+    for (i, w) in points.windows(2).enumerate() {
+        parts.push(capsule_between(w[0], w[1], 0.055 - 0.004 * i as f64));
+    }
+    let tailed = merged(&parts);
+    let r = rig(&tailed, &RigOptions::default()).unwrap();
+    assert!(r.missing.is_empty(), "missing {:?}", r.missing);
+    assert!(
+        r.labelling
+            .parts
+            .iter()
+            .any(|p| p.label == skelfit::anatomy::Label::Tail),
+        "no tail labelled"
+    );
+    let (lo, hi) = body.bounding_box().unwrap();
+    let height = hi.y - lo.y;
+    for key in [
+        "pelvis",
+        "neck",
+        "head",
+        "shoulder_L",
+        "shoulder_R",
+        "elbow_L",
+        "elbow_R",
+        "wrist_L",
+        "wrist_R",
+        "hip_L",
+        "hip_R",
+        "knee_L",
+        "knee_R",
+        "ankle_L",
+        "ankle_R",
+    ] {
+        let moved = at(&r, key).distance(at(&alone, key));
+        assert!(moved < 0.015 * height, "{key} moved {moved}");
+    }
+}
