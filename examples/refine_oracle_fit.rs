@@ -151,6 +151,7 @@ fn run() -> Result<(), String> {
                 points: axial,
                 radii,
                 sections: None,
+                tail: false,
             },
             limbs,
             jaw: None,

@@ -385,9 +385,15 @@ fn canonical_map(
         } else {
             vec![None]
         };
+        // A tail the template allows but does not require (`[vertebrae] tail = [0, n]`: a
+        // humanoid's) is no missing joint when the figure has none.
+        let optional = template.vertebrae.tail.min == 0
+            && matches!(tj.place.as_deref(), Some("tail" | "tail_end"));
         for side in sides {
             let key = format!("{c}{}", side.map_or("", |s| s.suffix()));
-            wanted.push(key.clone());
+            if !optional {
+                wanted.push(key.clone());
+            }
             let id = ids
                 .get(&(tj.name.clone(), side))
                 .and_then(|v| v.first().copied())

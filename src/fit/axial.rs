@@ -4,7 +4,7 @@
 use super::polyline::Polyline;
 use super::{BodyFrame, DorsalProbe, FitOptions, FitWarning};
 use crate::math::{moving_average, Ends};
-use crate::template::Template;
+use crate::template::{Posture, Template};
 use glam::DVec3;
 
 /// Section boundaries as arc lengths on the original head-to-tail path (head tip = 0).
@@ -160,6 +160,7 @@ pub(crate) fn axial(
     options: &FitOptions,
     frame: &BodyFrame,
     probe: Option<&dyn DorsalProbe>,
+    labelled_tail: bool,
     warnings: &mut Vec<FitWarning>,
 ) -> AxialFit {
     let length = original.length();
@@ -227,7 +228,10 @@ pub(crate) fn axial(
         .collect();
     let tail_len = end - te;
     let mut tail_end = None;
-    if tail_len >= options.min_tail * seg_s && template.vertebrae.tail.max > 0 {
+    // An upright figure's tail is one the labels found: its path otherwise ends at the legs,
+    // and a path whose hindmost pair the labels misjudged (a gun in a hand) ran on past it.
+    let may_tail = labelled_tail || template.posture != Posture::Upright;
+    if may_tail && tail_len >= options.min_tail * seg_s && template.vertebrae.tail.max > 0 {
         let n_tail = template.vertebrae.tail.clamp(count(tail_len)).max(1);
         tail.extend(
             (0..n_tail)

@@ -142,7 +142,7 @@ fn centralised_paths(
     // Limb pairs and their limb-to-limb paths.
     let (mut limbs, midpoints, unpaired) = paired_limbs(&paths, &mut warnings);
     // Head-to-tail path.
-    let (axial_positions, points, radii) = head_to_tail(&paths, &midpoints, &mut warnings);
+    let (axial_positions, points, radii, tail) = head_to_tail(&paths, &midpoints, &mut warnings);
     // Unpaired limbs hang from the head-to-tail path.
     if !unpaired.is_empty() {
         unpaired_limbs(
@@ -169,6 +169,7 @@ fn centralised_paths(
             points,
             radii,
             sections: None,
+            tail,
         },
         limbs,
         jaw,
@@ -243,7 +244,7 @@ fn head_to_tail(
     paths: &Paths,
     midpoints: &[Midpoint],
     warnings: &mut Vec<FitInputWarning>,
-) -> (Vec<usize>, Vec<DVec3>, Vec<f64>) {
+) -> (Vec<usize>, Vec<DVec3>, Vec<f64>, bool) {
     let (labelling, surface) = (paths.labelling, paths.surface);
     let parts = &labelling.parts;
     let head = labelling.part(Label::Head, None).map(|p| paths.head_tip(p));
@@ -287,7 +288,8 @@ fn head_to_tail(
     if head.is_some() {
         paths.extend_start(&mut points, &mut radii);
     }
-    if let Some(part) = tail_part.filter(|_| tail == Some(end)) {
+    let ends_in_tail = tail_part.is_some() && tail == Some(end);
+    if let Some(part) = tail_part.filter(|_| ends_in_tail) {
         paths.thin_end(part, end, &mut points, &mut radii);
         paths.extend_end(&mut points, &mut radii);
     }
@@ -297,7 +299,7 @@ fn head_to_tail(
         radii.push(radii[0]);
     }
 
-    (axial_positions, points, radii)
+    (axial_positions, points, radii, ends_in_tail)
 }
 
 /// The limbs without a partner, each from the head-to-tail path (`axial_positions`) to its tip.

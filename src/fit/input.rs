@@ -30,6 +30,10 @@ pub struct AxialPath {
     pub radii: Vec<f64>,
     /// Section boundaries; `None` derives them from the limb pairs (8.1).
     pub sections: Option<AxialSections>,
+    /// Whether the path ends at the tip of a labelled tail. An upright template builds a tail
+    /// chain only then; a horizontal one whenever the path runs past the hindmost limb pair.
+    #[serde(default)]
+    pub tail: bool,
 }
 
 /// One digit of a limb with separated digits: the centralised path from the wrist/ankle voxel

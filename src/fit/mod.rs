@@ -192,6 +192,7 @@ pub fn fit_with_probe(
         options,
         &frame,
         probe,
+        input.axial.tail,
         &mut warnings,
     );
 

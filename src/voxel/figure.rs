@@ -20,6 +20,10 @@ const PROP_MIN_LENGTH: f64 = 0.2;
 /// ...at most this fraction of it wide (a blade or a shaft; a limb of the slimmest adult is
 /// 5 % of the height across, a finger is short)...
 const PROP_MAX_WIDTH: f64 = 0.04;
+/// ...at most this fraction of it thick (a blade 1.2 cm, a staff 3 cm on a 1.75 m figure: 0.007
+/// and 0.017; a tail, even a thin one modelled apart, is thicker: a rat's 0.04, the toy
+/// quadruped's 0.027)...
+const PROP_MAX_THICKNESS: f64 = 0.02;
 /// ...and at least this many times as long as it is wide.
 const PROP_MIN_ELONGATION: f64 = 8.0;
 /// Two pieces whose principal extents agree within this fraction are twins: mirrored parts of
@@ -88,7 +92,8 @@ fn extents(points: &[DVec3]) -> [f64; 3] {
 
 /// Which of the `count` pieces (`component` of every triangle) are held props: at least
 /// [`PROP_MIN_LENGTH`] of the mesh's longest side `longest` long, at most [`PROP_MAX_WIDTH`]
-/// of it wide and [`PROP_MIN_ELONGATION`] times longer than wide, not the largest piece
+/// of it wide and [`PROP_MAX_THICKNESS`] thick, [`PROP_MIN_ELONGATION`] times longer than
+/// wide, not the largest piece
 /// (`main`), and with no twin (another piece whose three principal extents agree within
 /// [`TWIN_TOLERANCE`]: the figure's parts come in mirrored pairs, a held sword alone). None
 /// when they would hold more than [`PROP_MAX_SHARE`] of the area.
@@ -121,10 +126,11 @@ fn prop_pieces(
     };
     let mut props: Vec<Option<Prop>> = vec![None; count];
     for (c, (vertices, e)) in shapes.iter().enumerate() {
-        let [length, width, _] = *e;
+        let [length, width, thickness] = *e;
         if c == main
             || length < PROP_MIN_LENGTH * longest
             || width > PROP_MAX_WIDTH * longest
+            || thickness > PROP_MAX_THICKNESS * longest
             || length < PROP_MIN_ELONGATION * width
             || shapes
                 .iter()
@@ -351,6 +357,9 @@ mod tests {
         assert!(figure_mesh(&body_with(&[arm])).is_none());
         let finger = Mesh::cuboid(DVec3::new(0.25, 0.4, -0.01), DVec3::new(0.27, 0.55, 0.01));
         assert!(figure_mesh(&body_with(&[finger])).is_none());
+        // A rod as thick as a tail (a thin tail modelled apart) is no prop either.
+        let tail = Mesh::cuboid(DVec3::new(-0.03, 0.6, -1.2), DVec3::new(0.03, 0.66, -0.2));
+        assert!(figure_mesh(&body_with(&[tail])).is_none());
         // A figure whose largest piece is itself a rod keeps it.
         let rod = Mesh::cuboid(DVec3::new(-0.02, 0.0, -0.02), DVec3::new(0.02, 2.0, 0.02));
         assert!(figure_mesh(&rod).is_none());

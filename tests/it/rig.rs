@@ -1581,9 +1581,10 @@ fn a_sword_held_down_beside_the_leg_is_a_prop_bound_to_the_hand_not_a_leg() {
 
 /// A humanoid with a tail (a lizardfolk, a cat person): a tail leaving the sacrum backwards
 /// and curving down. In the median plane it continues the torso's outline down past the
-/// crotch, and the hips followed it 9 % of the height low, with no warning. The refinement
-/// slices the body without the tail (its interior voxels taken out of the joined solid): the
-/// core joints stay where the tailless body has them.
+/// crotch, and the hips followed it 9 % of the height low, with no warning, and the tail got
+/// no bones. The refinement slices the body without the tail (its interior voxels taken out
+/// of the joined solid): the core joints stay where the tailless body has them; and the
+/// humanoid template builds a tail chain along it, as the quadruped's does.
 #[test]
 fn a_humanoids_tail_does_not_pull_its_hips_down() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
@@ -1636,4 +1637,20 @@ fn a_humanoids_tail_does_not_pull_its_hips_down() {
         let moved = at(&r, key).distance(at(&alone, key));
         assert!(moved < 0.015 * height, "{key} moved {moved}");
     }
+    // The tail gets its own chain, from its root to its tip.
+    let (root, tip) = (points[0], points[points.len() - 1]);
+    let base = at(&r, "tail_base");
+    let end = at(&r, "tail_end");
+    assert!(
+        base.distance(root) < 0.1 * height,
+        "tail base at {base}, root {root}"
+    );
+    assert!(
+        end.distance(tip) < 0.05 * height,
+        "tail end at {end}, tip {tip}"
+    );
+    assert!(
+        !alone.fit.canonical.contains_key("tail_base"),
+        "a tailless body got a tail"
+    );
 }

@@ -1,0 +1,215 @@
+#!/usr/bin/env python3
+"""Props check: a body holding, wearing or growing what game characters do.
+
+Real characters hold swords, staffs and guns, carry shields, wear hats and grow tails. For
+every MakeHuman body under REFDATA/humanoid (a folder whose reference rig is
+rig_game_engine.json) this tool writes copies of mesh.obj with one addition each, as a
+separate closed piece:
+
+  sword_down  a blade (1.0 x 0.05 x 0.012 m) hanging from the right hand beside the leg
+  sword_fwd   the blade held forward, level
+  sword_up    the blade raised straight up from the right hand
+  staff       a staff (1.6 m, 3 cm across) held upright in the right hand
+  gun         a gun-sized box (0.45 x 0.12 x 0.06 m) held forward in the right hand
+  shield      a disc (0.56 m across, 3 cm thick) strapped to the outside of the left forearm
+  hat         a wide-brimmed hat (brim 0.6 m across) on the head
+  tail        a tail (5.5 to 2 cm thick) leaving the sacrum and curving down behind the legs
+
+(sizes for a 1.75 m body, scaled with the height), rigs the body and every copy with `skelfit
+rig --keep-frame --skeleton-json` and the default options, and prints the core error (pelvis,
+neck, head, shoulders, elbows, wrists, hips, knees, ankles) against the reference's
+`canonical` map, % of the height, with the joints more than 1.5 % off and the warnings'
+codes. The reference is the body's: an addition should leave its joints where they are.
+
+Standard-library Python only. Usage (from the repository, after `cargo build --release`):
+
+    python3 tools/props_check.py [--refdata ../shared/refdata] [--skelfit target/release/skelfit]
+                                 [--work /tmp/props_check] [--props sword_down,tail,...]
+                                 [MODEL ...]
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pieces_check import read_obj, write_obj  # noqa: E402
+from zup_check import CORE, core_error, model_folders, reference_canonical  # noqa: E402
+
+PROPS = "sword_down,sword_fwd,sword_up,staff,gun,shield,hat,tail"
+
+
+def norm(v):
+    n = math.sqrt(sum(x * x for x in v))
+    return [x / n for x in v]
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def frame(d, hint):
+    d = norm(d)
+    if abs(sum(a * b for a, b in zip(d, hint))) > 0.99:
+        hint = [0.0, 1.0, 0.0] if abs(d[1]) < 0.9 else [1.0, 0.0, 0.0]
+    u = norm(cross(d, hint))
+    return d, u, cross(d, u)
+
+
+def box(V, F, start, direction, length, width, thick, hint=(1.0, 0.0, 0.0)):
+    """A closed box from `start` along `direction`."""
+    d, u, v = frame(direction, list(hint))
+    base = len(V)
+    for a in (0.0, length):
+        for su in (-1, 1):
+            for sv in (-1, 1):
+                V.append(tuple(start[i] + d[i] * a + u[i] * su * width / 2 + v[i] * sv * thick / 2
+                               for i in range(3)))
+    for q in ((0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)):
+        a, b, c, e = (base + i for i in q)
+        F += [(a, b, c), (a, c, e)]
+
+
+def tube(V, F, points, r0, r1, segments=12):
+    """A closed tube through `points`, radius `r0` tapering to `r1`, capped by fans."""
+    base, n = len(V), len(points)
+    for i, p in enumerate(points):
+        d, u, v = frame([b - a for a, b in zip(points[max(i - 1, 0)], points[min(i + 1, n - 1)])],
+                        [1.0, 0.0, 0.0])
+        r = r0 + (r1 - r0) * i / (n - 1)
+        for k in range(segments):
+            a = 2 * math.pi * k / segments
+            V.append(tuple(p[j] + r * (math.cos(a) * u[j] + math.sin(a) * v[j]) for j in range(3)))
+    for i in range(n - 1):
+        for k in range(segments):
+            a = base + i * segments + k
+            b = base + i * segments + (k + 1) % segments
+            F += [(a, b, b + segments), (a, b + segments, a + segments)]
+    for end, first in ((0, True), (n - 1, False)):
+        V.append(tuple(points[end]))
+        c = len(V) - 1
+        for k in range(segments):
+            a = base + end * segments + k
+            b = base + end * segments + (k + 1) % segments
+            F.append((c, b, a) if first else (c, a, b))
+
+
+def disc(V, F, centre, normal, radius, thick):
+    """A closed flat cylinder (a shield, a hat's brim)."""
+    n = norm(normal)
+    tube(V, F, [[centre[i] - n[i] * thick / 2 for i in range(3)],
+                [centre[i] + n[i] * thick / 2 for i in range(3)]], radius, radius, 24)
+
+
+def add(prop, V, F, joints, scale):
+    j = joints
+    s = scale
+    hand = [(a + b) / 2 for a, b in zip(j["hand_r"], j["middle_03_r"])]
+    top = max(p[1] for p in V)
+    if prop == "sword_down":
+        box(V, F, [hand[0], hand[1] + 0.1 * s, hand[2]], [0, -1, 0], 1.0 * s, 0.05 * s,
+            0.012 * s, (0, 0, 1))
+    elif prop == "sword_fwd":
+        box(V, F, [hand[0], hand[1], hand[2] - 0.1 * s], [0, 0, 1], 1.0 * s, 0.05 * s, 0.012 * s)
+    elif prop == "sword_up":
+        box(V, F, [hand[0], hand[1] - 0.1 * s, hand[2]], [0, 1, 0.15], 1.0 * s, 0.05 * s,
+            0.012 * s, (0, 0, 1))
+    elif prop == "staff":
+        tube(V, F, [[hand[0], 0.02 * s, hand[2]], [hand[0], 1.62 * s, hand[2]]],
+             0.015 * s, 0.015 * s)
+    elif prop == "gun":
+        box(V, F, [hand[0], hand[1], hand[2] - 0.05 * s], [0, 0, 1], 0.45 * s, 0.12 * s,
+            0.06 * s)
+    elif prop == "shield":
+        fore = [(a + b) / 2 for a, b in zip(j["lowerarm_l"], j["hand_l"])]
+        d = norm([b - a for a, b in zip(j["lowerarm_l"], j["hand_l"])])
+        out = norm(cross(d, [0, 0, 1]))
+        if out[0] < 0:
+            out = [-x for x in out]
+        disc(V, F, [fore[i] + out[i] * 0.06 * s for i in range(3)], out, 0.28 * s, 0.03 * s)
+    elif prop == "hat":
+        x, z = j["head"][0], j["head"][2] + 0.01 * s
+        disc(V, F, [x, top - 0.04 * s, z], [0, 1, 0], 0.30 * s, 0.02 * s)
+        disc(V, F, [x, top + 0.02 * s, z], [0, 1, 0], 0.11 * s, 0.14 * s)
+    elif prop == "tail":
+        pelvis = j["pelvis"]
+        points = []
+        for i in range(13):
+            t = i / 12
+            points.append([0.0, pelvis[1] + 0.02 * s - 0.45 * s * t ** 1.3,
+                           pelvis[2] - 0.06 * s - 0.7 * s * t])
+        tube(V, F, points, 0.055 * s, 0.02 * s)
+    else:
+        raise SystemExit(f"unknown prop {prop}")
+
+
+def rig(skelfit, mesh, json_path):
+    glb = json_path[:-5] + ".glb"
+    if os.path.exists(json_path):
+        os.remove(json_path)
+    cmd = [skelfit, "rig", mesh, "-o", glb, "--skeleton-json", json_path, "--keep-frame", "-q"]
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    if done.returncode != 0 or not os.path.exists(json_path):
+        return None, done.stderr.strip()[:300]
+    with open(json_path) as f:
+        skeleton = json.load(f)
+    warnings = skeleton.get("run", {}).get("warnings", [])
+    codes = sorted({w.get("code", "?") for w in warnings if isinstance(w, dict)})
+    return skeleton, codes
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("models", nargs="*", metavar="MODEL")
+    parser.add_argument("--refdata", default="../shared/refdata")
+    parser.add_argument("--skelfit", default="target/release/skelfit")
+    parser.add_argument("--work", default="/tmp/props_check")
+    parser.add_argument("--props", default=PROPS)
+    args = parser.parse_args()
+    folders = [f for f in model_folders(args.refdata, ("humanoid",), args.models or
+                                        ["mh_neutral_default"])
+               if os.path.exists(os.path.join(f, "rig_game_engine.json"))]
+    if not folders:
+        print(f"no MakeHuman bodies with rig_game_engine.json under {args.refdata}/humanoid")
+        return 1
+    os.makedirs(args.work, exist_ok=True)
+    print("core mean, % of height; joints over 1.5 % in brackets; warning codes")
+    for folder in folders:
+        model = os.path.basename(folder)
+        reference = reference_canonical(folder)
+        with open(os.path.join(folder, "rig_game_engine.json")) as f:
+            joints = {j["name"]: tuple(j["position"]) for j in json.load(f)["joints"]}
+        positions, triangles = read_obj(os.path.join(folder, "mesh.obj"))
+        ys = [p[1] for p in positions]
+        height = max(ys) - min(ys)
+        print(model)
+        for prop in ["none"] + args.props.split(","):
+            V, F = list(positions), list(triangles)
+            if prop != "none":
+                add(prop, V, F, joints, height / 1.75)
+            mesh = os.path.join(args.work, f"{model}_{prop}.obj")
+            write_obj(mesh, V, F)
+            skeleton, codes = rig(args.skelfit, mesh, mesh[:-4] + ".json")
+            if skeleton is None:
+                print(f"  {prop:11s} failed: {codes}")
+                continue
+            by_name = {j["name"]: tuple(j["position"]) for j in skeleton["joints"]}
+            found = {k: by_name[v] for k, v in skeleton.get("canonical", {}).items()
+                     if v in by_name}
+            error, missing = core_error(found, reference, height)
+            worst = [f"{k} {100 * math.dist(found[k], reference[k]) / height:.1f}"
+                     for k in CORE if k in found and k in reference
+                     and math.dist(found[k], reference[k]) > 0.015 * height]
+            tail = sum(1 for n in by_name if n.startswith("tail"))
+            print(f"  {prop:11s} {'-' if error is None else f'{error:.2f}'}"
+                  + (f" [{', '.join(worst)}]" if worst else "")
+                  + (f" (missing {', '.join(missing)})" if missing else "")
+                  + (f" tail joints {tail}" if tail else "")
+                  + (f"  {' '.join(codes)}" if codes else ""), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
