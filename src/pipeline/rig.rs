@@ -307,9 +307,14 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().cloned().map(Warning::Fit));
     lap.lap("fit", &mut timings);
+    // Held props left out of the voxels are left out of the slicing too: a body that is one
+    // closed shell but for the sword in its hand is sliced itself.
+    let body = (!one_shell && options.refine.in_rig && !solid.report.props.is_empty())
+        .then(|| without_props(mesh, &solid.report.props))
+        .filter(Mesh::is_one_closed_shell);
     if refine_stage(
-        mesh,
-        one_shell,
+        body.as_ref().unwrap_or(mesh),
+        one_shell || body.is_some(),
         &solid,
         &labelling,
         &template,
@@ -430,6 +435,25 @@ fn refine_stage(
         ),
     }
     true
+}
+
+/// `mesh` without the triangles of the held props ([`crate::voxel::Prop`]).
+fn without_props(mesh: &Mesh, props: &[crate::voxel::Prop]) -> Mesh {
+    let mut prop = vec![false; mesh.positions.len()];
+    for v in props.iter().flat_map(|p| &p.vertices) {
+        if let Some(f) = prop.get_mut(*v as usize) {
+            *f = true;
+        }
+    }
+    Mesh {
+        positions: mesh.positions.clone(),
+        triangles: mesh
+            .triangles
+            .iter()
+            .filter(|t| !t.iter().any(|&v| prop[v as usize]))
+            .copied()
+            .collect(),
+    }
 }
 
 /// The surface the slicing refinement cuts: the input itself when it is one closed shell

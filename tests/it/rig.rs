@@ -699,8 +699,12 @@ fn a_humanoid_template_on_a_quadruped_warns_and_does_not_panic() {
         ..Default::default()
     };
     let (_, r) = rigged(&dir, &options);
+    // The arms are no fore legs. (A quadruped's tail is optional, `[vertebrae] tail = [0, 8]`:
+    // a body without one is not warned about it, as a frog is not.)
     assert!(
-        r.warnings.iter().any(|w| w.to_string().contains("tail")),
+        r.warnings
+            .iter()
+            .any(|w| w.to_string().contains("arm") && w.to_string().contains("fore_leg")),
         "{:?}",
         r.warnings
     );
@@ -1523,8 +1527,8 @@ fn a_body_facing_away_from_plus_z_is_rigged_facing_where_its_feet_point() {
 /// A sword hanging from the right hand down beside the leg (a separate thin box: a blade 1.2 cm
 /// thick, 5 cm wide, reaching to 8 cm above the ground) was labelled a third leg and the right
 /// arm was lost (core error 7.9 % of the height). It is a held prop: left out of the skeleton
-/// fit with a warning, the rig that of the body alone, and the blade bound wholly to the right
-/// hand's joint so that it moves rigidly with the hand.
+/// fit and of the slicing with a warning, the rig that of the body alone, and the blade bound
+/// wholly to the right hand's joint so that it moves rigidly with the hand.
 #[test]
 fn a_sword_held_down_beside_the_leg_is_a_prop_bound_to_the_hand_not_a_leg() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
@@ -1571,7 +1575,7 @@ fn a_sword_held_down_beside_the_leg_is_a_prop_bound_to_the_hand_not_a_leg() {
         "ankle_R",
     ] {
         let moved = at(&r, key).distance(at(&alone, key));
-        assert!(moved < 0.01 * height, "{key} moved {moved}");
+        assert!(moved < 0.002 * height, "{key} moved {moved}");
     }
     let hand = r.fit.canonical["wrist_R"];
     for (v, w) in r.skin.weights.iter().enumerate().skip(first) {
