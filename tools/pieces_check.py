@@ -139,6 +139,37 @@ def write_obj(path, positions, triangles):
             f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
 
 
+def body_folders(refdata, models):
+    """The MakeHuman body folders under REFDATA/humanoid with a rig_game_engine.json."""
+    return [f for f in model_folders(refdata, ("humanoid",), models)
+            if os.path.exists(os.path.join(f, "rig_game_engine.json"))
+            and os.path.basename(f).startswith("mh_")]
+
+
+def body(folder):
+    """A body's reference canonical joints, all its reference joints by name, its mesh and its
+    height."""
+    with open(os.path.join(folder, "rig_game_engine.json")) as f:
+        joints = {j["name"]: tuple(j["position"]) for j in json.load(f)["joints"]}
+    positions, triangles = read_obj(os.path.join(folder, "mesh.obj"))
+    ys = [p[1] for p in positions]
+    return reference_canonical(folder), joints, positions, triangles, max(ys) - min(ys)
+
+
+def scored(skeleton, reference, height, limit):
+    """The text for one rig: its core error against `reference` (% of `height`), the core joints
+    more than `limit` % off in brackets, and the core joints missing."""
+    by_name = {j["name"]: tuple(j["position"]) for j in skeleton["joints"]}
+    found = {k: by_name[v] for k, v in skeleton.get("canonical", {}).items() if v in by_name}
+    error, missing = core_error(found, reference, height)
+    worst = [f"{k} {100 * math.dist(found[k], reference[k]) / height:.1f}"
+             for k in CORE if k in found and k in reference
+             and math.dist(found[k], reference[k]) > limit / 100 * height]
+    return ("-" if error is None else f"{error:.2f}") \
+        + (f" [{', '.join(worst)}]" if worst else "") \
+        + (f" (missing {', '.join(missing)})" if missing else "")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("models", nargs="*", metavar="MODEL")
@@ -148,9 +179,7 @@ def main():
     parser.add_argument("--gaps", default=GAPS, help="gaps, % of the height (comma-separated)")
     args = parser.parse_args()
     gaps = [0.0] + [float(g) for g in args.gaps.split(",")]
-    folders = [f for f in model_folders(args.refdata, ("humanoid",), args.models)
-               if os.path.exists(os.path.join(f, "rig_game_engine.json"))
-               and os.path.basename(f).startswith("mh_")]
+    folders = body_folders(args.refdata, args.models)
     if not folders:
         print(f"no MakeHuman bodies with rig_game_engine.json under {args.refdata}/humanoid")
         return 1
@@ -158,12 +187,7 @@ def main():
     print("core mean, % of height, per gap (% of height); joints over 2 % in brackets")
     for folder in folders:
         model = os.path.basename(folder)
-        reference = reference_canonical(folder)
-        with open(os.path.join(folder, "rig_game_engine.json")) as f:
-            joints = {j["name"]: tuple(j["position"]) for j in json.load(f)["joints"]}
-        positions, triangles = read_obj(os.path.join(folder, "mesh.obj"))
-        ys = [p[1] for p in positions]
-        height = max(ys) - min(ys)
+        reference, joints, positions, triangles, height = body(folder)
         cells = []
         for gap in gaps:
             mesh = os.path.join(args.work, f"{model}_gap{gap:g}.obj")
@@ -172,19 +196,8 @@ def main():
             else:
                 write_obj(mesh, *pieced(positions, triangles, joints, gap / 100 * height))
             skeleton = rig(args.skelfit, mesh, mesh[:-4] + ".json")
-            if skeleton is None:
-                cells.append(f"{gap:g}: failed")
-                continue
-            by_name = {j["name"]: tuple(j["position"]) for j in skeleton["joints"]}
-            found = {k: by_name[v] for k, v in skeleton.get("canonical", {}).items()
-                     if v in by_name}
-            error, missing = core_error(found, reference, height)
-            worst = [f"{k} {100 * math.dist(found[k], reference[k]) / height:.1f}"
-                     for k in CORE if k in found and k in reference
-                     and math.dist(found[k], reference[k]) > 0.02 * height]
-            cells.append(f"{gap:g}: {'-' if error is None else f'{error:.2f}'}"
-                         + (f" [{', '.join(worst)}]" if worst else "")
-                         + (f" (missing {len(missing)})" if missing else ""))
+            text = "failed" if skeleton is None else scored(skeleton, reference, height, 2.0)
+            cells.append(f"{gap:g}: {text}")
         print(f"{model}\n  " + "\n  ".join(cells), flush=True)
     return 0
 

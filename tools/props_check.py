@@ -28,15 +28,13 @@ Standard-library Python only. Usage (from the repository, after `cargo build --r
                                  [MODEL ...]
 """
 import argparse
-import json
 import math
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pieces_check import read_obj, write_obj  # noqa: E402
-from zup_check import CORE, core_error, model_folders, reference_canonical  # noqa: E402
+from facing_check import rig  # noqa: E402
+from pieces_check import body, body_folders, scored, write_obj  # noqa: E402
 
 PROPS = "sword_down,sword_fwd,sword_up,staff,gun,shield,hat,tail"
 
@@ -145,21 +143,6 @@ def add(prop, V, F, joints, scale):
         raise SystemExit(f"unknown prop {prop}")
 
 
-def rig(skelfit, mesh, json_path):
-    glb = json_path[:-5] + ".glb"
-    if os.path.exists(json_path):
-        os.remove(json_path)
-    cmd = [skelfit, "rig", mesh, "-o", glb, "--skeleton-json", json_path, "--keep-frame", "-q"]
-    done = subprocess.run(cmd, capture_output=True, text=True)
-    if done.returncode != 0 or not os.path.exists(json_path):
-        return None, done.stderr.strip()[:300]
-    with open(json_path) as f:
-        skeleton = json.load(f)
-    warnings = skeleton.get("run", {}).get("warnings", [])
-    codes = sorted({w.get("code", "?") for w in warnings if isinstance(w, dict)})
-    return skeleton, codes
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("models", nargs="*", metavar="MODEL")
@@ -168,9 +151,7 @@ def main():
     parser.add_argument("--work", default="/tmp/props_check")
     parser.add_argument("--props", default=PROPS)
     args = parser.parse_args()
-    folders = [f for f in model_folders(args.refdata, ("humanoid",), args.models or
-                                        ["mh_neutral_default"])
-               if os.path.exists(os.path.join(f, "rig_game_engine.json"))]
+    folders = body_folders(args.refdata, args.models or ["mh_neutral_default"])
     if not folders:
         print(f"no MakeHuman bodies with rig_game_engine.json under {args.refdata}/humanoid")
         return 1
@@ -178,12 +159,7 @@ def main():
     print("core mean, % of height; joints over 1.5 % in brackets; warning codes")
     for folder in folders:
         model = os.path.basename(folder)
-        reference = reference_canonical(folder)
-        with open(os.path.join(folder, "rig_game_engine.json")) as f:
-            joints = {j["name"]: tuple(j["position"]) for j in json.load(f)["joints"]}
-        positions, triangles = read_obj(os.path.join(folder, "mesh.obj"))
-        ys = [p[1] for p in positions]
-        height = max(ys) - min(ys)
+        reference, joints, positions, triangles, height = body(folder)
         print(model)
         for prop in ["none"] + args.props.split(","):
             V, F = list(positions), list(triangles)
@@ -191,21 +167,14 @@ def main():
                 add(prop, V, F, joints, height / 1.75)
             mesh = os.path.join(args.work, f"{model}_{prop}.obj")
             write_obj(mesh, V, F)
-            skeleton, codes = rig(args.skelfit, mesh, mesh[:-4] + ".json")
+            skeleton = rig(args.skelfit, mesh, mesh[:-4] + ".json")
             if skeleton is None:
-                print(f"  {prop:11s} failed: {codes}")
+                print(f"  {prop:11s} failed")
                 continue
-            by_name = {j["name"]: tuple(j["position"]) for j in skeleton["joints"]}
-            found = {k: by_name[v] for k, v in skeleton.get("canonical", {}).items()
-                     if v in by_name}
-            error, missing = core_error(found, reference, height)
-            worst = [f"{k} {100 * math.dist(found[k], reference[k]) / height:.1f}"
-                     for k in CORE if k in found and k in reference
-                     and math.dist(found[k], reference[k]) > 0.015 * height]
-            tail = sum(1 for n in by_name if n.startswith("tail"))
-            print(f"  {prop:11s} {'-' if error is None else f'{error:.2f}'}"
-                  + (f" [{', '.join(worst)}]" if worst else "")
-                  + (f" (missing {', '.join(missing)})" if missing else "")
+            warnings = skeleton.get("run", {}).get("warnings", [])
+            codes = sorted({w.get("code", "?") for w in warnings if isinstance(w, dict)})
+            tail = sum(1 for j in skeleton["joints"] if j["name"].startswith("tail"))
+            print(f"  {prop:11s} {scored(skeleton, reference, height, 1.5)}"
                   + (f" tail joints {tail}" if tail else "")
                   + (f"  {' '.join(codes)}" if codes else ""), flush=True)
     return 0
