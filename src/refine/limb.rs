@@ -3,6 +3,7 @@
 //! diameters per slice, interpolated by cubic B-splines.
 
 use super::RefineOptions;
+use crate::math::point_segment_distance;
 use crate::mesh::{slice_plane_outer, Mesh, SliceLoop, SphereSlicer};
 use bspline::BSpline;
 use glam::DVec3;
@@ -236,11 +237,9 @@ fn march(
                 .iter()
                 .map(|s| s.1)
                 .fold(None, |m: Option<f64>, p| Some(m.map_or(p, |m| m.max(p))));
-            if let Some(p) = before {
-                let near_chain = |q: DVec3| from_chain(chain, q) <= p / TAU;
-                if let Some((jumped, found)) =
-                    across_gap(slicer, centre, dir, step, p, options).filter(|_| near_chain(centre))
-                {
+            let on_limb = before.filter(|&p| from_chain(chain, centre) <= p / TAU);
+            if let Some(p) = on_limb {
+                if let Some((jumped, found)) = across_gap(slicer, centre, dir, step, p, options) {
                     travelled += jumped.distance(centre);
                     centre = jumped;
                     slice = Some(found);
@@ -307,15 +306,7 @@ fn march(
 fn from_chain(chain: &[DVec3], q: DVec3) -> f64 {
     chain
         .windows(2)
-        .map(|w| {
-            let ab = w[1] - w[0];
-            let t = if ab.length_squared() > 0.0 {
-                ((q - w[0]).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            q.distance(w[0] + ab * t)
-        })
+        .map(|w| point_segment_distance(q, w[0], w[1]))
         .fold(f64::INFINITY, f64::min)
 }
 
@@ -327,7 +318,6 @@ fn from_chain(chain: &[DVec3], q: DVec3) -> f64 {
 /// [`STILL_GROWING`] a step: the sphere first meets the next piece's rounded or capped end,
 /// and takes the piece's whole section a little further on. Returns the sphere's centre and
 /// the loop.
-#[allow(clippy::too_many_arguments)]
 fn across_gap(
     slicer: &SphereSlicer,
     centre: DVec3,

@@ -224,26 +224,16 @@ pub fn skin_from_bones(
     }
     // The geodesic weights of a rig on a grid finer than the default are computed at the
     // default resolution (`coarse.rs`): the bones' segments are found on that grid directly.
-    let mut bound = if options.method == SkinMethod::Geodesic {
-        match coarsening(solid) {
-            Some(factor) => {
-                let (coarse, distance) = coarse_grid(solid, factor);
-                let segments = bone_segments(skeleton, &coarse, &distance, options);
-                skin(mesh, skeleton, &coarse, &distance, &segments, options)?
-            }
-            None => skin(
-                mesh,
-                skeleton,
-                solid,
-                distance,
-                &bone_segments(skeleton, solid, distance, options),
-                options,
-            )?,
-        }
-    } else {
-        let segments = bone_segments(skeleton, solid, distance, options);
-        skin(mesh, skeleton, solid, distance, &segments, options)?
+    let coarse = (options.method == SkinMethod::Geodesic)
+        .then(|| coarsening(solid))
+        .flatten()
+        .map(|factor| coarse_grid(solid, factor));
+    let (grid, distance) = match &coarse {
+        Some((coarse, distance)) => (coarse, distance),
+        None => (solid, distance),
     };
+    let segments = bone_segments(skeleton, grid, distance, options);
+    let mut bound = skin(mesh, skeleton, grid, distance, &segments, options)?;
     // Held props move rigidly with the joint that holds them.
     if bind_props(mesh, solid, &solid.report.props, &mut bound.weights) > 0 {
         bound.engine = engine_weights(&bound.weights).0;
