@@ -199,10 +199,8 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     });
     let longest = (longest.1 - longest.0).max_element();
     let mut props = prop_pieces(mesh, &component, count, main, &area, longest);
-    let prop_area: f64 = (0..count)
-        .filter(|&c| props[c].is_some())
-        .map(|c| area[c])
-        .sum();
+    let is_prop: Vec<bool> = props.iter().map(Option::is_some).collect();
+    let prop_area: f64 = (0..count).filter(|&c| is_prop[c]).map(|c| area[c]).sum();
     let margin = DVec3::splat(MARGIN * (hi[main] - lo[main]).max_element());
     let (mut box_lo, mut box_hi) = (lo[main] - margin, hi[main] + margin);
     let mut keep = vec![false; count];
@@ -211,11 +209,7 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     loop {
         let mut grown = false;
         for c in 0..count {
-            if !keep[c]
-                && props[c].is_none()
-                && lo[c].cmple(box_hi).all()
-                && hi[c].cmpge(box_lo).all()
-            {
+            if !keep[c] && !is_prop[c] && lo[c].cmple(box_hi).all() && hi[c].cmpge(box_lo).all() {
                 keep[c] = true;
                 kept_area += area[c];
                 box_lo = box_lo.min(lo[c] - margin);
@@ -229,14 +223,13 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     }
     // Two figures of about one size far apart keep every piece but the props.
     if kept_area < MAIN_SHARE * (total - prop_area) {
-        for c in 0..count {
-            keep[c] = props[c].is_none();
+        for (k, &p) in keep.iter_mut().zip(&is_prop) {
+            *k = !p;
         }
     }
     if keep.iter().all(|&k| k) {
         return None;
     }
-    let is_prop: Vec<bool> = props.iter().map(Option::is_some).collect();
     let mut left_out = LeftOut::default();
     for c in (0..count).filter(|&c| !keep[c]) {
         match props[c].take() {
