@@ -14,6 +14,8 @@ separate closed piece:
   shield      a disc (0.56 m across, 3 cm thick) strapped to the outside of the left forearm
   hat         a wide-brimmed hat (brim 0.6 m across) on the head
   tail        a tail (5.5 to 2 cm thick) leaving the sacrum and curving down behind the legs
+  hair        hair of 150 cards (open quads 6 cm wide) over the scalp, those at the back hanging
+              10 to 30 cm down towards the shoulders
 
 (sizes for a 1.75 m body, scaled with the height), rigs the body and every copy with `skelfit
 rig --keep-frame --skeleton-json` and the default options, and prints the core error (pelvis,
@@ -36,7 +38,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from facing_check import rig  # noqa: E402
 from pieces_check import body, body_folders, scored, write_obj  # noqa: E402
 
-PROPS = "sword_down,sword_fwd,sword_up,staff,gun,shield,hat,tail"
+PROPS = "sword_down,sword_fwd,sword_up,staff,gun,shield,hat,tail,hair"
 
 
 def norm(v):
@@ -101,6 +103,27 @@ def disc(V, F, centre, normal, radius, thick):
                 [centre[i] + n[i] * thick / 2 for i in range(3)]], radius, radius, 24)
 
 
+def cards(V, F, head, top, s, count=150):
+    """Hair cards: open quads over the scalp on a golden-angle spiral out to 1.2 rad from the
+    crown, facing out; those at the back hang 10 to 30 cm."""
+    radius, width = 0.11 * s, 0.03 * s
+    for k in range(count):
+        theta = k * 2.399963
+        phi = math.acos(1 - (k + 0.5) / count * (1 - math.cos(1.2)))
+        sn, cs = math.sin(theta), math.cos(theta)
+        root = [head[0] + radius * math.sin(phi) * cs, top - 0.02 * s - radius * (1 - math.cos(phi)),
+                head[2] - 0.01 * s + radius * math.sin(phi) * sn]
+        length = (0.1 + 0.2 * ((k * 7) % 10) / 10) * s if sn < 0 else 0.05 * s
+        across = [-sn * width, 0.0, cs * width]
+        down = [0.02 * s * cs, -length, 0.02 * s * sn]
+        first = len(V)
+        V += [tuple(root[i] + across[i] for i in range(3)),
+              tuple(root[i] - across[i] for i in range(3)),
+              tuple(root[i] + across[i] + down[i] for i in range(3)),
+              tuple(root[i] - across[i] + down[i] for i in range(3))]
+        F += [(first, first + 2, first + 1), (first + 1, first + 2, first + 3)]
+
+
 def add(prop, V, F, joints, scale):
     j = joints
     s = scale
@@ -139,6 +162,8 @@ def add(prop, V, F, joints, scale):
             points.append([0.0, pelvis[1] + 0.02 * s - 0.45 * s * t ** 1.3,
                            pelvis[2] - 0.06 * s - 0.7 * s * t])
         tube(V, F, points, 0.055 * s, 0.02 * s)
+    elif prop == "hair":
+        cards(V, F, j["head"], top, s)
     else:
         raise SystemExit(f"unknown prop {prop}")
 

@@ -159,12 +159,22 @@ fn finish(
     })
 }
 
+/// The most the head's long axis may turn from the facing the refinement was given and still
+/// set the frontal plane ([`frame_from_head`]). The facing found from the feet and the body's
+/// symmetry is off by a few degrees at most (a figure turned 3° is found turned); a head
+/// turned further is turned on its neck, or lopsided with hair, and would tilt every frontal
+/// slice of the trunk (the armpits) with it.
+pub const MAX_HEAD_TURN_DEGREES: f64 = 10.0;
+
 /// Frontal and sagittal normals from the head (seed 004, 3.1): the principal axes of all head
 /// slices projected into one transverse plane (as curves, length-weighted, not as their
 /// vertices). The seed takes the longer axis as forward; here forward is whichever principal
 /// axis lies nearer `forward_hint` (the longer one on a human head, the shorter one on a head
 /// wider than deep), its sign taken from the hint. Returns the frame with `forward` and `left`
-/// replaced, or `None` when the head is too round to tell.
+/// replaced, or `None` when the head is too round to tell, or when its axis turns more than
+/// [`MAX_HEAD_TURN_DEGREES`] from `frame.forward`: such a head is turned on its neck or made
+/// lopsided by what it wears (hair cards hanging to one side, a ponytail, a hat), and the
+/// body's own facing is the better frontal plane for slicing it.
 pub fn frame_from_head(
     frame: &BodyFrame,
     head: &HeadSlices,
@@ -192,6 +202,9 @@ pub fn frame_from_head(
     };
     if forward.dot(forward_hint) < 0.0 {
         forward = -forward;
+    }
+    if forward.dot(frame.forward) < MAX_HEAD_TURN_DEGREES.to_radians().cos() {
+        return None;
     }
     Some(BodyFrame {
         forward,

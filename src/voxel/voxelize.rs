@@ -62,7 +62,9 @@ pub fn voxelize_figure(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, Vox
 /// [`VoxelReport::duplicate_triangles`]);
 /// classify every voxel centre by the six-direction winding-number vote (see the module docs of
 /// `voxel::winding`: exact for closed meshes, robust to holes, non-manifold edges and
-/// overlapping parts; the absolute winding is used, so inward-wound meshes work too); mark the
+/// overlapping parts; the absolute winding is used, so inward-wound meshes work too; each
+/// direction adds at most [`MAX_COUNT_PER_DIRECTION`], so stacked open sheets do not outvote
+/// the other directions); mark the
 /// voxels the triangles touch; keep the largest 26-connected interior component.
 ///
 /// # Errors
@@ -106,7 +108,7 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
             for y in 1..ny - 1 {
                 for x in 1..nx - 1 {
                     let counts = votes.counts([x, y, z]);
-                    let sum: i32 = counts.iter().map(|&c| c as i32).sum();
+                    let sum: i32 = counts.iter().map(|&c| clamp_count(c)).sum();
                     if (sum as f64).abs() > threshold {
                         slice[x + nx * y] = true;
                         if counts.iter().any(|&c| c != counts[0]) {
@@ -166,6 +168,22 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
         surface,
         report,
     })
+}
+
+/// The most one direction's crossing count adds to the vote, either sign: each of the six
+/// directions says once whether it sees the point enclosed. Two closed shells overlapping (an
+/// eye pushed into a head) are inside as one shell is, and a larger count is a stack of open
+/// sheets crossed the same way (hair cards, layered skirt panels), not a deeper inside.
+/// Summed unclamped, one ray through five cards outvoted the other five directions: every
+/// voxel of the column behind them, far outside the figure, was inside (a bundled body with
+/// 150 hair cards grew bars of voxels across the grid and was rigged as no humanoid at all).
+/// Clamped to two, the space between the cards of a hanging curtain of hair still voted
+/// inside, and the head's slices ran on down the back.
+const MAX_COUNT_PER_DIRECTION: i32 = 1;
+
+/// One direction's crossing count as it enters the vote ([`MAX_COUNT_PER_DIRECTION`]).
+fn clamp_count(count: i8) -> i32 {
+    i32::from(count).clamp(-MAX_COUNT_PER_DIRECTION, MAX_COUNT_PER_DIRECTION)
 }
 
 /// The grid `voxelize` would use for `mesh`, without voxelizing.

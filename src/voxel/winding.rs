@@ -10,7 +10,9 @@
 //! disturbs only the rays that pass through it, so `mean > 0.5` still classifies the voxel
 //! correctly as long as most of the six rays see a closed surface. Overlapping parts (an eye
 //! pushed into a head) add up to winding 2 and stay inside, which a parity (even-odd) test
-//! would get wrong.
+//! would get wrong. Each direction's count enters the mean clamped to ±1 (`voxelize`): a ray
+//! through a stack of open sheets wound the same way (hair cards) counts one per sheet, and
+//! would otherwise outvote the five directions that see nothing.
 //!
 //! All six counts come from one scan per axis: the crossings of every grid column (a line
 //! through voxel centres parallel to the axis) with every triangle. Columns hit a shared edge

@@ -1633,3 +1633,61 @@ fn a_humanoids_tail_does_not_pull_its_hips_down() {
         "a tailless body got a tail"
     );
 }
+
+/// Hair made of cards, as game characters' is: 150 small open quads over the scalp, those at
+/// the back hanging down to the shoulders. A ray through several cards wound the same way
+/// counted one per card and outvoted the other five directions of the inside/outside vote:
+/// bars of "inside" voxels grew across the grid, and the body was rigged as no humanoid at all
+/// (five legs, one arm, the general skeleton). With each direction voting once, the hair
+/// adds next to nothing to the solid; and the head's frame, turned 30° by the lopsided hair,
+/// no longer tilts the slicing of the trunk (the shoulders had moved 9 cm in). Every core
+/// joint stays within 2 % of the height of the bald body's.
+#[test]
+fn hair_cards_on_the_head_leave_the_rig_of_the_bald_body() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/humanoid/mh_neutral_default");
+    let (body, alone) = rigged(&dir, &RigOptions::default());
+    let head = alone
+        .fit
+        .skeleton
+        .joint(alone.fit.canonical["head"])
+        .position;
+    let top = body.bounding_box().unwrap().1.y;
+    let mut hair = Mesh::default();
+    let (radius, width) = (0.11, 0.03);
+    for k in 0..150 {
+        // A golden-angle spiral over the cap up to 1.2 rad from the crown.
+        let theta = k as f64 * 2.399_963;
+        let phi = (1.0 - (k as f64 + 0.5) / 150.0 * (1.0 - 1.2_f64.cos())).acos();
+        let (s, c) = theta.sin_cos();
+        let root = DVec3::new(
+            head.x + radius * phi.sin() * c,
+            top - 0.02 - radius * (1.0 - phi.cos()),
+            head.z - 0.01 + radius * phi.sin() * s,
+        );
+        let length = if s < 0.0 {
+            0.1 + 0.2 * ((k * 7) % 10) as f64 / 10.0
+        } else {
+            0.05
+        };
+        let across = DVec3::new(-s, 0.0, c) * width;
+        let down = DVec3::new(0.02 * c, -length, 0.02 * s);
+        let first = hair.positions.len() as u32;
+        hair.positions.extend([
+            root + across,
+            root - across,
+            root + across + down,
+            root - across + down,
+        ]);
+        hair.triangles
+            .extend([[0, 2, 1], [1, 2, 3]].map(|t: [u32; 3]| t.map(|i| i + first)));
+    }
+    let haired = merged(&[body.clone(), hair]);
+    let r = rig(&haired, &RigOptions::default()).unwrap();
+    assert!(
+        r.missing.is_empty(),
+        "missing {:?}: {:?}",
+        r.missing,
+        r.warnings
+    );
+    assert_core_unmoved(&body, &alone, &r, 0.02);
+}

@@ -126,6 +126,34 @@ fn overlapping_parts_are_one_solid() {
 }
 
 #[test]
+fn a_stack_of_open_sheets_beside_a_body_adds_no_volume() {
+    // A unit box and, just beside it along +x, five open squares wound the same way (hair
+    // cards lying over one another). A ray along x through the stack crosses five sheets;
+    // summed unclamped, that one direction outvoted the five that see nothing, and the
+    // columns through the stack became a second piece joined to the box (7 % more volume).
+    let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
+    for k in 0..5 {
+        let x = 1.02 + 0.02 * k as f64;
+        let first = mesh.positions.len() as u32;
+        mesh.positions.extend([
+            DVec3::new(x, 0.1, 0.1),
+            DVec3::new(x, 0.9, 0.1),
+            DVec3::new(x, 0.9, 0.9),
+            DVec3::new(x, 0.1, 0.9),
+        ]);
+        mesh.triangles
+            .extend([[0, 1, 2], [0, 2, 3]].map(|t: [u32; 3]| t.map(|i| i + first)));
+    }
+    let solid = voxelize(&mesh, &options(1.0 / 96.0)).unwrap();
+    assert!(
+        relative_error(solid.interior_volume(), 1.0) < 0.03,
+        "interior volume {} for a unit box",
+        solid.interior_volume()
+    );
+    assert_eq!(solid.report.components, 1, "{:?}", solid.report);
+}
+
+#[test]
 fn largest_component_is_kept_and_the_rest_reported() {
     let with_cube_at = |lo: f64, hi: f64| {
         let mut mesh = Mesh::cuboid(DVec3::ZERO, DVec3::ONE);
