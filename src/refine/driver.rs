@@ -624,7 +624,7 @@ fn torso(
 }
 
 /// The body frame with `up` along the rough legs' ankle→hip direction, when the legs are
-/// within 45° of `given.up`. Only its part in the median plane counts (the plane of
+/// within [`MAX_LEGS_LEAN_DEGREES`] of `given.up`. Only its part in the median plane counts (the plane of
 /// `given.up` and `given.forward`): a bilaterally symmetric figure's up lies in that plane, and
 /// rough ankles at unequal heights (one foot's labels reaching higher than the other's) had
 /// tilted a cartoon's frame 6° sideways, so that the head's slices cut one ear and missed the
@@ -636,9 +636,18 @@ fn legs_frame(mesh: &Mesh, rough: &Rough, given: BodyFrame) -> Option<BodyFrame>
         .sum::<DVec3>();
     let legs_up = (legs - given.left * legs.dot(given.left))
         .try_normalize()
-        .filter(|n| n.dot(given.up) > std::f64::consts::FRAC_1_SQRT_2);
+        .filter(|n| n.dot(given.up) > MAX_LEGS_LEAN_DEGREES.to_radians().cos());
     legs_up.and_then(|n| BodyFrame::new(mesh, n, given.forward))
 }
+
+/// The most the rough legs, together, may lean fore or aft from the given up and still set
+/// the body's up ([`legs_frame`]). Standing figures' legs lean a few degrees from their file's
+/// up (at most 8° on the reference humanoids, the cyberpunk character's tapered peg legs), and
+/// a figure turned a little off its axes is found within that. Legs leaning further are not
+/// a standing pair: an ankle-length robe leaves the labels only its wearer's feet and shins
+/// below the hem, whose rough hips lay 11 cm behind the ankles and tilted every slice of the
+/// refinement 21°.
+const MAX_LEGS_LEAN_DEGREES: f64 = 15.0;
 
 /// A point of the median plane (`scene.centre` is not read): half-way across between the rough pelvis and the head, moved
 /// sideways to the middle of the waist's cross-section.
@@ -717,11 +726,16 @@ fn hips_and_pelvis(
     let from_arms = hips_from_arms(rough, found, &frame, knees);
     // A hem's flare where the legs part, with the hips it gives far below where the arms
     // put them: the flare is clothing's, not the trunk's.
-    let hem_too_low = match (torso.and_then(by_crotch), from_arms) {
-        (Some(c), Some(a)) => a - c > HEM_HIPS_BELOW_ARMS * height,
-        _ => false,
+    let below_arms = match (torso.and_then(by_crotch), from_arms) {
+        (Some(c), Some(a)) => a - c,
+        _ => 0.0,
     };
-    let crotch_hidden = crotch_hidden(scene, torso, split, knees, reach, hem_too_low);
+    let hem_too_low = below_arms > HEM_HIPS_BELOW_ARMS * height;
+    // Hips that far below the arms' are no figure's: the silhouette's lowest point is not
+    // its crotch, whatever the outline does there (an ankle-length robe, below whose hem
+    // the shins touch and the median silhouette runs on down them).
+    let crotch_hidden = below_arms > HIPS_FAR_BELOW_ARMS * height
+        || crotch_hidden(scene, torso, split, knees, reach, hem_too_low);
     let hip_height = match torso {
         // A skirt, robe or long coat hides the crotch ([`crotch_hidden`]): the hips go where
         // the arm's length puts them.
@@ -804,6 +818,13 @@ fn crotch_hidden(
 /// (0.08 of the height), not higher. The women_formal dress turned 3° ended on its hem at
 /// 0.15 of the height below.
 const HEM_HIPS_BELOW_ARMS: f64 = 0.08;
+
+/// How far (fraction of the height) the hips the crotch gives may lie below the hips the arms
+/// give before the silhouette's lowest point counts as no crotch at all, hem or not: a
+/// quarter of a standing figure's hip height (about half of it), and three times the most
+/// seen on the reference humanoids, robots and cartoons included ([`HEM_HIPS_BELOW_ARMS`]).
+/// An ankle-length robe put the crotch's hips 0.29 of the height below the arms'.
+const HIPS_FAR_BELOW_ARMS: f64 = 0.125;
 
 /// The top of the gap between the legs ([`leg_split_height`]) from 0.02 of height below the
 /// median silhouette's lowest point `bottom` up to 0.1 above it.
@@ -888,8 +909,9 @@ const MIRROR_AGREEMENT: f64 = 0.02;
 /// The refined positions that stay near the rough ones, as carry targets (every refined key's
 /// joint, at its rough position unless accepted), and the accepted moves. A refined joint far
 /// from its rough place is accepted when it mirrors its partner's accepted refined place
-/// across the median plane (within [`MIRROR_AGREEMENT`]). Joints that are not refined stay
-/// where they were (not carried by their neighbours).
+/// across the median plane (within [`MIRROR_AGREEMENT`]), and the pelvis (placed between the
+/// refined hips) when both hips are accepted. Joints that are not refined stay where they were
+/// (not carried by their neighbours).
 fn accepted(
     rough: &Rough,
     found: &Found,
@@ -918,6 +940,12 @@ fn accepted(
             .and_then(near)
             .is_some_and(|other| mirrored.distance(other) <= MIRROR_AGREEMENT * height)
     };
+    // The refined pelvis lies between the refined hips: when both hips are accepted, so is
+    // the pelvis, however far the rough one lay (a long coat's labels put it in the coat's
+    // back, 16 cm behind the body).
+    let hips_accepted = Side::BOTH
+        .iter()
+        .all(|&side| near(Canonical::Hip(side)).is_some());
     for key in REFINED {
         if options.keep.iter().any(|k| k == key.as_str()) {
             continue;
@@ -931,7 +959,8 @@ fn accepted(
         let from = rough.skeleton.joint(id).position;
         if !to.is_finite()
             || (shift(rough, frame, key, from, to) > options.max_shift * height
-                && !mirrors_partner(key, to))
+                && !mirrors_partner(key, to)
+                && !(key == Canonical::Pelvis && hips_accepted))
         {
             warnings.push(RefineWarning::TooFar {
                 key,

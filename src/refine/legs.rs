@@ -48,9 +48,15 @@ pub(super) fn leg(
         // knee by adult ratios sits in the trunk): as when the trace stops short, the ankle
         // at the ankle's height above the sole and the knee by the leg's proportions from the
         // refined hip, each only inside the leg's own section; else both stay rough.
+        // A coat or a robe hiding the crotch hides the knee too: the knee then goes on the
+        // line from hip to ankle, as when the trace runs through the skirt.
         let placed = ankle_above_sole(scene, side, ank);
-        let h = knee_height(scene, hip, placed.unwrap_or(ank));
-        let by_ratio = own_section(scene, side, frame.at_height(knee, h));
+        let by_ratio = if crotch_hidden {
+            Some(knee_by_ratio(scene, side, hip, knee, placed.unwrap_or(ank)))
+        } else {
+            let h = knee_height(scene, hip, placed.unwrap_or(ank));
+            own_section(scene, side, frame.at_height(knee, h))
+        };
         if let Some(a) = placed {
             found.insert(Canonical::Ankle(side), a);
         }
@@ -155,8 +161,9 @@ fn knee_height(scene: &Scene, hip: glam::DVec3, distal: glam::DVec3) -> f64 {
 }
 
 /// The knee at `leg_ratio` of the way from the hip's height to the ankle's (`distal`), inside
-/// the leg's slice there (near the rough `knee`) when that slice is on this side of the body,
-/// else on the straight line between hip and ankle (clothing hides the crotch).
+/// the leg's slice there (near the rough `knee`) when that slice is the leg's own
+/// ([`own_section`]), else on the straight line between hip and ankle (clothing hides the
+/// crotch; a coat's section around both legs has its centroid between them).
 fn knee_by_ratio(
     scene: &Scene,
     side: Side,
@@ -164,19 +171,10 @@ fn knee_by_ratio(
     knee: glam::DVec3,
     distal: glam::DVec3,
 ) -> glam::DVec3 {
-    let Scene {
-        mesh,
-        frame,
-        options,
-        centre,
-        ..
-    } = *scene;
+    let frame = &scene.frame;
     let h = knee_height(scene, hip, distal);
-    let line = frame.at_height(hip.lerp(distal, options.leg_ratio), h);
-    let depth = options.knee_depth.unwrap_or(0.5);
-    transverse_point(mesh, &frame, frame.at_height(knee, h), h, depth)
-        .filter(|p| (*p - centre).dot(frame.left) * side.sign() > 0.0)
-        .unwrap_or(line)
+    let line = frame.at_height(hip.lerp(distal, scene.options.leg_ratio), h);
+    own_section(scene, side, frame.at_height(knee, h)).unwrap_or(line)
 }
 
 /// The leg's own transverse section at the height of `p`, at its centroid across the body and
