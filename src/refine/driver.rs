@@ -731,10 +731,11 @@ fn hips_and_pelvis(
         _ => 0.0,
     };
     let hem_too_low = below_arms > HEM_HIPS_BELOW_ARMS * height;
-    // Hips that far below the arms' are no figure's: the silhouette's lowest point is not
-    // its crotch, whatever the outline does there (an ankle-length robe, below whose hem
-    // the shins touch and the median silhouette runs on down them).
-    let crotch_hidden = below_arms > HIPS_FAR_BELOW_ARMS * height
+    // Hips that far below the arms' are no figure's: where the legs part below the
+    // silhouette's lowest point, that point is not the crotch, whatever the outline does
+    // there (an ankle-length robe, below whose hem the shins touch and the median silhouette
+    // runs on down them). A blob, whose legs never part, is left to the rules below.
+    let crotch_hidden = (split.is_some() && below_arms > HIPS_FAR_BELOW_ARMS * height)
         || crotch_hidden(scene, torso, split, knees, reach, hem_too_low);
     let hip_height = match torso {
         // A skirt, robe or long coat hides the crotch ([`crotch_hidden`]): the hips go where

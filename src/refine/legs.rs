@@ -48,10 +48,11 @@ pub(super) fn leg(
         // knee by adult ratios sits in the trunk): as when the trace stops short, the ankle
         // at the ankle's height above the sole and the knee by the leg's proportions from the
         // refined hip, each only inside the leg's own section; else both stay rough.
-        // A coat or a robe hiding the crotch hides the knee too: the knee then goes on the
-        // line from hip to ankle, as when the trace runs through the skirt.
+        // A coat or a robe hiding the crotch hides the knee too: when the leg shows apart
+        // below it (its ankle has its own section), the knee goes on the line from hip to
+        // ankle, as when the trace runs through the skirt. A blob shows no leg apart.
         let placed = ankle_above_sole(scene, side, ank);
-        let by_ratio = if crotch_hidden {
+        let by_ratio = if crotch_hidden && placed.is_some() {
             Some(knee_by_ratio(scene, side, hip, knee, placed.unwrap_or(ank)))
         } else {
             let h = knee_height(scene, hip, placed.unwrap_or(ank));
