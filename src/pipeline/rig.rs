@@ -307,10 +307,12 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
     let mut fit = fit_with_probe(&input, &template, &anatomical, Some(&solid))?;
     warnings.extend(fit.warnings.iter().cloned().map(Warning::Fit));
     lap.lap("fit", &mut timings);
-    // Held props left out of the voxels are left out of the slicing too: a body that is one
-    // closed shell but for the sword in its hand is sliced itself.
-    let body = (!one_shell && options.refine.in_rig && !solid.report.props.is_empty())
-        .then(|| without_props(mesh, &solid.report.props))
+    // Held props and small sheets left out of the voxels are left out of the slicing too: a
+    // body that is one closed shell but for the sword in its hand, or its hair cards, is
+    // sliced itself.
+    let left_out = !solid.report.props.is_empty() || solid.report.sheets > 0;
+    let body = (!one_shell && options.refine.in_rig && left_out)
+        .then(|| without_props(mesh, &solid.report))
         .filter(Mesh::is_one_closed_shell);
     if refine_stage(
         body.as_ref().unwrap_or(mesh),
@@ -437,10 +439,12 @@ fn refine_stage(
     true
 }
 
-/// `mesh` without the triangles of the held props ([`crate::voxel::Prop`]).
-fn without_props(mesh: &Mesh, props: &[crate::voxel::Prop]) -> Mesh {
+/// `mesh` without the triangles of the held props ([`crate::voxel::Prop`]) and the small
+/// sheets ([`crate::voxel::VoxelReport::sheets`]) the voxels left out.
+fn without_props(mesh: &Mesh, report: &crate::voxel::VoxelReport) -> Mesh {
     let mut prop = vec![false; mesh.positions.len()];
-    for v in props.iter().flat_map(|p| &p.vertices) {
+    let props = report.props.iter().flat_map(|p| &p.vertices);
+    for v in props.chain(&report.sheet_vertices) {
         if let Some(f) = prop.get_mut(*v as usize) {
             *f = true;
         }

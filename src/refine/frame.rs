@@ -172,7 +172,7 @@ pub const MAX_HEAD_TURN_DEGREES: f64 = 10.0;
 /// axis lies nearer `forward_hint` (the longer one on a human head, the shorter one on a head
 /// wider than deep), its sign taken from the hint. Returns the frame with `forward` and `left`
 /// replaced, or `None` when the head is too round to tell, or when its axis turns more than
-/// [`MAX_HEAD_TURN_DEGREES`] from `frame.forward`: such a head is turned on its neck or made
+/// `MAX_HEAD_TURN_DEGREES` (10°) from `frame.forward`: such a head is turned on its neck or made
 /// lopsided by what it wears (hair cards hanging to one side, a ponytail, a hat), and the
 /// body's own facing is the better frontal plane for slicing it.
 pub fn frame_from_head(

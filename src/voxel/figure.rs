@@ -32,6 +32,15 @@ const TWIN_TOLERANCE: f64 = 0.15;
 /// Props may hold at most this share of the surface area: a figure built of rods is rods.
 const PROP_MAX_SHARE: f64 = 0.25;
 
+/// A small sheet, each at most this share of the surface area (a hair card, an eyelash, an
+/// eyebrow: 0.3-1 % of a body's area for a card 6 cm wide and 10-30 cm long)...
+const SHEET_MAX_SHARE: f64 = 0.01;
+/// ...open (with boundary edges) and at most this fraction of the mesh's longest side thick
+/// (a voxel at the default size), encloses nothing: it is left out of the voxels. Stacked,
+/// such sheets still disturbed the inside/outside vote around a head, and the head's joint
+/// moved 5 % of the height up.
+const SHEET_MAX_THICKNESS: f64 = 0.01;
+
 /// A thin, long, rigid piece the figure holds (a sword, a staff, a spear): left out of the
 /// voxels, so that it makes no limb, and bound rigidly to the joint it touches when skinned.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -60,6 +69,69 @@ pub(super) struct LeftOut {
     pub area_share: f64,
     /// The held props left out ([`Prop`]).
     pub props: Vec<Prop>,
+    /// Small open sheets left out ([`sheet_pieces`]: hair cards, lashes).
+    pub sheets: usize,
+    /// Their vertices, ascending.
+    pub sheet_vertices: Vec<u32>,
+}
+
+/// Which of the `count` pieces (`component` of every triangle) are small open sheets: not the
+/// largest piece (`main`), at most [`SHEET_MAX_SHARE`] of the area each, with a boundary edge
+/// (an edge of one triangle only), and at most [`SHEET_MAX_THICKNESS`] of the mesh's longest
+/// side `longest` thick. A sheet encloses no volume: crossed by a ray it only adds a vote
+/// (hair cards over a scalp, layered, turn the vote around the head).
+fn sheet_pieces(
+    mesh: &Mesh,
+    component: &[u32],
+    count: usize,
+    main: usize,
+    area: &[f64],
+    longest: f64,
+) -> Vec<bool> {
+    let total: f64 = area.iter().sum();
+    let small: Vec<bool> = (0..count)
+        .map(|c| c != main && area[c] <= SHEET_MAX_SHARE * total)
+        .collect();
+    if !small.iter().any(|&b| b) {
+        return small;
+    }
+    let mut edges: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if !small[component[t] as usize] {
+            continue;
+        }
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    let mut open = vec![false; count];
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let c = component[t] as usize;
+        if !small[c] {
+            continue;
+        }
+        members[c].extend_from_slice(tri);
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if edges.get(&(a.min(b), a.max(b))) == Some(&1) {
+                open[c] = true;
+            }
+        }
+    }
+    (0..count)
+        .map(|c| {
+            if !(small[c] && open[c]) {
+                return false;
+            }
+            let mut v = std::mem::take(&mut members[c]);
+            v.sort_unstable();
+            v.dedup();
+            let points: Vec<DVec3> = v.iter().map(|&i| mesh.positions[i as usize]).collect();
+            extents(&points)[2] <= SHEET_MAX_THICKNESS * longest
+        })
+        .collect()
 }
 
 /// The principal extents of `points` (largest first): the spread of their projections on the
@@ -166,7 +238,8 @@ fn prop_pieces(
 /// The mesh to voxelize: `mesh` with only the connected pieces (triangles sharing vertices)
 /// that make the figure, `None` when nothing is left out.
 ///
-/// Held props ([`prop_pieces`]: a sword, a staff) are left out first. The figure grows from
+/// Held props ([`prop_pieces`]: a sword, a staff) and small open sheets ([`sheet_pieces`]:
+/// hair cards, lashes) are left out first. The figure grows from
 /// the largest piece (by area): a piece joins when its bounding box meets the figure's,
 /// enlarged on every side by [`MARGIN`] of the largest piece's longest side, until no more
 /// piece joins (so a figure made of many pieces, a body with separate head, hands and clothes,
@@ -199,7 +272,13 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     });
     let longest = (longest.1 - longest.0).max_element();
     let mut props = prop_pieces(mesh, &component, count, main, &area, longest);
-    let is_prop: Vec<bool> = props.iter().map(Option::is_some).collect();
+    let is_sheet = sheet_pieces(mesh, &component, count, main, &area, longest);
+    // Props and sheets are left out alike below (never kept, not loose pieces).
+    let is_prop: Vec<bool> = props
+        .iter()
+        .zip(&is_sheet)
+        .map(|(p, &s)| p.is_some() || s)
+        .collect();
     let prop_area: f64 = (0..count).filter(|&c| is_prop[c]).map(|c| area[c]).sum();
     let margin = DVec3::splat(MARGIN * (hi[main] - lo[main]).max_element());
     let (mut box_lo, mut box_hi) = (lo[main] - margin, hi[main] + margin);
@@ -234,6 +313,7 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
     for c in (0..count).filter(|&c| !keep[c]) {
         match props[c].take() {
             Some(prop) => left_out.props.push(prop),
+            None if is_sheet[c] => left_out.sheets += 1,
             None => {
                 left_out.pieces += 1;
                 left_out.area_share += area[c] / total;
@@ -251,6 +331,16 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
         .iter()
         .filter(|&&c| !keep[c as usize] && !is_prop[c as usize])
         .count();
+    let mut sheet_vertices: Vec<u32> = mesh
+        .triangles
+        .iter()
+        .zip(&component)
+        .filter(|(_, &c)| is_sheet[c as usize] && !keep[c as usize])
+        .flat_map(|(t, _)| *t)
+        .collect();
+    sheet_vertices.sort_unstable();
+    sheet_vertices.dedup();
+    left_out.sheet_vertices = sheet_vertices;
     let figure = Mesh {
         positions: mesh.positions.clone(),
         triangles,
@@ -356,5 +446,42 @@ mod tests {
         // A figure whose largest piece is itself a rod keeps it.
         let rod = Mesh::cuboid(DVec3::new(-0.02, 0.0, -0.02), DVec3::new(0.02, 2.0, 0.02));
         assert!(figure_mesh(&rod).is_none());
+    }
+
+    /// An open quad `w` wide and `h` high at height `y` in front of the body, one corner
+    /// pulled `bend` forward out of its plane.
+    fn card(y: f64, w: f64, h: f64, bend: f64) -> Mesh {
+        Mesh {
+            positions: vec![
+                DVec3::new(-w / 2.0, y, 0.21),
+                DVec3::new(w / 2.0, y, 0.21),
+                DVec3::new(-w / 2.0, y - h, 0.21),
+                DVec3::new(w / 2.0, y - h, 0.21 + bend),
+            ],
+            triangles: vec![[0, 2, 1], [1, 2, 3]],
+        }
+    }
+
+    #[test]
+    fn small_open_sheets_are_left_out_and_closed_or_large_or_thick_pieces_kept() {
+        // Cards (hair, lashes): open, flat, small. Left out, not as loose pieces or props.
+        let cards: Vec<Mesh> = (0..5)
+            .map(|k| card(1.4 - 0.01 * k as f64, 0.05, 0.2, 0.0))
+            .collect();
+        let haired = body_with(&cards);
+        let (kept, left_out) = figure_mesh(&haired).unwrap();
+        assert_eq!(
+            (left_out.sheets, left_out.pieces, left_out.props.len()),
+            (5, 0, 0)
+        );
+        assert_eq!(left_out.sheet_vertices.len(), 20);
+        assert_eq!(kept.triangles.len() + 10, haired.triangles.len());
+        // A closed box of a card's size is a piece of the figure (an eye, a button).
+        let box_ = Mesh::cuboid(DVec3::new(-0.025, 1.2, 0.2), DVec3::new(0.025, 1.4, 0.21));
+        assert!(figure_mesh(&body_with(&[box_])).is_none());
+        // An open sheet of a tenth of the area (a cape, a flap of a coat) stays.
+        assert!(figure_mesh(&body_with(&[card(1.4, 0.6, 1.0, 0.0)])).is_none());
+        // A small open piece bent well out of its plane (a cup, an open shell) stays.
+        assert!(figure_mesh(&body_with(&[card(1.4, 0.05, 0.2, 0.1)])).is_none());
     }
 }

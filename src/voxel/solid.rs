@@ -57,6 +57,13 @@ pub struct VoxelReport {
     /// Thin, long pieces the figure holds (a sword, a staff), left out of the voxels so that
     /// they make no limb ([`Prop`]); the skin binds each rigidly to the joint it touches.
     pub props: Vec<Prop>,
+    /// Small open sheets left out of the voxels: hair cards, lashes, brows (at most 1 % of the
+    /// area each, a voxel thick, with a boundary edge): they enclose nothing, and stacked they
+    /// turned the inside/outside vote around a head.
+    pub sheets: usize,
+    /// The sheets' vertices, ascending (not serialized).
+    #[serde(skip)]
+    pub sheet_vertices: Vec<u32>,
 }
 
 /// Dropped interior components are worth a warning from this share of the interior on (a

@@ -63,7 +63,7 @@ pub fn voxelize_figure(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, Vox
 /// classify every voxel centre by the six-direction winding-number vote (see the module docs of
 /// `voxel::winding`: exact for closed meshes, robust to holes, non-manifold edges and
 /// overlapping parts; the absolute winding is used, so inward-wound meshes work too; each
-/// direction adds at most [`MAX_COUNT_PER_DIRECTION`], so stacked open sheets do not outvote
+/// direction adds at most one, `MAX_COUNT_PER_DIRECTION`, so stacked open sheets do not outvote
 /// the other directions); mark the
 /// voxels the triangles touch; keep the largest 26-connected interior component.
 ///
@@ -161,6 +161,8 @@ pub fn voxelize(mesh: &Mesh, options: &VoxelOptions) -> Result<Solid, VoxelError
         refined_from: None,
         duplicate_triangles,
         props: left_out.props,
+        sheets: left_out.sheets,
+        sheet_vertices: left_out.sheet_vertices,
     };
     Ok(Solid {
         grid,
