@@ -36,8 +36,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from facing_check import rig  # noqa: E402
-from pieces_check import body, body_folders, bones, scored, write_obj  # noqa: E402
+from pieces_check import body, body_folders, bones, rig_and_score  # noqa: E402
 
 GARMENTS = "jacket,jacket_only,sleeves_only,pants_only,skirt,robe,coat,cape"
 
@@ -185,15 +184,8 @@ def main():
             else:
                 V, F = dressed(garment, positions, triangles, joints, height / 1.75)
             mesh = os.path.join(args.work, f"{model}_{garment}.obj")
-            write_obj(mesh, V, F)
-            skeleton = rig(args.skelfit, mesh, mesh[:-4] + ".json")
-            if skeleton is None:
-                print(f"  {garment:13s} failed")
-                continue
-            warnings = skeleton.get("run", {}).get("warnings", [])
-            codes = sorted({w.get("code", "?") for w in warnings if isinstance(w, dict)})
-            print(f"  {garment:13s} {scored(skeleton, reference, height, 1.5)}"
-                  + (f"  {' '.join(codes)}" if codes else ""), flush=True)
+            _, text = rig_and_score(args.skelfit, mesh, V, F, reference, height)
+            print(f"  {garment:13s} {text}", flush=True)
     return 0
 
 

@@ -170,6 +170,20 @@ def scored(skeleton, reference, height, limit):
         + (f" (missing {', '.join(missing)})" if missing else "")
 
 
+def rig_and_score(skelfit, mesh, positions, triangles, reference, height, limit=1.5):
+    """Writes the mesh to `mesh` (.obj), rigs it with the defaults and returns the skeleton
+    (None when the rig failed) and a line: `scored` against `reference` with the joints more
+    than `limit` % off, and the warnings' codes."""
+    write_obj(mesh, positions, triangles)
+    skeleton = rig(skelfit, mesh, mesh[:-4] + ".json")
+    if skeleton is None:
+        return None, "failed"
+    warnings = skeleton.get("run", {}).get("warnings", [])
+    codes = sorted({w.get("code", "?") for w in warnings if isinstance(w, dict)})
+    return skeleton, scored(skeleton, reference, height, limit) \
+        + (f"  {' '.join(codes)}" if codes else "")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("models", nargs="*", metavar="MODEL")

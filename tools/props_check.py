@@ -35,8 +35,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from facing_check import rig  # noqa: E402
-from pieces_check import body, body_folders, scored, write_obj  # noqa: E402
+from pieces_check import body, body_folders, rig_and_score  # noqa: E402
 
 PROPS = "sword_down,sword_fwd,sword_up,staff,gun,shield,hat,tail,hair"
 
@@ -191,17 +190,10 @@ def main():
             if prop != "none":
                 add(prop, V, F, joints, height / 1.75)
             mesh = os.path.join(args.work, f"{model}_{prop}.obj")
-            write_obj(mesh, V, F)
-            skeleton = rig(args.skelfit, mesh, mesh[:-4] + ".json")
-            if skeleton is None:
-                print(f"  {prop:11s} failed")
-                continue
-            warnings = skeleton.get("run", {}).get("warnings", [])
-            codes = sorted({w.get("code", "?") for w in warnings if isinstance(w, dict)})
-            tail = sum(1 for j in skeleton["joints"] if j["name"].startswith("tail"))
-            print(f"  {prop:11s} {scored(skeleton, reference, height, 1.5)}"
-                  + (f" tail joints {tail}" if tail else "")
-                  + (f"  {' '.join(codes)}" if codes else ""), flush=True)
+            skeleton, text = rig_and_score(args.skelfit, mesh, V, F, reference, height)
+            placed = skeleton["joints"] if skeleton else []
+            tail = sum(1 for j in placed if j["name"].startswith("tail"))
+            print(f"  {prop:11s} {text}" + (f"  tail joints {tail}" if tail else ""), flush=True)
     return 0
 
 
