@@ -75,7 +75,26 @@ pub(super) struct LeftOut {
     pub sheet_vertices: Vec<u32>,
 }
 
-/// Which of the `count` pieces (`component` of every triangle) are small open sheets: not the
+/// Every piece's vertices (ascending) and principal extents ([`extents`]), for the `count`
+/// pieces (`component` of every triangle).
+fn piece_shapes(mesh: &Mesh, component: &[u32], count: usize) -> Vec<(Vec<u32>, [f64; 3])> {
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); count];
+    for (t, &c) in component.iter().enumerate() {
+        members[c as usize].extend_from_slice(&mesh.triangles[t]);
+    }
+    members
+        .into_iter()
+        .map(|mut v| {
+            v.sort_unstable();
+            v.dedup();
+            let points: Vec<DVec3> = v.iter().map(|&i| mesh.positions[i as usize]).collect();
+            let e = extents(&points);
+            (v, e)
+        })
+        .collect()
+}
+
+/// Which of the pieces (`component` of every triangle, `shapes` from [`piece_shapes`]) are small open sheets: not the
 /// largest piece (`main`), at most [`SHEET_MAX_SHARE`] of the area each, with a boundary edge
 /// (an edge of one triangle only), and at most [`SHEET_MAX_THICKNESS`] of the mesh's longest
 /// side `longest` thick. A sheet encloses no volume: crossed by a ray it only adds a vote
@@ -83,11 +102,12 @@ pub(super) struct LeftOut {
 fn sheet_pieces(
     mesh: &Mesh,
     component: &[u32],
-    count: usize,
+    shapes: &[(Vec<u32>, [f64; 3])],
     main: usize,
     area: &[f64],
     longest: f64,
 ) -> Vec<bool> {
+    let count = shapes.len();
     let total: f64 = area.iter().sum();
     let small: Vec<bool> = (0..count)
         .map(|c| c != main && area[c] <= SHEET_MAX_SHARE * total)
@@ -106,13 +126,11 @@ fn sheet_pieces(
         }
     }
     let mut open = vec![false; count];
-    let mut members: Vec<Vec<u32>> = vec![Vec::new(); count];
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let c = component[t] as usize;
         if !small[c] {
             continue;
         }
-        members[c].extend_from_slice(tri);
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
             if edges.get(&(a.min(b), a.max(b))) == Some(&1) {
@@ -121,16 +139,7 @@ fn sheet_pieces(
         }
     }
     (0..count)
-        .map(|c| {
-            if !(small[c] && open[c]) {
-                return false;
-            }
-            let mut v = std::mem::take(&mut members[c]);
-            v.sort_unstable();
-            v.dedup();
-            let points: Vec<DVec3> = v.iter().map(|&i| mesh.positions[i as usize]).collect();
-            extents(&points)[2] <= SHEET_MAX_THICKNESS * longest
-        })
+        .map(|c| small[c] && open[c] && shapes[c].1[2] <= SHEET_MAX_THICKNESS * longest)
         .collect()
 }
 
@@ -162,7 +171,7 @@ fn extents(points: &[DVec3]) -> [f64; 3] {
     out
 }
 
-/// Which of the `count` pieces (`component` of every triangle) are held props: at least
+/// Which of the pieces (`shapes` from [`piece_shapes`]) are held props: at least
 /// [`PROP_MIN_LENGTH`] of the mesh's longest side `longest` long, at most [`PROP_MAX_WIDTH`]
 /// of it wide and [`PROP_MAX_THICKNESS`] thick, [`PROP_MIN_ELONGATION`] times longer than
 /// wide, not the largest piece
@@ -171,26 +180,12 @@ fn extents(points: &[DVec3]) -> [f64; 3] {
 /// when they would hold more than [`PROP_MAX_SHARE`] of the area.
 fn prop_pieces(
     mesh: &Mesh,
-    component: &[u32],
-    count: usize,
+    shapes: &[(Vec<u32>, [f64; 3])],
     main: usize,
     area: &[f64],
     longest: f64,
 ) -> Vec<Option<Prop>> {
-    let mut members: Vec<Vec<u32>> = vec![Vec::new(); count];
-    for (t, &c) in component.iter().enumerate() {
-        members[c as usize].extend_from_slice(&mesh.triangles[t]);
-    }
-    let shapes: Vec<(Vec<u32>, [f64; 3])> = members
-        .into_iter()
-        .map(|mut v| {
-            v.sort_unstable();
-            v.dedup();
-            let points: Vec<DVec3> = v.iter().map(|&i| mesh.positions[i as usize]).collect();
-            let e = extents(&points);
-            (v, e)
-        })
-        .collect();
+    let count = shapes.len();
     let twins = |a: &[f64; 3], b: &[f64; 3]| {
         a.iter()
             .zip(b)
@@ -271,8 +266,9 @@ pub(super) fn figure_mesh(mesh: &Mesh) -> Option<(Mesh, LeftOut)> {
         (a.min(lo[c]), b.max(hi[c]))
     });
     let longest = (longest.1 - longest.0).max_element();
-    let mut props = prop_pieces(mesh, &component, count, main, &area, longest);
-    let is_sheet = sheet_pieces(mesh, &component, count, main, &area, longest);
+    let shapes = piece_shapes(mesh, &component, count);
+    let mut props = prop_pieces(mesh, &shapes, main, &area, longest);
+    let is_sheet = sheet_pieces(mesh, &component, &shapes, main, &area, longest);
     // Props and sheets are left out alike below (never kept, not loose pieces).
     let is_prop: Vec<bool> = props
         .iter()
