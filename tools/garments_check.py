@@ -30,13 +30,12 @@ Standard-library Python only. Usage (from the repository, after `cargo build --r
                                     [--work /tmp/garments_check] [--garments jacket,robe,...]
                                     [MODEL ...]
 """
-import argparse
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pieces_check import body, body_folders, bones, rig_and_score  # noqa: E402
+from pieces_check import body, body_check_args, bones, rig_and_score  # noqa: E402
 
 GARMENTS = "jacket,jacket_only,sleeves_only,pants_only,skirt,robe,coat,cape"
 
@@ -161,18 +160,9 @@ def dressed(garment, positions, triangles, joints, s):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("models", nargs="*", metavar="MODEL")
-    parser.add_argument("--refdata", default="../shared/refdata")
-    parser.add_argument("--skelfit", default="target/release/skelfit")
-    parser.add_argument("--work", default="/tmp/garments_check")
-    parser.add_argument("--garments", default=GARMENTS)
-    args = parser.parse_args()
-    folders = body_folders(args.refdata, args.models)
-    if not folders:
-        print(f"no MakeHuman bodies with rig_game_engine.json under {args.refdata}/humanoid")
+    args, folders = body_check_args(__doc__, "/tmp/garments_check", "--garments", GARMENTS)
+    if folders is None:
         return 1
-    os.makedirs(args.work, exist_ok=True)
     print("core mean, % of height; joints over 1.5 % in brackets; warning codes")
     for folder in folders:
         model = os.path.basename(folder)

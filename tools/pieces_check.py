@@ -184,20 +184,33 @@ def rig_and_score(skelfit, mesh, positions, triangles, reference, height, limit=
         + (f"  {' '.join(codes)}" if codes else "")
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def body_check_args(doc, work, option, default, help=None, models=None):
+    """The command line shared by the body checks (pieces, props, garments): MODEL names,
+    --refdata, --skelfit, --work (default `work`) and the check's own `option`. Returns the
+    arguments and the MakeHuman body folders to run on (`models` when none are named; all
+    when that is None too), or None after saying why there are none; creates the work folder.
+    """
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     parser.add_argument("models", nargs="*", metavar="MODEL")
     parser.add_argument("--refdata", default="../shared/refdata")
     parser.add_argument("--skelfit", default="target/release/skelfit")
-    parser.add_argument("--work", default="/tmp/pieces_check")
-    parser.add_argument("--gaps", default=GAPS, help="gaps, % of the height (comma-separated)")
+    parser.add_argument("--work", default=work)
+    parser.add_argument(option, default=default, help=help)
     args = parser.parse_args()
-    gaps = [0.0] + [float(g) for g in args.gaps.split(",")]
-    folders = body_folders(args.refdata, args.models)
+    folders = body_folders(args.refdata, args.models or models)
     if not folders:
         print(f"no MakeHuman bodies with rig_game_engine.json under {args.refdata}/humanoid")
-        return 1
+        return args, None
     os.makedirs(args.work, exist_ok=True)
+    return args, folders
+
+
+def main():
+    args, folders = body_check_args(__doc__, "/tmp/pieces_check", "--gaps", GAPS,
+                                    "gaps, %% of the height (comma-separated)")
+    if folders is None:
+        return 1
+    gaps = [0.0] + [float(g) for g in args.gaps.split(",")]
     print("core mean, % of height, per gap (% of height); joints over 2 % in brackets")
     for folder in folders:
         model = os.path.basename(folder)

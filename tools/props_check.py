@@ -29,13 +29,12 @@ Standard-library Python only. Usage (from the repository, after `cargo build --r
                                  [--work /tmp/props_check] [--props sword_down,tail,...]
                                  [MODEL ...]
 """
-import argparse
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pieces_check import body, body_folders, rig_and_score  # noqa: E402
+from pieces_check import body, body_check_args, rig_and_score  # noqa: E402
 
 PROPS = "sword_down,sword_fwd,sword_up,staff,gun,shield,hat,tail,hair"
 
@@ -168,18 +167,10 @@ def add(prop, V, F, joints, scale):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("models", nargs="*", metavar="MODEL")
-    parser.add_argument("--refdata", default="../shared/refdata")
-    parser.add_argument("--skelfit", default="target/release/skelfit")
-    parser.add_argument("--work", default="/tmp/props_check")
-    parser.add_argument("--props", default=PROPS)
-    args = parser.parse_args()
-    folders = body_folders(args.refdata, args.models or ["mh_neutral_default"])
-    if not folders:
-        print(f"no MakeHuman bodies with rig_game_engine.json under {args.refdata}/humanoid")
+    args, folders = body_check_args(__doc__, "/tmp/props_check", "--props", PROPS,
+                                    models=["mh_neutral_default"])
+    if folders is None:
         return 1
-    os.makedirs(args.work, exist_ok=True)
     print("core mean, % of height; joints over 1.5 % in brackets; warning codes")
     for folder in folders:
         model = os.path.basename(folder)
