@@ -216,8 +216,30 @@ fn paired_limbs(
         let mut left_half: Vec<usize> = path[..=mid].to_vec();
         left_half.reverse();
         let right_half = path[mid..].to_vec();
-        let mut left = paths.limb(l, pair.kind, pair.number, Side::Left, attach, &left_half);
-        let mut right = paths.limb(r, pair.kind, pair.number, Side::Right, attach, &right_half);
+        // Paired limbs mirror each other: a medial path that breaks off in one hand or foot
+        // (a thin palm a few voxels across, where the grid falls a little differently on the
+        // two sides) is carried on through its part's voxels as far as its partner's reaches.
+        let (reach_l, reach_r) = (paths.reach(&left_half), paths.reach(&right_half));
+        let short_of =
+            |own: f64, partner: f64| (own < (1.0 - MIRROR_SHORTFALL) * partner).then_some(partner);
+        let mut left = paths.limb(
+            l,
+            pair.kind,
+            pair.number,
+            Side::Left,
+            attach,
+            &left_half,
+            short_of(reach_l, reach_r),
+        );
+        let mut right = paths.limb(
+            r,
+            pair.kind,
+            pair.number,
+            Side::Right,
+            attach,
+            &right_half,
+            short_of(reach_r, reach_l),
+        );
         if options.symmetric_roots {
             // Bilateral symmetry: each root is the mean of itself and its partner's mirror
             // image in the sagittal plane halfway between them.
@@ -235,6 +257,34 @@ fn paired_limbs(
     }
 
     (limbs, midpoints, unpaired)
+}
+
+/// A limb's medial path is carried on to its partner's reach (from the figure's heart to the
+/// path's end) when it falls short of it by more than this fraction ([`paired_limbs`]); closer
+/// than that, the grid's steps.
+const MIRROR_SHORTFALL: f64 = 0.05;
+
+/// How many times the limb's thickness (twice its median inscribed radius) its part goes on
+/// beyond the end of its medial path for the path to count as broken off ([`Paths::limb`]).
+const BREAK_OFF_THICKNESSES: f64 = 2.0;
+
+/// Ends the points from index `from` on (a path carried on beyond its medial end) at the
+/// first that lies `reach` from `root` (the heart), moved back onto that distance; points that never get
+/// that far all stay.
+fn reach_from(points: &mut Vec<DVec3>, radii: &mut Vec<f64>, from: usize, root: DVec3, reach: f64) {
+    let Some(k) = (from.max(1)..points.len()).find(|&k| points[k].distance(root) >= reach) else {
+        return;
+    };
+    let (a, b) = (points[k - 1].distance(root), points[k].distance(root));
+    let t = if b > a {
+        ((reach - a) / (b - a)).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    points[k] = points[k - 1].lerp(points[k], t);
+    radii[k] = radii[k - 1] + t * (radii[k] - radii[k - 1]);
+    points.truncate(k + 1);
+    radii.truncate(k + 1);
 }
 
 /// The head-to-tail path: from the head's tip (else the top or front trunk voxel) to the tail's
@@ -326,8 +376,15 @@ fn unpaired_limbs(
         path.reverse(); // axis first
         let side = parts[part].side.unwrap_or(Side::Left);
         let attach = surface.centre(path[0]);
-        limbs.push(paths.limb(part, kind, number, side, attach, &path));
+        limbs.push(paths.limb(part, kind, number, side, attach, &path, None));
     }
+}
+
+/// The median of `values` (the upper one of an even count), 0 for none.
+fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted.get(sorted.len() / 2).copied().unwrap_or(0.0)
 }
 
 /// A warning per limb shorter than `min_limb_slenderness` times its median radius.
@@ -338,9 +395,7 @@ fn stub_warnings(
 ) {
     for limb in limbs {
         let length: f64 = limb.path.windows(2).map(|w| w[0].distance(w[1])).sum();
-        let mut radii = limb.radii.clone();
-        radii.sort_by(f64::total_cmp);
-        let median = radii.get(radii.len() / 2).copied().unwrap_or(0.0);
+        let median = median(&limb.radii);
         if median > 0.0 && length < options.min_limb_slenderness * median {
             warnings.push(FitInputWarning::Stub {
                 side: limb.side,
@@ -561,8 +616,24 @@ impl Paths<'_> {
         radii.reverse();
     }
 
+    /// The figure's heart (the centre of its medial surface), from which paired limbs' reaches
+    /// are compared: one point for both sides, on the median plane of a symmetric figure.
+    fn heart(&self) -> DVec3 {
+        self.surface.centre(self.labelling.level_graph.heart)
+    }
+
+    /// How far a limb whose path is `path` reaches: from the figure's heart ([`Self::heart`])
+    /// to the path's last DMS position, mesh units.
+    fn reach(&self, path: &[usize]) -> f64 {
+        path.last()
+            .map_or(0.0, |&end| self.surface.centre(end).distance(self.heart()))
+    }
+
     /// A limb from its DMS path (proximal first): the fit's limb input, with digits from the
-    /// wrist/ankle to each digit tip.
+    /// wrist/ankle to each digit tip. With `reach` (its partner's, [`Self::reach`]), a limb
+    /// without digits whose medial path stops short is carried on through its part's interior
+    /// voxels towards its tip ([`Self::thin_end`]), to at most that far from the heart.
+    #[allow(clippy::too_many_arguments)]
     fn limb(
         &self,
         part: usize,
@@ -571,12 +642,29 @@ impl Paths<'_> {
         side: Side,
         attach: DVec3,
         path: &[usize],
+        reach: Option<f64>,
     ) -> LimbInput {
         let p = &self.labelling.parts[part];
         let (mut points, mut radii) = self.points(path);
         let wrist = *path.last().unwrap_or(&self.labelling.level_graph.heart);
         let mut digits = Vec::new();
         if p.digits.is_empty() {
+            if let (Some(reach), Some(&end)) = (reach, path.last()) {
+                let medial = points.len();
+                self.thin_end(part, end, &mut points, &mut radii);
+                // A break in the medial path: the part goes on for more than twice the limb's
+                // thickness (an open hand or a foot, two to three times as long as the forearm
+                // or shin is thick), not just to the skin around the path's end or over the
+                // cap of a fist (about as long as the arm is thick).
+                let thickness = 2.0 * median(&radii[..medial]);
+                let beyond = points[medial - 1].distance(points[points.len() - 1]);
+                if beyond > BREAK_OFF_THICKNESSES * thickness {
+                    reach_from(&mut points, &mut radii, medial, self.heart(), reach);
+                } else {
+                    points.truncate(medial);
+                    radii.truncate(medial);
+                }
+            }
             self.extend_end(&mut points, &mut radii);
         } else {
             let from_wrist = self.search(wrist);
