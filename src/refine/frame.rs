@@ -161,10 +161,13 @@ fn finish(
 
 /// The most the head's long axis may turn from the facing the refinement was given and still
 /// set the frontal plane ([`frame_from_head`]). The facing found from the feet and the body's
-/// symmetry is off by a few degrees at most (a figure turned 3° is found turned); a head
-/// turned further is turned on its neck, or lopsided with hair, and would tilt every frontal
-/// slice of the trunk (the armpits) with it.
-pub const MAX_HEAD_TURN_DEGREES: f64 = 10.0;
+/// symmetry, or the file's own axis, is off by a few degrees at most (a figure turned 3° is
+/// found turned), and the head corrects it within that. A head's axis further off says more
+/// about the head than about the body: a head turned on its neck, lopsided with hair, or
+/// carrying a visor, headphones or a hat brim that turns its slices' principal axes (the
+/// adventurer's head 4.8° off its facing, quaternius_cyberpunk_character's 6° off once the
+/// figure was turned 1°, which moved its armpits' frontal slices and its shoulders 7 cm).
+pub const MAX_HEAD_TURN_DEGREES: f64 = 3.0;
 
 /// Frontal and sagittal normals from the head (seed 004, 3.1): the principal axes of all head
 /// slices projected into one transverse plane (as curves, length-weighted, not as their
@@ -172,9 +175,9 @@ pub const MAX_HEAD_TURN_DEGREES: f64 = 10.0;
 /// axis lies nearer `forward_hint` (the longer one on a human head, the shorter one on a head
 /// wider than deep), its sign taken from the hint. Returns the frame with `forward` and `left`
 /// replaced, or `None` when the head is too round to tell, or when its axis turns more than
-/// `MAX_HEAD_TURN_DEGREES` (10°) from `frame.forward`: such a head is turned on its neck or made
-/// lopsided by what it wears (hair cards hanging to one side, a ponytail, a hat), and the
-/// body's own facing is the better frontal plane for slicing it.
+/// `MAX_HEAD_TURN_DEGREES` (3°) from `frame.forward`: such a head is turned on its neck or made
+/// lopsided by what it wears (hair cards hanging to one side, a ponytail, a hat, a visor), and
+/// the body's own facing is the better frontal plane for slicing it.
 pub fn frame_from_head(
     frame: &BodyFrame,
     head: &HeadSlices,
