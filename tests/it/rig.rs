@@ -1755,13 +1755,43 @@ fn a_robe_over_the_legs_keeps_the_hips_where_the_arms_put_them() {
     }
 }
 
+/// Rigs `mesh` and its copies turned about up by each of `turns` (degrees) with the default
+/// options, asserts that each of `keys` of every turned rig lies within `bound` of the height
+/// of the unturned rig's joint, turned, and returns the turned rigs with their turns.
+fn assert_turned_within(mesh: &Mesh, turns: &[f64], keys: &[&str], bound: f64) -> Vec<(f64, Rig)> {
+    let (lo, hi) = mesh.bounding_box().unwrap();
+    let height = hi.y - lo.y;
+    let base = rig(mesh, &RigOptions::default()).unwrap();
+    let at = |r: &Rig, key: &str| r.fit.skeleton.joint(r.fit.canonical[key]).position;
+    turns
+        .iter()
+        .map(|&degrees| {
+            let turn = glam::DQuat::from_rotation_y(degrees.to_radians());
+            let r = rig(
+                &common::turned_about_up(mesh, degrees),
+                &RigOptions::default(),
+            )
+            .unwrap();
+            for key in keys {
+                let off = at(&r, key).distance(turn * at(&base, key));
+                assert!(
+                    off < bound * height,
+                    "turned {degrees}: {key} {off:.3} from the unturned rig's"
+                );
+            }
+            (degrees, r)
+        })
+        .collect()
+}
+
 /// Paired limbs mirror each other. A figure turned a few degrees off the file's axes falls
 /// differently on the voxels, and the medial path of one hand broke off at the palm
 /// (quaternius_women_formal turned 3°: the left arm's path ended at the wrist, 0.44 out from
-/// the median plane against the right arm's 0.64): the fit spread the left arm's joints over the shorter
-/// path, the refinement's trace stopped short of the hand and the wrists were found 4 cm in
-/// (gdquest_mannequiny turned -3°: 9 cm). The shorter path is carried on through its part's
-/// voxels as far as its partner's reaches, and the wrists stay where the unturned rig has them.
+/// the median plane against the right arm's 0.64): the fit spread the left arm's joints over
+/// the shorter path, the refinement's trace stopped short of the hand and the wrists were
+/// found 4 cm in (gdquest_mannequiny turned -3°: 9 cm). The shorter path is carried on through
+/// its part's voxels as far as its partner's reaches, and the wrists stay where the unturned
+/// rig has them.
 #[test]
 fn a_hand_whose_medial_path_breaks_off_reaches_as_far_as_its_partner() {
     use skelfit::template::LimbKind;
@@ -1773,16 +1803,8 @@ fn a_hand_whose_medial_path_breaks_off_reaches_as_far_as_its_partner() {
             return;
         };
         let mesh = load(&dir.join("mesh.obj")).unwrap();
-        let (lo, hi) = mesh.bounding_box().unwrap();
-        let height = hi.y - lo.y;
-        let base = rig(&mesh, &RigOptions::default()).unwrap();
-        for degrees in [-3.0f64, 3.0] {
-            let turn = glam::DQuat::from_rotation_y(degrees.to_radians());
-            let r = rig(
-                &common::turned_about_up(&mesh, degrees),
-                &RigOptions::default(),
-            )
-            .unwrap();
+        let turned = assert_turned_within(&mesh, &[-3.0, 3.0], &["wrist_L", "wrist_R"], 0.015);
+        for (degrees, r) in turned {
             // How far out each arm's path reaches from the median plane between the roots.
             let arms: Vec<_> = (r.input.limbs.iter())
                 .filter(|l| l.kind == LimbKind::Arm)
@@ -1798,14 +1820,6 @@ fn a_hand_whose_medial_path_breaks_off_reaches_as_far_as_its_partner() {
                 ratio > 0.9,
                 "{model} turned {degrees}: the arms' paths reach {reach:.3?}"
             );
-            for key in ["wrist_L", "wrist_R"] {
-                let at = |r: &Rig| r.fit.skeleton.joint(r.fit.canonical[key]).position;
-                let off = at(&r).distance(turn * at(&base));
-                assert!(
-                    off < 0.015 * height,
-                    "{model} turned {degrees}: {key} {off:.3} from the unturned rig's"
-                );
-            }
         }
     }
 }
@@ -1822,19 +1836,5 @@ fn a_head_axis_a_few_degrees_off_the_facing_leaves_the_shoulders_alone() {
         return;
     };
     let mesh = load(&dir.join("mesh.obj")).unwrap();
-    let (lo, hi) = mesh.bounding_box().unwrap();
-    let height = hi.y - lo.y;
-    let base = rig(&mesh, &RigOptions::default()).unwrap();
-    for degrees in [-1.0f64, 1.0] {
-        let turn = glam::DQuat::from_rotation_y(degrees.to_radians());
-        let r = rig(&common::turned_about_up(&mesh, degrees), &RigOptions::default()).unwrap();
-        for key in ["shoulder_L", "shoulder_R"] {
-            let at = |r: &Rig| r.fit.skeleton.joint(r.fit.canonical[key]).position;
-            let off = at(&r).distance(turn * at(&base));
-            assert!(
-                off < 0.015 * height,
-                "turned {degrees}: {key} {off:.3} from the unturned rig's"
-            );
-        }
-    }
+    assert_turned_within(&mesh, &[-1.0, 1.0], &["shoulder_L", "shoulder_R"], 0.015);
 }
