@@ -269,8 +269,8 @@ const MIRROR_SHORTFALL: f64 = 0.05;
 const BREAK_OFF_THICKNESSES: f64 = 2.0;
 
 /// Ends the points from index `from` on (a path carried on beyond its medial end) at the
-/// first that lies `reach` from `root` (the heart), moved back onto that distance; points that never get
-/// that far all stay.
+/// first that lies `reach` from `root` (the heart), moved back onto that distance; points that
+/// never get that far all stay.
 fn reach_from(points: &mut Vec<DVec3>, radii: &mut Vec<f64>, from: usize, root: DVec3, reach: f64) {
     let Some(k) = (from.max(1)..points.len()).find(|&k| points[k].distance(root) >= reach) else {
         return;
