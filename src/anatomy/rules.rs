@@ -191,6 +191,27 @@ fn mirrored(
     })
 }
 
+/// Whether another of `candidates` mirrors section `s` across `plane`: of comparable length,
+/// its voxel mean's mirror image within a third of the longer's length of `s`'s mean and nearer
+/// to it than half their distance (two sections on the plane mirror each other only
+/// trivially).
+fn has_mirror_image(
+    s: usize,
+    candidates: &[usize],
+    sections: &[Section],
+    plane: MedianPlane,
+) -> bool {
+    let a = &sections[s];
+    candidates.iter().any(|&t| {
+        let b = &sections[t];
+        let reflected = plane.reflect(b.mean).distance(a.mean);
+        t != s
+            && comparable_length(a, b)
+            && reflected <= a.length.max(b.length) / 3.0
+            && reflected < 0.5 * a.mean.distance(b.mean)
+    })
+}
+
 /// Whether a section leaves the trunk the way a rest-pose arm does: from its attachment to its
 /// distal end it goes at least as far sideways or down as it goes up, and as it goes forward.
 fn reaches_like_an_arm(section: &Section, frame: &Frame) -> bool {
@@ -644,8 +665,10 @@ impl Rules<'_> {
     /// where the head does (the same trunk vertex), on the median plane (its voxel mean and its
     /// tip within a third of its length of the plane through `centre`: a lone arm whose partner
     /// is missing stands off it), reaching the front of the figure, its tip below the head's
-    /// (an open mouth's mandible). Without it the mandible merges into the trunk. The longest
-    /// such section.
+    /// (an open mouth's mandible), and with no mirror image among the other candidates
+    /// ([`has_mirror_image`]: arms hanging close against the body, cut apart from it by
+    /// [`super::separate_arms`], leave the trunk where the head does too). Without it the
+    /// mandible merges into the trunk. The longest such section.
     fn jaw(&mut self, centre: DVec3) {
         let Some(head) =
             (0..self.sections.len()).find(|&s| self.assign[s].label == Some(Label::Head))
@@ -667,6 +690,7 @@ impl Rules<'_> {
                     && [section.mean, section.distal]
                         .iter()
                         .all(|&p| plane.offset(p).abs() <= section.length / 3.0)
+                    && !has_mirror_image(s, &candidates, self.sections, plane)
             })
             .max_by(|&a, &b| {
                 self.sections[a]

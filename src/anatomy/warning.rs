@@ -68,6 +68,15 @@ pub enum AnatomyWarning {
         /// Its distal point, mesh units.
         reach: DVec3,
     },
+    /// The arms hang against the body: found on transverse slices of the mesh and cut apart
+    /// from the body in the voxels before the figure was labelled again
+    /// ([`super::hanging_arms`]).
+    ArmsSeparated {
+        /// Transverse levels (one voxel apart) each arm was found on (left, right).
+        levels: [usize; 2],
+        /// Interior voxels cut.
+        voxels: usize,
+    },
 }
 
 impl AnatomyWarning {
@@ -75,7 +84,9 @@ impl AnatomyWarning {
     pub fn severity(&self) -> Severity {
         match self {
             Self::UpFound { confidence, .. } if *confidence <= 0.0 => Severity::Degraded,
-            Self::UpFound { .. } | Self::ForwardGuessed { .. } => Severity::Info,
+            Self::UpFound { .. } | Self::ForwardGuessed { .. } | Self::ArmsSeparated { .. } => {
+                Severity::Info
+            }
             Self::LargestPartOnly { .. }
             | Self::OddLegs { .. }
             | Self::TooManyLegPairs { .. }
@@ -99,6 +110,7 @@ impl AnatomyWarning {
             Self::TooManyLegPairs { .. } => "too_many_leg_pairs",
             Self::NoLegs => "no_legs",
             Self::UnidentifiedProtrusion { .. } => "unidentified_protrusion",
+            Self::ArmsSeparated { .. } => "arms_separated",
         }
     }
 }
@@ -150,6 +162,11 @@ impl fmt::Display for AnatomyWarning {
                 f,
                 "an unidentified protrusion (section {section}, {voxels} DMS voxels, reaching ({:.3}, {:.3}, {:.3})) was merged into the trunk; label it in a labels override file if it is a body part",
                 reach.x, reach.y, reach.z
+            ),
+            Self::ArmsSeparated { levels, voxels } => write!(
+                f,
+                "the arms hang against the body: found on {} and {} transverse slices of the mesh beside the trunk, and cut apart from it in the voxels ({voxels} voxels) before labelling",
+                levels[0], levels[1]
             ),
         }
     }

@@ -2,8 +2,9 @@
 
 use super::Laps;
 use crate::anatomy::{
-    label_pieces, label_vertices_by_bones, label_with_overrides, FigureClass, Label, LabelOptions,
-    LabelPipelineOptions, Labelling, Overrides,
+    hanging_arms, label_pieces, label_vertices_by_bones, label_with_overrides, separate_arms,
+    AnatomyWarning, FigureClass, Forward, Label, LabelOptions, LabelPipelineOptions, Labelling,
+    Overrides, Up,
 };
 use crate::digits::{fit_digits, DigitOptions};
 use crate::distance::{edt, DistanceMap};
@@ -20,7 +21,7 @@ use crate::skeleton::canonical::CanonicalJoints;
 use crate::skeleton::{Canonical, JointId, Side};
 use crate::skin::{digit_weights, skin_from_bones, Skin, SkinOptions};
 use crate::template::{ExpectedPart, Preset, Template};
-use crate::voxel::{boundary_mesh, voxelize_figure, Solid, VoxelOptions};
+use crate::voxel::{boundary_mesh, voxelize_figure, Solid, VoxelOptions, VoxelSize};
 use crate::warning::Warning;
 
 pub use super::warning::{RigWarning, MEDIAL_FALLBACK};
@@ -273,6 +274,11 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         &options.label,
         options.overrides.as_ref(),
     )?;
+    let (solid, distance, surface, labelling) =
+        match separated_arms(mesh, &solid, &labelling, options) {
+            Some(separated) => separated,
+            None => (solid, distance, surface, labelling),
+        };
     lap.lap("label", &mut timings);
     let resolved = resolve_template(chosen, &labelling)?;
     let (input, mut path_warnings) = fit_input(
@@ -374,6 +380,79 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         timings,
         warnings,
     })
+}
+
+/// Voxels across an arm hanging against the body that [`separated_arms`] cuts it out of.
+const ARM_DIAMETER_VOXELS: f64 = 6.0;
+
+/// ...with voxels at most this much finer than the rig's own (about 15 times the voxels).
+const MIN_ARMS_VOXEL: f64 = 0.4;
+
+/// A figure whose labelling found no arms but a head and legs, with arms hanging against its
+/// sides ([`hanging_arms`]): the solid with the arms cut apart from the body
+/// ([`separate_arms`]), its distance map, medial surface and labelling (in the frame found the
+/// first time, with its orientation warnings and [`AnatomyWarning::ArmsSeparated`]), when the
+/// new labelling finds both arms; `None` otherwise, or when a stage of the second pass fails
+/// (the first labelling stands).
+fn separated_arms(
+    mesh: &Mesh,
+    solid: &Solid,
+    labelling: &Labelling,
+    options: &RigOptions,
+) -> Option<(Solid, DistanceMap, MedialSurface, Labelling)> {
+    if options.overrides.is_some() {
+        return None;
+    }
+    let arms = hanging_arms(mesh, labelling)?;
+    // The arms are cut out of a grid fine enough for them to keep a medial line: at least
+    // ARM_DIAMETER_VOXELS across (the default grid gives an adult's arm about 3).
+    let voxel = solid.grid.voxel_size;
+    let fine = (2.0 * arms.radius() / ARM_DIAMETER_VOXELS).max(MIN_ARMS_VOXEL * voxel);
+    let finer = (fine < voxel)
+        .then(|| {
+            let size = VoxelOptions {
+                size: VoxelSize::Absolute(fine),
+                ..options.voxel
+            };
+            voxelize_figure(mesh, &size).ok()
+        })
+        .flatten();
+    let (cut, voxels) = separate_arms(finer.as_ref().unwrap_or(solid), &arms);
+    if voxels == 0 {
+        return None;
+    }
+    let distance = edt(&cut);
+    let surface = dms(&distance, &options.medial).ok()?;
+    let framed = LabelOptions {
+        up: Up::Direction(labelling.frame.up),
+        forward: Forward::Direction(labelling.frame.forward),
+        ..options.label.clone()
+    };
+    let mut again = label_pieces(mesh, &cut, &surface, &options.paths, &framed, None).ok()?;
+    if again.count(Label::Arm) != 2 {
+        return None;
+    }
+    again.up_found = labelling.up_found.clone();
+    again.forward_found = labelling.forward_found.clone();
+    let orientation = labelling.warnings.iter().filter(|w| {
+        matches!(
+            w,
+            Warning::Anatomy(
+                AnatomyWarning::UpFound { .. } | AnatomyWarning::ForwardGuessed { .. }
+            )
+        )
+    });
+    let mut warnings: Vec<Warning> = orientation.cloned().collect();
+    warnings.push(
+        AnatomyWarning::ArmsSeparated {
+            levels: arms.levels(),
+            voxels,
+        }
+        .into(),
+    );
+    warnings.append(&mut again.warnings);
+    again.warnings = warnings;
+    Some((cut, distance, surface, again))
 }
 
 /// The refinement the template declares ([`refine_fit`]; `options.in_rig: false` skips it):

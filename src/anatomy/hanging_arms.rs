@@ -1,0 +1,414 @@
+//! Arms hanging against the body (the arms-down pose of scans and of idle bind poses).
+//!
+//! Where an arm touches the trunk the voxels merge them, and below the shoulder the level
+//! graph sees one trunk with no arm leaving it. The mesh keeps them apart: a transverse slice
+//! below the armpit cuts each arm's skin as a closed loop of its own beside the trunk's, even
+//! where the two surfaces press into each other. [`hanging_arms`] finds the two arms as
+//! mirrored runs of such loops down from the shoulders, and [`separate_arms`] cuts the voxels
+//! between each arm and the body, so that labelling the cut solid again finds two arms hanging
+//! from the shoulders (and the skin weights, which spread through the voxels, keep the arm's
+//! skin off the flank).
+
+use super::{Label, Labelling};
+use crate::mesh::{Mesh, PlaneSlicer, SliceLoop};
+use crate::voxel::Solid;
+use glam::DVec3;
+use std::f64::consts::TAU;
+
+/// An arm's loop is at most this fraction of the figure's height thick (perimeter over 2π):
+/// an adult's upper arm is about 0.03, a cartoon's fat arm 0.08; the trunk's loop is thicker.
+const ARM_MAX_RADIUS: f64 = 0.1;
+
+/// ...and at least this fraction (a finger's loop, a strap, a seam's sliver are thinner).
+const ARM_MIN_RADIUS: f64 = 0.01;
+
+/// A hanging arm runs down the body for at least this fraction of the figure's height below
+/// its armpit (upper arm, forearm and hand are about 0.36 of the height hanging; an arm that
+/// lifts off the body after a short stretch is found by the level graph itself).
+const ARM_MIN_RUN: f64 = 0.2;
+
+/// Loops of the two sides are mirror images when their offsets from the median plane and
+/// their forward offsets agree within this many times the larger loop's radius.
+const MIRROR_RADII: f64 = 1.0;
+
+/// Voxels within this many voxels beyond an arm's loop (around its centre) that are not in the
+/// loop are cut: the seam between arm and flank, wide enough that no 26-neighbours remain
+/// across it.
+const CUT_MARGIN_VOXELS: f64 = 2.0;
+
+/// The share of the head's vertices below the base of its skin that [`hanging_arms`] takes
+/// for strays (the medial labels of a figure whose arms merge with its trunk give a few of the
+/// hands' or the chest's vertices to the head).
+const STRAY_SHARE: f64 = 0.05;
+
+/// One transverse level of a hanging arm.
+#[derive(Debug, Clone)]
+struct ArmLevel {
+    /// The arm's loops at this level in the slice plane's coordinates (left, forward): the arm,
+    /// or the fingers of its hand.
+    loops: Vec<Vec<(f64, f64)>>,
+    /// The loops' centre (area-weighted) and the farthest loop point from it.
+    centre: (f64, f64),
+    reach: f64,
+    /// The radius of a disc of the loops' area.
+    radius: f64,
+}
+
+/// The two arms found hanging against the body ([`hanging_arms`]).
+#[derive(Debug, Clone)]
+pub struct HangingArms {
+    /// Origin of the slice coordinates (the figure's heart) and the frame's up, left and
+    /// forward.
+    origin: DVec3,
+    up: DVec3,
+    left: DVec3,
+    forward: DVec3,
+    /// Height (along up from `origin`) of the first level and the spacing of the levels.
+    top: f64,
+    step: f64,
+    /// Per side (left, right): the arm's levels from `top` down.
+    arms: [Vec<ArmLevel>; 2],
+}
+
+impl HangingArms {
+    /// How many transverse levels each arm was found on (left, right).
+    pub fn levels(&self) -> [usize; 2] {
+        [self.arms[0].len(), self.arms[1].len()]
+    }
+
+    /// The arms' median radius over their levels (of a disc of their loops' area), mesh units.
+    pub fn radius(&self) -> f64 {
+        let mut r: Vec<f64> = self.arms.iter().flatten().map(|l| l.radius).collect();
+        r.sort_by(f64::total_cmp);
+        r.get(r.len() / 2).copied().unwrap_or(0.0)
+    }
+}
+
+/// A closed loop's points in the slice coordinates, its area-weighted centre, area and
+/// radius (perimeter over 2π).
+struct Flat {
+    points: Vec<(f64, f64)>,
+    centre: (f64, f64),
+    area: f64,
+    radius: f64,
+}
+
+/// Even-odd point-in-polygon test.
+fn contains(polygon: &[(f64, f64)], (x, y): (f64, f64)) -> bool {
+    let mut inside = false;
+    let mut j = polygon.len().wrapping_sub(1);
+    for (i, &(xi, yi)) in polygon.iter().enumerate() {
+        let (xj, yj) = polygon[j];
+        if (yi > y) != (yj > y) && x < xi + (y - yi) / (yj - yi) * (xj - xi) {
+            inside = !inside;
+        }
+        j = i;
+    }
+    inside
+}
+
+fn flat(l: &SliceLoop, to2d: impl Fn(DVec3) -> (f64, f64)) -> Option<Flat> {
+    if !l.closed || l.points.len() < 3 {
+        return None;
+    }
+    let points: Vec<(f64, f64)> = l.points.iter().map(|&p| to2d(p)).collect();
+    let (mut a, mut cx, mut cy) = (0.0, 0.0, 0.0);
+    for (i, &(x0, y0)) in points.iter().enumerate() {
+        let (x1, y1) = points[(i + 1) % points.len()];
+        let cross = x0 * y1 - x1 * y0;
+        a += cross;
+        cx += (x0 + x1) * cross;
+        cy += (y0 + y1) * cross;
+    }
+    if a.abs() < 1e-18 {
+        return None;
+    }
+    let centre = (cx / (3.0 * a), cy / (3.0 * a));
+    Some(Flat {
+        points,
+        centre,
+        area: 0.5 * a.abs(),
+        radius: l.perimeter() / TAU,
+    })
+}
+
+fn dist((ax, ay): (f64, f64), (bx, by): (f64, f64)) -> f64 {
+    (ax - bx).hypot(ay - by)
+}
+
+/// The arms of a human-like figure whose labelling found none but a head and legs, when they
+/// hang against its sides: on transverse slices of `mesh` (along the labelling's up, one voxel
+/// apart, from the head's base down), closed loops beside the trunk's loop (their centres
+/// outside it), [`ARM_MIN_RADIUS`]–[`ARM_MAX_RADIUS`] of the height thick, mirrored across the
+/// median plane ([`MIRROR_RADII`]), first met above the figure's heart and followed down level
+/// by level (each level's loops within the previous level's reach of its centre: the arm, then
+/// the fingers) for at least [`ARM_MIN_RUN`] of the height on both sides. `None` otherwise.
+pub fn hanging_arms(mesh: &Mesh, labelling: &Labelling) -> Option<HangingArms> {
+    if labelling.figure != super::FigureClass::HumanLike
+        || labelling.count(Label::Arm) > 0
+        || labelling.count(Label::Head) == 0
+        || labelling.count(Label::Leg) < 2
+    {
+        return None;
+    }
+    let frame = labelling.frame;
+    let (up, left, forward) = (frame.up, frame.left, frame.forward);
+    let grid = &labelling.grid;
+    let origin = grid.centre(grid.coords(*labelling.dms_voxels.get(labelling.level_graph.heart)?));
+    let (low, high) = mesh
+        .positions
+        .iter()
+        .map(|p| (*p - origin).dot(up))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| {
+            (lo.min(h), hi.max(h))
+        });
+    let height = high - low;
+    let step = labelling.grid.voxel_size;
+    if !(height > 0.0) || !(step > 0.0) {
+        return None;
+    }
+    // Down from the base of the head's skin (the neck's, the neck being the head's part),
+    // stray vertices aside (the lowest [`STRAY_SHARE`] of the head's), or from where the head
+    // leaves the trunk when that is higher.
+    let head = *labelling.find(Label::Head).first()?;
+    let mut heights: Vec<f64> = (labelling.mesh_parts.iter().zip(&mesh.positions))
+        .filter(|(&part, _)| part as usize == head)
+        .map(|(_, p)| (*p - origin).dot(up))
+        .collect();
+    heights.sort_by(f64::total_cmp);
+    let base = heights
+        .get((STRAY_SHARE * heights.len() as f64) as usize)
+        .copied()
+        .unwrap_or(f64::NEG_INFINITY);
+    let top = base
+        .max((labelling.parts[head].attachment - origin).dot(up))
+        .min(high);
+    let levels = ((top - low) / step).floor() as usize;
+    let slicer = PlaneSlicer::new(mesh, up);
+    let to2d = |p: DVec3| ((p - origin).dot(left), (p - origin).dot(forward));
+    let (min_r, max_r) = (ARM_MIN_RADIUS * height, ARM_MAX_RADIUS * height);
+
+    // Every level's closed loops and its trunk loop (the largest around the figure's axis,
+    // the heart's vertical).
+    let slices: Vec<(Vec<Flat>, Option<usize>)> = (0..levels)
+        .map(|k| {
+            let loops: Vec<Flat> = slicer
+                .slice(origin + up * (top - k as f64 * step))
+                .iter()
+                .filter_map(|l| flat(l, to2d))
+                .collect();
+            let trunk = (0..loops.len())
+                .filter(|&i| contains(&loops[i].points, (0.0, 0.0)))
+                .max_by(|&a, &b| loops[a].area.total_cmp(&loops[b].area));
+            (loops, trunk)
+        })
+        .collect();
+    let outside_trunk = |k: usize, f: &Flat| {
+        let (loops, trunk) = &slices[k];
+        trunk.is_none_or(|t| !contains(&loops[t].points, f.centre))
+    };
+    // A start: a level above the heart with a mirrored pair of arm-thick loops beside the
+    // trunk (the first below the armpits, or hair falling on the shoulders, whose run ends
+    // soon: the next start is tried below it).
+    for start in 0..levels {
+        if top - start as f64 * step < 0.0 {
+            break;
+        }
+        let (loops, trunk) = &slices[start];
+        if trunk.is_none() {
+            continue;
+        }
+        let side_of = |f: &Flat, s: f64| {
+            f.centre.0 * s > 0.0
+                && f.radius >= min_r
+                && f.radius <= max_r
+                && outside_trunk(start, f)
+                && !contains(&f.points, (0.0, 0.0))
+        };
+        let pair = loops.iter().filter(|f| side_of(f, 1.0)).find_map(|l| {
+            loops
+                .iter()
+                .filter(|f| side_of(f, -1.0))
+                .find(|r| {
+                    let tol = MIRROR_RADII * l.radius.max(r.radius);
+                    (l.centre.0 + r.centre.0).abs() <= tol && (l.centre.1 - r.centre.1).abs() <= tol
+                })
+                .map(|r| (l, r))
+        });
+        let Some((l, r)) = pair else { continue };
+        let mut arms = [vec![level_of(&[l])], vec![level_of(&[r])]];
+        // Each side goes on down while loops lie within its last level's reach of its centre.
+        for (k, (loops, _)) in slices.iter().enumerate().skip(start + 1) {
+            let mut going = false;
+            for arm in arms.iter_mut() {
+                if arm.len() + start != k {
+                    continue;
+                }
+                if let Some(next) = follow(loops, &arm[arm.len() - 1], step, max_r) {
+                    arm.push(next);
+                    going = true;
+                }
+            }
+            if !going {
+                break;
+            }
+        }
+        let run = |arm: &Vec<ArmLevel>| arm.len() as f64 * step;
+        if run(&arms[0]) < ARM_MIN_RUN * height || run(&arms[1]) < ARM_MIN_RUN * height {
+            continue;
+        }
+        // And up from the start while both sides' loops go on: to the armpits, where the arm's
+        // loop joins the trunk's.
+        let mut first = top - start as f64 * step;
+        loop {
+            let h = first + step;
+            if h > high {
+                break;
+            }
+            let loops: Vec<Flat> = slicer
+                .slice(origin + up * h)
+                .iter()
+                .filter_map(|l| flat(l, to2d))
+                .collect();
+            let (Some(l), Some(r)) = (
+                follow(&loops, &arms[0][0], step, max_r),
+                follow(&loops, &arms[1][0], step, max_r),
+            ) else {
+                break;
+            };
+            arms[0].insert(0, l);
+            arms[1].insert(0, r);
+            first = h;
+        }
+        return Some(HangingArms {
+            origin,
+            up,
+            left,
+            forward,
+            top: first,
+            step,
+            arms,
+        });
+    }
+    None
+}
+
+/// The arm's level among `loops` next to its level `last`: the loops within `last`'s reach
+/// (at least two `step`s) of its centre, on its side of the median plane, at most `max_r`
+/// thick and not around the figure's axis (the trunk's); `None` when there are none (the arm
+/// ends, or joins the trunk at the armpit).
+fn follow(loops: &[Flat], last: &ArmLevel, step: f64, max_r: f64) -> Option<ArmLevel> {
+    let near: Vec<&Flat> = loops
+        .iter()
+        .filter(|f| {
+            dist(f.centre, last.centre) <= last.reach.max(2.0 * step)
+                && f.radius <= max_r
+                && !contains(&f.points, (0.0, 0.0))
+                && f.centre.0 * last.centre.0 > 0.0
+        })
+        .collect();
+    (!near.is_empty()).then(|| level_of(&near))
+}
+
+/// One arm level from its loops (`loops`, one or more: the arm, the fingers).
+fn level_of(loops: &[&Flat]) -> ArmLevel {
+    let area: f64 = loops.iter().map(|f| f.area).sum();
+    let centre = if area > 0.0 {
+        let x = loops.iter().map(|f| f.centre.0 * f.area).sum::<f64>() / area;
+        let y = loops.iter().map(|f| f.centre.1 * f.area).sum::<f64>() / area;
+        (x, y)
+    } else {
+        loops[0].centre
+    };
+    let reach = loops
+        .iter()
+        .flat_map(|f| f.points.iter())
+        .map(|&p| dist(p, centre))
+        .fold(0.0, f64::max);
+    ArmLevel {
+        loops: loops.iter().map(|f| f.points.clone()).collect(),
+        centre,
+        reach,
+        radius: (area / std::f64::consts::PI).sqrt(),
+    }
+}
+
+/// `solid` with the voxels between each arm of `arms` and the body cut: on every level of an
+/// arm, the inside voxels within [`CUT_MARGIN_VOXELS`] beyond the arm's reach of its centre
+/// that are not inside its loops (or are inside the trunk's loop too, where the surfaces press
+/// into each other), then the arm's voxels still touching (26-neighbours) an inside voxel that
+/// is not the arm's. Returns the cut solid and how many voxels were cut.
+pub fn separate_arms(solid: &Solid, arms: &HangingArms) -> (Solid, usize) {
+    let grid = &solid.grid;
+    let margin = CUT_MARGIN_VOXELS * grid.voxel_size;
+    // 0: untouched, 1/2: the left/right arm, 3: cut.
+    let mut mark = vec![0u8; solid.inside.len()];
+    for (i, inside) in solid.inside.iter().enumerate() {
+        if !inside {
+            continue;
+        }
+        let p = grid.centre(grid.coords(i)) - arms.origin;
+        let k = ((arms.top - p.dot(arms.up)) / arms.step).round();
+        if k < 0.0 {
+            continue;
+        }
+        let k = k as usize;
+        let q = (p.dot(arms.left), p.dot(arms.forward));
+        for (side, arm) in arms.arms.iter().enumerate() {
+            let Some(level) = arm.get(k) else { continue };
+            if dist(q, level.centre) > level.reach + margin {
+                continue;
+            }
+            let in_arm = level.loops.iter().any(|l| contains(l, q));
+            mark[i] = if in_arm { side as u8 + 1 } else { 3 };
+        }
+    }
+    // The arm's voxels that still touch the body below its first level (above it, the arm
+    // hangs from the shoulder).
+    let below_top = |j: usize| {
+        let p = grid.centre(grid.coords(j)) - arms.origin;
+        (arms.top - p.dot(arms.up)) / arms.step >= 0.5
+    };
+    let dims = grid.dims;
+    let mut seam = Vec::new();
+    for (i, &m) in mark.iter().enumerate() {
+        if m != 1 && m != 2 {
+            continue;
+        }
+        let [x, y, z] = grid.coords(i);
+        let touches = (-1i64..=1).any(|dz| {
+            (-1i64..=1).any(|dy| {
+                (-1i64..=1).any(|dx| {
+                    let (nx, ny, nz) = (x as i64 + dx, y as i64 + dy, z as i64 + dz);
+                    if nx < 0
+                        || ny < 0
+                        || nz < 0
+                        || nx >= dims[0] as i64
+                        || ny >= dims[1] as i64
+                        || nz >= dims[2] as i64
+                    {
+                        return false;
+                    }
+                    let j = grid.index([nx as usize, ny as usize, nz as usize]);
+                    solid.inside[j] && mark[j] != m && mark[j] != 3 && below_top(j)
+                })
+            })
+        });
+        if touches {
+            seam.push(i);
+        }
+    }
+    for i in seam {
+        mark[i] = 3;
+    }
+    let mut cut = solid.clone();
+    let mut count = 0;
+    for (inside, &m) in cut.inside.iter_mut().zip(&mark) {
+        if m == 3 && *inside {
+            *inside = false;
+            count += 1;
+        }
+    }
+    cut.report.interior_voxels = cut.report.interior_voxels.saturating_sub(count);
+    (cut, count)
+}
