@@ -139,10 +139,10 @@ fn dist((ax, ay): (f64, f64), (bx, by): (f64, f64)) -> f64 {
 /// The arms of a human-like figure whose labelling found none but a head and legs, when they
 /// hang against its sides: on transverse slices of `mesh` (along the labelling's up, one voxel
 /// apart, from the head's base down), closed loops beside the trunk's loop (their centres
-/// outside it), [`ARM_MIN_RADIUS`]–[`ARM_MAX_RADIUS`] of the height thick, mirrored across the
-/// median plane ([`MIRROR_RADII`]), first met above the figure's heart and followed down level
+/// outside it), `ARM_MIN_RADIUS`–`ARM_MAX_RADIUS` of the height thick, mirrored across the
+/// median plane (`MIRROR_RADII`), first met above the figure's heart and followed down level
 /// by level (each level's loops within the previous level's reach of its centre: the arm, then
-/// the fingers) for at least [`ARM_MIN_RUN`] of the height on both sides. `None` otherwise.
+/// the fingers) for at least `ARM_MIN_RUN` of the height on both sides. `None` otherwise.
 pub fn hanging_arms(mesh: &Mesh, labelling: &Labelling) -> Option<HangingArms> {
     if labelling.figure != super::FigureClass::HumanLike
         || labelling.count(Label::Arm) > 0
@@ -164,11 +164,11 @@ pub fn hanging_arms(mesh: &Mesh, labelling: &Labelling) -> Option<HangingArms> {
         });
     let height = high - low;
     let step = labelling.grid.voxel_size;
-    if !(height > 0.0) || !(step > 0.0) {
+    if height.is_nan() || height <= 0.0 || step.is_nan() || step <= 0.0 {
         return None;
     }
     // Down from the base of the head's skin (the neck's, the neck being the head's part),
-    // stray vertices aside (the lowest [`STRAY_SHARE`] of the head's), or from where the head
+    // stray vertices aside (the lowest `STRAY_SHARE` of the head's), or from where the head
     // leaves the trunk when that is higher.
     let head = *labelling.find(Label::Head).first()?;
     let mut heights: Vec<f64> = (labelling.mesh_parts.iter().zip(&mesh.positions))
@@ -334,7 +334,7 @@ fn level_of(loops: &[&Flat]) -> ArmLevel {
 }
 
 /// `solid` with the voxels between each arm of `arms` and the body cut: on every level of an
-/// arm, the inside voxels within [`CUT_MARGIN_VOXELS`] beyond the arm's reach of its centre
+/// arm, the inside voxels within `CUT_MARGIN_VOXELS` beyond the arm's reach of its centre
 /// that are not inside its loops (or are inside the trunk's loop too, where the surfaces press
 /// into each other), then the arm's voxels still touching (26-neighbours) an inside voxel that
 /// is not the arm's. Returns the cut solid and how many voxels were cut.

@@ -426,7 +426,7 @@ fn separated_arms(
     let framed = LabelOptions {
         up: Up::Direction(labelling.frame.up),
         forward: Forward::Direction(labelling.frame.forward),
-        ..options.label.clone()
+        ..options.label
     };
     let mut again = label_pieces(mesh, &cut, &surface, &options.paths, &framed, None).ok()?;
     if again.count(Label::Arm) != 2 {
