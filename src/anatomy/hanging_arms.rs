@@ -412,3 +412,99 @@ pub fn separate_arms(solid: &Solid, arms: &HangingArms) -> (Solid, usize) {
     cut.report.interior_voxels = cut.report.interior_voxels.saturating_sub(count);
     (cut, count)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::voxel::{Grid, VoxelReport};
+
+    /// A unit-voxel solid: a trunk x 2..=9, an arm x 10..=12 pressed against its side from
+    /// y 2 to 17, both joined above y 17 (the shoulder), z 2..=6; and one arm level per voxel
+    /// layer y 2..=17 (the arm's square loop around x 9.6..12.9).
+    fn scene() -> (Solid, HangingArms) {
+        let grid = Grid {
+            dims: [16, 24, 9],
+            origin: DVec3::ZERO,
+            voxel_size: 1.0,
+        };
+        let mut inside = vec![false; grid.len()];
+        for z in 2..=6 {
+            for y in 2..=20 {
+                for x in 2..=12 {
+                    inside[grid.index([x, y, z])] = true;
+                }
+            }
+        }
+        let solid = Solid {
+            grid,
+            inside,
+            surface: vec![false; grid.len()],
+            report: VoxelReport::default(),
+        };
+        let square = vec![(9.6, 1.9), (12.9, 1.9), (12.9, 7.1), (9.6, 7.1)];
+        let level = ArmLevel {
+            loops: vec![square],
+            centre: (11.25, 4.5),
+            reach: 3.0,
+            radius: 2.0,
+        };
+        // Levels from y = 17.5 (the top layer's centre) down to y = 2.5.
+        let arms = HangingArms {
+            origin: DVec3::ZERO,
+            up: DVec3::Y,
+            left: DVec3::X,
+            forward: DVec3::Z,
+            top: 17.5,
+            step: 1.0,
+            arms: [vec![level; 16], Vec::new()],
+        };
+        (solid, arms)
+    }
+
+    #[test]
+    fn an_arm_pressed_against_the_trunk_is_cut_free_below_its_shoulder_only() {
+        let (solid, arms) = scene();
+        let (cut, count) = separate_arms(&solid, &arms);
+        assert!(count > 0);
+        let grid = cut.grid;
+        let at = |x: usize, y: usize, z: usize| cut.inside[grid.index([x, y, z])];
+        // The arm keeps a core on every level.
+        for y in 2..=17 {
+            assert!(at(11, y, 4), "arm core cut at y {y}");
+        }
+        // Below the shoulder no arm voxel (x >= 10) touches a trunk voxel (x <= 9), even
+        // diagonally.
+        for z in 0..grid.dims[2] {
+            for y in 0..=17 {
+                for x in 10..=12 {
+                    if !at(x, y, z) {
+                        continue;
+                    }
+                    for (dx, dy, dz) in (-1i64..=1).flat_map(|a| {
+                        (-1i64..=1).flat_map(move |b| (-1i64..=1).map(move |c| (a, b, c)))
+                    }) {
+                        let (nx, ny, nz) = (x as i64 + dx, y as i64 + dy, z as i64 + dz);
+                        if nx < 0 || ny < 0 || nz < 0 || ny > 17 || nz >= grid.dims[2] as i64 {
+                            continue;
+                        }
+                        let (nx, ny, nz) = (nx as usize, ny as usize, nz as usize);
+                        assert!(
+                            !(nx <= 9 && at(nx, ny, nz)),
+                            "arm voxel ({x}, {y}, {z}) touches trunk voxel ({nx}, {ny}, {nz})"
+                        );
+                    }
+                }
+            }
+        }
+        // Above its first level the arm still joins the body: the shoulder is untouched.
+        for y in 18..=20 {
+            for x in 2..=12 {
+                assert!(at(x, y, 4), "shoulder voxel ({x}, {y}) cut");
+            }
+        }
+        // The trunk's core stays.
+        for y in 2..=20 {
+            assert!(at(5, y, 4));
+        }
+    }
+}
