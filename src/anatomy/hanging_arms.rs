@@ -84,6 +84,170 @@ impl HangingArms {
     }
 }
 
+/// Which skin a mesh vertex is in where the arms hang against the body
+/// ([`HangingArms::skins`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArmSkin {
+    /// Above the armpits or below the hands: not in the arms' band.
+    Apart,
+    /// In the band, on the body's skin (the flank, a hip or thigh the hand lies on).
+    Body,
+    /// In the band, on the skin of arm 0 (left) or 1 (right): the arm, its sleeve, the hand.
+    Arm(usize),
+}
+
+/// A piece of skin in the arms' band is an arm's when at least this share of its vertices
+/// lies within the arm's reach on their level.
+const ARM_SKIN_SHARE: f64 = 0.5;
+
+impl HangingArms {
+    /// The skin each vertex of `mesh` is in: below the arms' first level (the armpits) and
+    /// down to their last, the mesh's pieces of surface there (vertices joined by edges within
+    /// the band: the arm's tube, the flank's, a sleeve's) are an arm's when at least
+    /// `ARM_SKIN_SHARE` of their vertices lie within that arm's reach of its centre, else the
+    /// body's. On every level the arm's loop is apart from the trunk's, so the band holds no
+    /// edge between them.
+    pub fn skins(&self, mesh: &Mesh) -> Vec<ArmSkin> {
+        let level = |p: DVec3| {
+            let q = p - self.origin;
+            let k = (self.top - q.dot(self.up)) / self.step;
+            (k >= 0.0).then_some((k.round() as usize, (q.dot(self.left), q.dot(self.forward))))
+        };
+        let bottom = self.arms.iter().map(Vec::len).max().unwrap_or(0);
+        let placed: Vec<Option<(usize, (f64, f64))>> = mesh
+            .positions
+            .iter()
+            .map(|&p| level(p).filter(|(k, _)| *k < bottom))
+            .collect();
+        let mut sets = crate::mesh::DisjointSets::new(mesh.positions.len());
+        for t in &mesh.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                if placed[a as usize].is_some() && placed[b as usize].is_some() {
+                    sets.union(a, b);
+                }
+            }
+        }
+        let (piece, count) = sets.numbered();
+        // Per piece: vertices, and those within each arm's reach.
+        let mut tally = vec![(0usize, [0usize; 2]); count];
+        for (v, place) in placed.iter().enumerate() {
+            let Some((k, q)) = place else { continue };
+            let t = &mut tally[piece[v] as usize];
+            t.0 += 1;
+            for (side, arm) in self.arms.iter().enumerate() {
+                if arm.get(*k).is_some_and(|l| dist(*q, l.centre) <= l.reach) {
+                    t.1[side] += 1;
+                }
+            }
+        }
+        placed
+            .iter()
+            .enumerate()
+            .map(|(v, place)| {
+                if place.is_none() {
+                    return ArmSkin::Apart;
+                }
+                let (n, near) = tally[piece[v] as usize];
+                let side = if near[0] >= near[1] { 0 } else { 1 };
+                if near[side] as f64 >= ARM_SKIN_SHARE * n as f64 {
+                    ArmSkin::Arm(side)
+                } else {
+                    ArmSkin::Body
+                }
+            })
+            .collect()
+    }
+}
+
+/// Keeps the skins of arms hanging against the body apart in `weights` (per vertex of `mesh`,
+/// joint and weight): a vertex of an arm's skin ([`HangingArms::skins`]) keeps only the weights
+/// of that arm's joints (`arm_joints[side][joint]`: the shoulder and the joints below it), a
+/// vertex of the body's skin in the band only those of other joints; the weights left are
+/// scaled to sum to one. A vertex left with none takes the mean of its mesh neighbours'
+/// (repeated outwards from the vertices that have some), or keeps its own when none has.
+/// The weight field spreads through the voxels, and where an arm presses into the flank the
+/// flank's skin lies in the arm's voxels: raising the arm tore it. Returns how many vertices
+/// changed.
+pub fn keep_arm_skins_apart(
+    mesh: &Mesh,
+    skins: &[ArmSkin],
+    arm_joints: [&[bool]; 2],
+    weights: &mut [Vec<(crate::skeleton::JointId, f64)>],
+) -> usize {
+    let is_arm =
+        |side: usize, j: crate::skeleton::JointId| arm_joints[side].get(j.0) == Some(&true);
+    let mut changed = 0;
+    let mut empty = vec![false; weights.len()];
+    let mut before: Vec<(usize, Vec<(crate::skeleton::JointId, f64)>)> = Vec::new();
+    for (v, w) in weights.iter_mut().enumerate() {
+        let keep = |j| match skins.get(v) {
+            Some(ArmSkin::Arm(side)) => is_arm(*side, j),
+            Some(ArmSkin::Body) => !is_arm(0, j) && !is_arm(1, j),
+            _ => true,
+        };
+        if w.iter().all(|&(j, _)| keep(j)) {
+            continue;
+        }
+        changed += 1;
+        w.retain(|&(j, _)| keep(j));
+        let sum: f64 = w.iter().map(|(_, x)| x).sum();
+        if sum > 0.0 {
+            w.iter_mut().for_each(|(_, x)| *x /= sum);
+        } else {
+            before.push((v, std::mem::take(w)));
+            empty[v] = true;
+        }
+    }
+    // Vertices left without weights take their neighbours', from the filled ones outwards.
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); weights.len()];
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            if a < weights.len() && b < weights.len() {
+                neighbours[a].push(b as u32);
+                neighbours[b].push(a as u32);
+            }
+        }
+    }
+    loop {
+        let mut filled = Vec::new();
+        for v in (0..weights.len()).filter(|&v| empty[v]) {
+            let mut mean: Vec<(crate::skeleton::JointId, f64)> = Vec::new();
+            let mut n = 0;
+            for &u in &neighbours[v] {
+                if empty[u as usize] {
+                    continue;
+                }
+                n += 1;
+                for &(j, x) in &weights[u as usize] {
+                    match mean.iter_mut().find(|(k, _)| *k == j) {
+                        Some(m) => m.1 += x,
+                        None => mean.push((j, x)),
+                    }
+                }
+            }
+            if n > 0 {
+                mean.iter_mut().for_each(|(_, x)| *x /= n as f64);
+                filled.push((v, mean));
+            }
+        }
+        if filled.is_empty() {
+            break;
+        }
+        for (v, mean) in filled {
+            weights[v] = mean;
+            empty[v] = false;
+        }
+    }
+    for (v, w) in before {
+        if empty[v] {
+            weights[v] = w;
+        }
+    }
+    changed
+}
+
 /// A closed loop's points in the slice coordinates, its area-weighted centre, area and
 /// radius (perimeter over 2π).
 struct Flat {

@@ -62,7 +62,7 @@ pub use bone_labels::label_vertices_by_bones;
 pub use error::AnatomyError;
 pub use facing::ForwardChoice;
 pub use frame::{parse_direction, Frame};
-pub use hanging_arms::{hanging_arms, separate_arms, HangingArms};
+pub use hanging_arms::{hanging_arms, keep_arm_skins_apart, separate_arms, ArmSkin, HangingArms};
 pub use level_graph::{level_graph, LevelGraph, LevelTree, LevelVertex, Marks, Reach, NO_VERTEX};
 pub use options::{Forward, LabelOptions, LabelPipelineOptions, LevelOptions, RuleOptions, Up};
 pub use orient::{find_up, UpChoice, UpScore};

@@ -2,9 +2,9 @@
 
 use super::Laps;
 use crate::anatomy::{
-    hanging_arms, label_pieces, label_vertices_by_bones, label_with_overrides, separate_arms,
-    AnatomyWarning, FigureClass, Forward, Label, LabelOptions, LabelPipelineOptions, Labelling,
-    Overrides, Up,
+    hanging_arms, keep_arm_skins_apart, label_pieces, label_vertices_by_bones,
+    label_with_overrides, separate_arms, AnatomyWarning, FigureClass, Forward, HangingArms, Label,
+    LabelOptions, LabelPipelineOptions, Labelling, Overrides, Up,
 };
 use crate::digits::{fit_digits, DigitOptions};
 use crate::distance::{edt, DistanceMap};
@@ -274,10 +274,12 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
         &options.label,
         options.overrides.as_ref(),
     )?;
-    let (solid, distance, surface, labelling) =
+    let (solid, distance, surface, labelling, hanging) =
         match separated_arms(mesh, &solid, &labelling, options) {
-            Some(separated) => separated,
-            None => (solid, distance, surface, labelling),
+            Some((solid, distance, surface, labelling, arms)) => {
+                (solid, distance, surface, labelling, Some(arms))
+            }
+            None => (solid, distance, surface, labelling, None),
         };
     lap.lap("label", &mut timings);
     let resolved = resolve_template(chosen, &labelling)?;
@@ -366,6 +368,28 @@ pub fn rig(mesh: &Mesh, options: &RigOptions) -> crate::Result<Rig> {
             skin.engine = crate::skin::engine_weights(&skin.weights).0;
         }
     }
+    if let Some(arms) = &hanging {
+        // Arms cut apart from the sides: their skin and the flank's keep apart in the weights.
+        let skeleton = &fit.skeleton;
+        let mask = |key: &str| {
+            let mut below = vec![false; skeleton.len()];
+            if let Some(&root) = fit.canonical.get(key) {
+                for j in 0..skeleton.len() {
+                    below[j] = j == root.0
+                        || skeleton
+                            .joint(JointId(j))
+                            .parent
+                            .is_some_and(|p| below[p.0]);
+                }
+            }
+            below
+        };
+        let (left, right) = (mask("shoulder_L"), mask("shoulder_R"));
+        let skins = arms.skins(mesh);
+        if keep_arm_skins_apart(mesh, &skins, [&left, &right], &mut skin.weights) > 0 {
+            skin.engine = crate::skin::engine_weights(&skin.weights).0;
+        }
+    }
     warnings.extend(skin.warnings.iter().cloned().map(Warning::Skin));
     lap.lap("skin", &mut timings);
     let missing = missing_parts(&template, &labelling);
@@ -399,7 +423,7 @@ fn separated_arms(
     solid: &Solid,
     labelling: &Labelling,
     options: &RigOptions,
-) -> Option<(Solid, DistanceMap, MedialSurface, Labelling)> {
+) -> Option<(Solid, DistanceMap, MedialSurface, Labelling, HangingArms)> {
     if options.overrides.is_some() {
         return None;
     }
@@ -452,7 +476,7 @@ fn separated_arms(
     );
     warnings.append(&mut again.warnings);
     again.warnings = warnings;
-    Some((cut, distance, surface, again))
+    Some((cut, distance, surface, again, arms))
 }
 
 /// The refinement the template declares ([`refine_fit`]; `options.in_rig: false` skips it):
