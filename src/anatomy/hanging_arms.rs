@@ -88,11 +88,13 @@ impl HangingArms {
 /// ([`HangingArms::skins`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ArmSkin {
-    /// Above the armpits or below the hands: not in the arms' band.
+    /// Above the armpits.
     Apart,
-    /// In the band, on the body's skin (the flank, a hip or thigh the hand lies on).
+    /// Below the armpits, on the body's skin (the flank, a hip, a skirt or thigh the hand lies
+    /// on, the legs).
     Body,
-    /// In the band, on the skin of arm 0 (left) or 1 (right): the arm, its sleeve, the hand.
+    /// Below the armpits, on the skin of arm 0 (left) or 1 (right): the arm, its sleeve, the
+    /// hand.
     Arm(usize),
 }
 
@@ -101,24 +103,21 @@ pub enum ArmSkin {
 const ARM_SKIN_SHARE: f64 = 0.5;
 
 impl HangingArms {
-    /// The skin each vertex of `mesh` is in: below the arms' first level (the armpits) and
-    /// down to their last, the mesh's pieces of surface there (vertices joined by edges within
-    /// the band: the arm's tube, the flank's, a sleeve's) are an arm's when at least
-    /// `ARM_SKIN_SHARE` of their vertices lie within that arm's reach of its centre, else the
-    /// body's. On every level the arm's loop is apart from the trunk's, so the band holds no
-    /// edge between them.
+    /// The skin each vertex of `mesh` is in: below the arms' first level (the armpits), the
+    /// mesh's pieces of surface there (vertices joined by edges below it: the arm's tube and
+    /// hand, the flank's, a sleeve's, a skirt's, the legs') are an arm's when at least
+    /// `ARM_SKIN_SHARE` of their vertices lie within that arm's reach of its centre on their
+    /// level, else the body's (a skirt the hands lay on, below their last level, is body too).
+    /// On every level the arm's loop is apart from the trunk's, so no edge below the armpits
+    /// joins them.
     pub fn skins(&self, mesh: &Mesh) -> Vec<ArmSkin> {
         let level = |p: DVec3| {
             let q = p - self.origin;
             let k = (self.top - q.dot(self.up)) / self.step;
             (k >= 0.0).then_some((k.round() as usize, (q.dot(self.left), q.dot(self.forward))))
         };
-        let bottom = self.arms.iter().map(Vec::len).max().unwrap_or(0);
-        let placed: Vec<Option<(usize, (f64, f64))>> = mesh
-            .positions
-            .iter()
-            .map(|&p| level(p).filter(|(k, _)| *k < bottom))
-            .collect();
+        let placed: Vec<Option<(usize, (f64, f64))>> =
+            mesh.positions.iter().map(|&p| level(p)).collect();
         let mut sets = crate::mesh::DisjointSets::new(mesh.positions.len());
         for t in &mesh.triangles {
             for k in 0..3 {

@@ -152,10 +152,9 @@ fn arms_hanging_against_the_body_are_found_and_cut_apart_from_it() {
             let e = error(&rig, &reference, height, key);
             assert!(e < 6.0, "{relative}: {key} {e:.2} % of height off");
         }
-        // Raising an arm does not tear the flank it lay against: the arm's skin and the
-        // flank's keep apart in the weights (women_formal had 339 edges past 2x in the left
-        // shoulder's raise alone, stretched up to 70 times, with the flank's skin weighted to
-        // the arm).
+        // Raising an arm does not tear the flank it lay against, nor drag the skirt its hand
+        // lay on: the arm's skin and the body's keep apart in the weights (women_formal had
+        // 959 edges past 2x over the sweep, stretched up to 70 times).
         let (poses, missing) = sweep(
             &rig.fit.skeleton,
             &rig.fit.canonical,
@@ -173,7 +172,7 @@ fn arms_hanging_against_the_body_are_found_and_cut_apart_from_it() {
         )
         .expect("sweep");
         assert!(
-            check.worst() < 10.0 && check.total_over_2() < mesh.positions.len() / 10,
+            check.worst() < 5.0 && check.total_over_2() < mesh.positions.len() / 40,
             "{relative}: {} edges past 2x, worst {:.1}",
             check.total_over_2(),
             check.worst()
