@@ -670,4 +670,44 @@ mod tests {
             assert!(at(5, y, 4));
         }
     }
+
+    #[test]
+    fn an_arms_skin_keeps_its_arms_weights_and_the_body_none_of_them() {
+        use crate::skeleton::JointId;
+        // Two triangles: 0-1-2 on the arm, 3-4-5 on the body; vertex 6 above the armpit.
+        let p = |x: f64| DVec3::new(x, 0.0, 0.0);
+        let mesh = Mesh {
+            positions: vec![p(0.0), p(1.0), p(2.0), p(3.0), p(4.0), p(5.0), p(6.0)],
+            triangles: vec![[0, 1, 2], [3, 4, 5]],
+        };
+        let skins = [
+            ArmSkin::Arm(0),
+            ArmSkin::Arm(0),
+            ArmSkin::Arm(0),
+            ArmSkin::Body,
+            ArmSkin::Body,
+            ArmSkin::Body,
+            ArmSkin::Apart,
+        ];
+        // Joint 1 is the left arm's, joint 0 the body's.
+        let (body, arm) = (JointId(0), JointId(1));
+        let left = [false, true];
+        let right = [false, false];
+        let mut weights = vec![
+            vec![(arm, 0.5), (body, 0.5)],
+            vec![(arm, 1.0)],
+            vec![(arm, 1.0)],
+            vec![(arm, 1.0)],
+            vec![(body, 1.0)],
+            vec![(body, 0.8), (arm, 0.2)],
+            vec![(arm, 0.3), (body, 0.7)],
+        ];
+        let changed = keep_arm_skins_apart(&mesh, &skins, [&left, &right], &mut weights);
+        assert_eq!(changed, 3);
+        assert_eq!(weights[0], vec![(arm, 1.0)]);
+        // The flank's vertex weighted wholly to the arm takes its neighbours' weights.
+        assert_eq!(weights[3], vec![(body, 1.0)]);
+        assert_eq!(weights[5], vec![(body, 1.0)]);
+        assert_eq!(weights[6], vec![(arm, 0.3), (body, 0.7)]);
+    }
 }
