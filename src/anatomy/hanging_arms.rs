@@ -10,7 +10,7 @@
 //! skin off the flank).
 
 use super::{Label, Labelling};
-use crate::mesh::{Mesh, PlaneSlicer, SliceLoop};
+use crate::mesh::{point_in_polygon as contains, Mesh, PlaneSlicer, SliceLoop};
 use crate::voxel::Solid;
 use glam::DVec3;
 use std::f64::consts::TAU;
@@ -254,20 +254,6 @@ struct Flat {
     centre: (f64, f64),
     area: f64,
     radius: f64,
-}
-
-/// Even-odd point-in-polygon test.
-fn contains(polygon: &[(f64, f64)], (x, y): (f64, f64)) -> bool {
-    let mut inside = false;
-    let mut j = polygon.len().wrapping_sub(1);
-    for (i, &(xi, yi)) in polygon.iter().enumerate() {
-        let (xj, yj) = polygon[j];
-        if (yi > y) != (yj > y) && x < xi + (y - yi) / (yj - yi) * (xj - xi) {
-            inside = !inside;
-        }
-        j = i;
-    }
-    inside
 }
 
 fn flat(l: &SliceLoop, to2d: impl Fn(DVec3) -> (f64, f64)) -> Option<Flat> {

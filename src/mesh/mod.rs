@@ -48,6 +48,7 @@ pub use obj::load_obj;
 pub use orient::{OrientReport, CLOSED_ISH_BOUNDARY_FRACTION, FLAT_VOLUME_FRACTION};
 pub use ply::load_ply;
 pub use slice::{PrincipalAxes, SliceLoop};
+pub(crate) use slice_plane::contains as point_in_polygon;
 pub use slice_plane::{slice_plane, slice_plane_outer, PlaneSlicer};
 pub use slice_sphere::{slice_sphere, SphereSlicer};
 pub use stats::MeshStats;

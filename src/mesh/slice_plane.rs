@@ -256,7 +256,7 @@ fn outer(loops: Vec<SliceLoop>, point: DVec3, normal: DVec3) -> Vec<SliceLoop> {
 }
 
 /// Even-odd point-in-polygon test (the polygon closes from its last point to its first).
-fn contains(polygon: &[(f64, f64)], (x, y): (f64, f64)) -> bool {
+pub(crate) fn contains(polygon: &[(f64, f64)], (x, y): (f64, f64)) -> bool {
     let mut inside = false;
     let mut j = polygon.len().wrapping_sub(1);
     for (i, &(xi, yi)) in polygon.iter().enumerate() {
