@@ -54,10 +54,9 @@ const NOTES: &str = "\n## Notes\n\n\
          and the armpit, where the upper arm shares with the chest rather than with the clavicle; on the quadrupeds the \
          base of the neck and the haunches. `cargo run --release --example weight_share_loss -- ../shared/refdata/<kind>/<model>` \
          lists, for one model, the girdle bones and which bones cost the ceiling how much.\n\n\
-         Below the ceiling, a lost limb or a limb taken for another part costs its whole skin: the real characters whose \
-         fit drops an arm (gdquest_mannequiny, the cyberpunk character) or splits stubby limbs into several parts (the \
-         platformer character; see `reports/real/`) score far below their ceiling, as do the figures no template suits \
-         (spider, wasp, dolphin, apatosaurus).\n\n\
+         Below the ceiling, a lost limb or a limb taken for another part costs its whole skin: the figures no template \
+         suits (spider, wasp, dolphin) score far below their ceiling, and the platformer character, whose stubby limbs \
+         split into several parts (see `reports/real/`), below its own.\n\n\
          The nearest-bone agreement depends on the reference rig's conventions at the limb roots and the base of the \
          neck, where the reference rigs disagree with each other and with anatomy: the Quaternius rigs have no upper-arm \
          bone (their front legs start at the elbow, `FrontUpperLeg.*` is the forearm, and a short trunk `FrontShoulder` \
