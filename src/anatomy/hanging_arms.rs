@@ -10,7 +10,9 @@
 //! skin off the flank).
 
 use super::{Label, Labelling};
+use crate::math::upper_median;
 use crate::mesh::{point_in_polygon as contains, Mesh, PlaneSlicer, SliceLoop};
+use crate::skeleton::JointId;
 use crate::voxel::Solid;
 use glam::DVec3;
 use std::f64::consts::TAU;
@@ -78,9 +80,7 @@ impl HangingArms {
 
     /// The arms' median radius over their levels (of a disc of their loops' area), mesh units.
     pub fn radius(&self) -> f64 {
-        let mut r: Vec<f64> = self.arms.iter().flatten().map(|l| l.radius).collect();
-        r.sort_by(f64::total_cmp);
-        r.get(r.len() / 2).copied().unwrap_or(0.0)
+        upper_median(self.arms.iter().flatten().map(|l| l.radius).collect()).unwrap_or(0.0)
     }
 }
 
@@ -172,13 +172,12 @@ pub fn keep_arm_skins_apart(
     mesh: &Mesh,
     skins: &[ArmSkin],
     arm_joints: [&[bool]; 2],
-    weights: &mut [Vec<(crate::skeleton::JointId, f64)>],
+    weights: &mut [Vec<(JointId, f64)>],
 ) -> usize {
-    let is_arm =
-        |side: usize, j: crate::skeleton::JointId| arm_joints[side].get(j.0) == Some(&true);
+    let is_arm = |side: usize, j: JointId| arm_joints[side].get(j.0) == Some(&true);
     let mut changed = 0;
     let mut empty = vec![false; weights.len()];
-    let mut before: Vec<(usize, Vec<(crate::skeleton::JointId, f64)>)> = Vec::new();
+    let mut before: Vec<(usize, Vec<(JointId, f64)>)> = Vec::new();
     for (v, w) in weights.iter_mut().enumerate() {
         let keep = |j| match skins.get(v) {
             Some(ArmSkin::Arm(side)) => is_arm(*side, j),
@@ -198,6 +197,9 @@ pub fn keep_arm_skins_apart(
             empty[v] = true;
         }
     }
+    if before.is_empty() {
+        return changed;
+    }
     // Vertices left without weights take their neighbours', from the filled ones outwards.
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); weights.len()];
     for t in &mesh.triangles {
@@ -212,7 +214,7 @@ pub fn keep_arm_skins_apart(
     loop {
         let mut filled = Vec::new();
         for v in (0..weights.len()).filter(|&v| empty[v]) {
-            let mut mean: Vec<(crate::skeleton::JointId, f64)> = Vec::new();
+            let mut mean: Vec<(JointId, f64)> = Vec::new();
             let mut n = 0;
             for &u in &neighbours[v] {
                 if empty[u as usize] {

@@ -19,6 +19,7 @@ use super::{
 };
 use crate::anatomy::{FigureClass, Label, Labelling, LimbPair, Part};
 use crate::distance::DistanceMap;
+use crate::math::upper_median;
 use crate::medial::MedialSurface;
 use crate::options::{Checks, OptionProblems};
 use crate::paths::{DmsGraph, Search};
@@ -380,11 +381,9 @@ fn unpaired_limbs(
     }
 }
 
-/// The median of `values` (the upper one of an even count), 0 for none.
+/// The median of `values` ([`upper_median`]), 0 for none.
 fn median(values: &[f64]) -> f64 {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    sorted.get(sorted.len() / 2).copied().unwrap_or(0.0)
+    upper_median(values.to_vec()).unwrap_or(0.0)
 }
 
 /// A warning per limb shorter than `min_limb_slenderness` times its median radius.

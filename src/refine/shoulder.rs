@@ -83,14 +83,13 @@ pub fn upper_arm_line(arm: &LimbProfile, from: f64, to: f64) -> Option<(DVec3, D
 /// Median radius (perimeter / 2π) of the arm's slices between arc lengths `from` and `to`
 /// (the upper arm). `None` without slices there.
 pub fn upper_arm_radius(arm: &LimbProfile, from: f64, to: f64) -> Option<f64> {
-    let mut r: Vec<f64> = arm
+    let r: Vec<f64> = arm
         .slices
         .iter()
         .filter(|s| s.arc >= from && s.arc <= to)
         .map(|s| s.perimeter / std::f64::consts::TAU)
         .collect();
-    r.sort_by(f64::total_cmp);
-    r.get(r.len() / 2).copied()
+    crate::math::upper_median(r)
 }
 
 /// Distance of `p` from the line `(point, unit direction)`, mesh units.

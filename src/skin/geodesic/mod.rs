@@ -172,10 +172,7 @@ fn bone_radius(
         per[s.joint.0].extend(s.voxels.iter().map(|&v| distance.distance(v)));
     }
     per.into_iter()
-        .map(|mut r| {
-            r.sort_by(f64::total_cmp);
-            r.get(r.len() / 2).copied().unwrap_or(0.0)
-        })
+        .map(|r| crate::math::upper_median(r).unwrap_or(0.0))
         .collect()
 }
 
